@@ -1,0 +1,1 @@
+/* placeholder */ typedef int mpm_placeholder_;

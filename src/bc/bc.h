@@ -1,0 +1,36 @@
+/* bc.h: boundary conditions as data (MODEL.md section 2, step 3).
+ *
+ * Each mesh edge has a kind (enum mpm_bc_kind in core/config.h). They become a
+ * per-node mask of constrained velocity components; applying the conditions
+ * zeroes those components of nodal momentum and force. Periodic edges are not
+ * masks: the mesh aliases their nodes. */
+#ifndef MPM_BC_BC_H
+#define MPM_BC_BC_H
+
+#include "core/error.h"
+#include "mesh/mesh.h"
+
+enum { MPM_FIX_X = 1, MPM_FIX_Y = 2 };
+
+typedef struct mpm_bc {
+  int edge[4];          /* left, right, bottom, top: enum mpm_bc_kind */
+  int nnodes;
+  unsigned char *fix;   /* [nnodes] MPM_FIX_X | MPM_FIX_Y */
+} mpm_bc;
+
+enum { MPM_EDGE_LEFT = 0, MPM_EDGE_RIGHT, MPM_EDGE_BOTTOM, MPM_EDGE_TOP };
+
+/* Name <-> enum mpm_bc_kind ("free", "noslip", "frictionless", "symmetry",
+ * "periodic"); -1 if unknown. */
+int mpm_bc_kind_from_name(const char *name);
+const char *mpm_bc_kind_name(int kind);
+
+/* Build the node mask for mesh m (already set up, periodic flags consistent
+ * with the edges). Periodic on one edge requires periodic on its opposite. */
+int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err);
+void mpm_bc_clear(mpm_bc *bc);  /* frees the mask; safe on a zeroed struct */
+
+/* Zero constrained components of nodal vectors ax, ay (momentum or force). */
+void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
+
+#endif

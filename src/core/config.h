@@ -1,0 +1,83 @@
+/* config.h: the resolved run configuration, plain data.
+ *
+ * io/ parses an input file into this struct (with defaults, ranges and
+ * overrides); scenario/ and solver/ build a simulation from it. Numerical code
+ * never parses text: this struct is the only channel from input to solver.
+ * Every field is documented with its unit in docs/input-reference.md. */
+#ifndef MPM_CORE_CONFIG_H
+#define MPM_CORE_CONFIG_H
+
+#define MPM_NAME_MAX 32
+#define MPM_PATH_MAX 1024
+#define MPM_MAX_FILLS 16
+#define MPM_MAX_POLY 64
+
+/* Boundary condition on one mesh edge (velocity part). */
+enum mpm_bc_kind {
+  MPM_BC_FREE = 0,      /* nothing constrained */
+  MPM_BC_NOSLIP,        /* rough wall: both velocity components zero */
+  MPM_BC_FRICTIONLESS,  /* normal component zero */
+  MPM_BC_SYMMETRY,      /* normal component zero (mirror plane) */
+  MPM_BC_PERIODIC       /* opposite edge aliased; must be set on both */
+};
+
+enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
+
+typedef struct mpm_fill_config {
+  int shape;                   /* enum mpm_fill_shape */
+  double xmin, ymin, xmax, ymax;  /* rectangle [m] */
+  double cx, cy, radius;       /* disc [m] */
+  int nvert;                   /* polygon vertices (counter-clockwise or not) */
+  double px[MPM_MAX_POLY], py[MPM_MAX_POLY];
+  int ppu;                     /* points per unit along each direction (n x n) */
+  double density;              /* initial density [kg/m^3] */
+  double vx, vy;               /* initial velocity [m/s] */
+  int lithostatic;             /* 1: pre-stress from the weight above (K0 = nu/(1-nu)) */
+} mpm_fill_config;
+
+typedef struct mpm_config {
+  char source[MPM_PATH_MAX];   /* input file the values came from */
+
+  struct {
+    int nx, ny;                /* units along x and y */
+    double x0, y0;             /* lower-left corner [m] */
+    double dx, dy;             /* unit size [m] */
+    char topology[MPM_NAME_MAX];  /* "q4" | "t3" */
+    char diagonal[MPM_NAME_MAX];  /* "/" "\\" "mirror" (T3 only) */
+    double mirror_x;           /* x of the mirror line [m] */
+    char shape[MPM_NAME_MAX];  /* shape-function variant: "delta" | "ugimp" */
+  } mesh;
+
+  struct {
+    double dt;                 /* time step [s]; 0: from cfl */
+    double cfl;                /* dt = cfl * min(dx,dy) / c_p when dt = 0 */
+    double t_end;              /* end time [s] */
+    double frame_dt;           /* output interval [s] */
+  } time;
+
+  struct {
+    double gx, gy;             /* final gravity vector [m/s^2] */
+    double t_ramp;             /* linear ramp from 0 over t_ramp [s]; 0 = none */
+  } gravity;
+
+  struct {
+    char model[MPM_NAME_MAX];  /* material table name: "elastic", "mu_i", ... */
+    double E, nu;              /* Young's modulus [Pa], Poisson ratio */
+    double rho_s, rho_c;       /* grain and critical density [kg/m^3] */
+    double mu_s, mu_2, I0, d;  /* mu(I) parameters; d grain diameter [m] */
+    double A, t0;              /* NGF nonlocal amplitude, time scale [s] */
+  } material;
+
+  struct {
+    int left, right, bottom, top;  /* enum mpm_bc_kind */
+  } bc;
+
+  int nfill;
+  mpm_fill_config fill[MPM_MAX_FILLS];
+
+  struct {
+    char dir[MPM_PATH_MAX];    /* run directory */
+  } output;
+} mpm_config;
+
+#endif

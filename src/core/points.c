@@ -1,0 +1,89 @@
+/* points.c: structure-of-arrays point store. */
+#include "core/points.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+mpm_points *mpm_points_alloc(size_t cap)
+{
+  mpm_points *pts = calloc(1, sizeof *pts);
+  if (!pts)
+    return NULL;
+  if (mpm_points_reserve(pts, cap ? cap : 16) != MPM_OK) {
+    mpm_points_free(pts);
+    return NULL;
+  }
+  return pts;
+}
+
+void mpm_points_free(mpm_points *pts)
+{
+  if (!pts)
+    return;
+#define MPM_POINT_FREE_(f, d, u) free(pts->f);
+  MPM_POINT_REAL_FIELDS(MPM_POINT_FREE_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_FREE_)
+#undef MPM_POINT_FREE_
+  free(pts);
+}
+
+/* Grow one array to cap elements of size sz, zeroing the new tail. */
+static int grow(void **a, size_t old, size_t cap, size_t sz)
+{
+  void *p = realloc(*a, cap * sz);
+  if (!p)
+    return MPM_ENOMEM;
+  memset((char *)p + old * sz, 0, (cap - old) * sz);
+  *a = p;
+  return MPM_OK;
+}
+
+int mpm_points_reserve(mpm_points *pts, size_t cap)
+{
+  if (cap <= pts->cap)
+    return MPM_OK;
+  int rc = MPM_OK;
+#define MPM_POINT_GROW_(f, d, u) \
+  if (rc == MPM_OK) rc = grow((void **)&pts->f, pts->cap, cap, sizeof *pts->f);
+  MPM_POINT_REAL_FIELDS(MPM_POINT_GROW_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_GROW_)
+#undef MPM_POINT_GROW_
+  if (rc != MPM_OK)
+    return rc;  /* arrays already grown stay valid; cap unchanged is safe */
+  pts->cap = cap;
+  return MPM_OK;
+}
+
+int mpm_points_push(mpm_points *pts, size_t *idx)
+{
+  if (pts->n == pts->cap) {
+    int rc = mpm_points_reserve(pts, 2 * pts->cap + 16);
+    if (rc != MPM_OK)
+      return rc;
+  }
+  size_t i = pts->n++;
+#define MPM_POINT_ZERO_(f, d, u) pts->f[i] = 0;
+  MPM_POINT_REAL_FIELDS(MPM_POINT_ZERO_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_ZERO_)
+#undef MPM_POINT_ZERO_
+  pts->id[i] = pts->next_id++;
+  *idx = i;
+  return MPM_OK;
+}
+
+void mpm_points_compact(mpm_points *pts, const unsigned char *keep)
+{
+  size_t j = 0;
+  for (size_t i = 0; i < pts->n; i++) {
+    if (!keep[i])
+      continue;
+    if (j != i) {
+#define MPM_POINT_MOVE_(f, d, u) pts->f[j] = pts->f[i];
+      MPM_POINT_REAL_FIELDS(MPM_POINT_MOVE_)
+      MPM_POINT_INT_FIELDS(MPM_POINT_MOVE_)
+#undef MPM_POINT_MOVE_
+    }
+    j++;
+  }
+  pts->n = j;
+}

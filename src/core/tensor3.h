@@ -1,0 +1,118 @@
+/* tensor3.h: small 3x3 tensor helpers (static inline).
+ *
+ * All tensors are 3x3, also in plane strain (MODEL.md section 1). Symmetric
+ * tensors (stress, rate of deformation) use mpm_sym3; general ones (velocity
+ * gradient L, spin W, deformation gradient F) use mpm_mat3 with
+ * m[i][j] = d v_i / d x_j for L. Invariants follow MODEL.md section 1:
+ * p = -tr(s)/3, s0 = s + p I, tau = sqrt(s0:s0 / 2). */
+#ifndef MPM_CORE_TENSOR3_H
+#define MPM_CORE_TENSOR3_H
+
+#include <math.h>
+
+typedef struct mpm_sym3 { double xx, yy, zz, xy, yz, zx; } mpm_sym3;
+typedef struct mpm_mat3 { double m[3][3]; } mpm_mat3;
+
+static inline mpm_sym3 mpm_sym3_zero(void) { return (mpm_sym3){0, 0, 0, 0, 0, 0}; }
+
+static inline double mpm_sym3_trace(mpm_sym3 s) { return s.xx + s.yy + s.zz; }
+
+/* p = -tr(s)/3 */
+static inline double mpm_sym3_pressure(mpm_sym3 s) { return -(s.xx + s.yy + s.zz) / 3.0; }
+
+/* s0 = s - tr(s)/3 I */
+static inline mpm_sym3 mpm_sym3_dev(mpm_sym3 s)
+{
+  double m = (s.xx + s.yy + s.zz) / 3.0;
+  return (mpm_sym3){s.xx - m, s.yy - m, s.zz - m, s.xy, s.yz, s.zx};
+}
+
+/* a : b (full double contraction of symmetric tensors) */
+static inline double mpm_sym3_ddot(mpm_sym3 a, mpm_sym3 b)
+{
+  return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz
+       + 2.0 * (a.xy * b.xy + a.yz * b.yz + a.zx * b.zx);
+}
+
+/* tau = sqrt(s0:s0 / 2), the equivalent shear stress */
+static inline double mpm_sym3_tau(mpm_sym3 s)
+{
+  mpm_sym3 d = mpm_sym3_dev(s);
+  return sqrt(0.5 * mpm_sym3_ddot(d, d));
+}
+
+static inline mpm_sym3 mpm_sym3_scale(mpm_sym3 s, double a)
+{
+  return (mpm_sym3){a * s.xx, a * s.yy, a * s.zz, a * s.xy, a * s.yz, a * s.zx};
+}
+
+static inline mpm_sym3 mpm_sym3_add(mpm_sym3 a, mpm_sym3 b)
+{
+  return (mpm_sym3){a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.yz + b.yz, a.zx + b.zx};
+}
+
+/* a + c b */
+static inline mpm_sym3 mpm_sym3_axpy(mpm_sym3 a, double c, mpm_sym3 b)
+{
+  return (mpm_sym3){a.xx + c * b.xx, a.yy + c * b.yy, a.zz + c * b.zz,
+                    a.xy + c * b.xy, a.yz + c * b.yz, a.zx + c * b.zx};
+}
+
+/* s + a I */
+static inline mpm_sym3 mpm_sym3_add_iso(mpm_sym3 s, double a)
+{
+  return (mpm_sym3){s.xx + a, s.yy + a, s.zz + a, s.xy, s.yz, s.zx};
+}
+
+/* D = sym(L) */
+static inline mpm_sym3 mpm_mat3_sym(const mpm_mat3 *L)
+{
+  return (mpm_sym3){L->m[0][0], L->m[1][1], L->m[2][2],
+                    0.5 * (L->m[0][1] + L->m[1][0]),
+                    0.5 * (L->m[1][2] + L->m[2][1]),
+                    0.5 * (L->m[2][0] + L->m[0][2])};
+}
+
+/* W = skw(L) */
+static inline mpm_mat3 mpm_mat3_skw(const mpm_mat3 *L)
+{
+  mpm_mat3 W;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      W.m[i][j] = 0.5 * (L->m[i][j] - L->m[j][i]);
+  return W;
+}
+
+static inline double mpm_mat3_trace(const mpm_mat3 *L) { return L->m[0][0] + L->m[1][1] + L->m[2][2]; }
+
+/* Full matrix view of a symmetric tensor. */
+static inline mpm_mat3 mpm_sym3_full(mpm_sym3 s)
+{
+  return (mpm_mat3){{{s.xx, s.xy, s.zx}, {s.xy, s.yy, s.yz}, {s.zx, s.yz, s.zz}}};
+}
+
+/* Jaumann spin term W s - s W (symmetric for skew W and symmetric s). */
+static inline mpm_sym3 mpm_sym3_spin(const mpm_mat3 *W, mpm_sym3 s)
+{
+  mpm_mat3 S = mpm_sym3_full(s), R;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double a = 0.0;
+      for (int k = 0; k < 3; k++)
+        a += W->m[i][k] * S.m[k][j] - S.m[i][k] * W->m[k][j];
+      R.m[i][j] = a;
+    }
+  return (mpm_sym3){R.m[0][0], R.m[1][1], R.m[2][2],
+                    0.5 * (R.m[0][1] + R.m[1][0]),
+                    0.5 * (R.m[1][2] + R.m[2][1]),
+                    0.5 * (R.m[2][0] + R.m[0][2])};
+}
+
+/* Isotropic elasticity C:D = 2G D0 + K tr(D) I. */
+static inline mpm_sym3 mpm_sym3_elastic(mpm_sym3 D, double G, double K)
+{
+  double tr = mpm_sym3_trace(D);
+  return mpm_sym3_add_iso(mpm_sym3_scale(mpm_sym3_dev(D), 2.0 * G), K * tr);
+}
+
+#endif

@@ -1,0 +1,49 @@
+/* io.h: input parsing and validation (libconfuse), run output (HDF5 frames,
+ * XDMF, diagnostics CSV) and extraction of frames to CSV.
+ *
+ * Input errors are MPM_EINPUT with one line "FILE:LINE: key 'section.key': what
+ * is wrong (allowed: ...)". io depends on core and the model/shape/mesh name
+ * tables, never on the solver. */
+#ifndef MPM_IO_IO_H
+#define MPM_IO_IO_H
+
+#include <stdio.h>
+
+#include "core/config.h"
+#include "core/error.h"
+#include "core/points.h"
+#include "diag/diag.h"
+#include "mesh/mesh.h"
+
+/* Defaults of every key (docs/input-reference.md). */
+void mpm_input_defaults(mpm_config *cfg);
+
+/* Parse path into cfg (defaults first), then apply overrides of the form
+ * "section.key=value" in order, then validate every value and the model's
+ * parameters. */
+int mpm_input_load(const char *path, const char *const *overrides, int noverrides,
+                   mpm_config *cfg, mpm_err *err);
+
+/* Write cfg in input-file syntax; reading it back gives the same cfg. */
+int mpm_input_write(FILE *f, const mpm_config *cfg);
+
+/* Run output: run.h5, run.xdmf and diagnostics.csv in one directory. */
+typedef struct mpm_output mpm_output;
+
+/* Create dir (and parents) if needed and open the files. cmdline and the
+ * resolved input are stored as attributes. */
+int mpm_output_open(mpm_output **out, const char *dir, const mpm_config *cfg,
+                    const char *cmdline, const mpm_mesh *m, mpm_err *err);
+
+/* Append one frame of point fields and one diagnostics row. */
+int mpm_output_frame(mpm_output *out, const mpm_points *pts, const mpm_diag *d,
+                     mpm_err *err);
+
+/* Write run.xdmf and close everything; accepts NULL. */
+int mpm_output_close(mpm_output *out, mpm_err *err);
+
+/* Print one frame (frame < 0: the last) of run directory dir as CSV with a
+ * header row; fields is a comma list of field names or NULL for all. */
+int mpm_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_err *err);
+
+#endif

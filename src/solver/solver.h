@@ -1,0 +1,63 @@
+/* solver.h: the explicit Update-Stress-Last MPM step and the run driver
+ * (MODEL.md section 2).
+ *
+ * mpm_sim owns everything one run needs; it is built once from a resolved
+ * mpm_config ("plan"), then stepped ("execute"). Workspace (nodal arrays,
+ * per-point gradients, stencil) is allocated at creation and grown only when
+ * points are added. */
+#ifndef MPM_SOLVER_SOLVER_H
+#define MPM_SOLVER_SOLVER_H
+
+#include <stddef.h>
+
+#include "bc/bc.h"
+#include "core/config.h"
+#include "core/error.h"
+#include "core/points.h"
+#include "material/material.h"
+#include "mesh/mesh.h"
+#include "shape/shape.h"
+
+typedef struct mpm_sim {
+  mpm_config cfg;                 /* resolved input (copy) */
+  mpm_mesh mesh;
+  mpm_bc bc;
+  const mpm_shape_type *shape;
+  const mpm_material_type *mat;
+  mpm_material_params par;
+  mpm_points *pts;
+  mpm_stencil *st;
+
+  /* nodal workspace [mesh.nnodes] */
+  double *nm, *nmvx, *nmvy, *nfx, *nfy, *nvx, *nvy, *nax, *nay;
+  /* per-point velocity gradient of the last step [pts->cap] */
+  double *Lxx, *Lxy, *Lyx, *Lyy;
+  size_t wcap;                    /* capacity of per-point workspace */
+
+  double t, dt;                   /* current time, time step [s] */
+  long step;
+  double mass0;                   /* initial mass, for bookkeeping */
+} mpm_sim;
+
+/* Build a simulation from a resolved configuration. */
+int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err);
+void mpm_sim_free(mpm_sim *s);  /* accepts NULL */
+
+/* Gravity vector at time t (linear ramp over t_ramp). */
+void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy);
+
+/* One explicit USL step of length s->dt. */
+int mpm_sim_step(mpm_sim *s, mpm_err *err);
+
+/* Frame callback of the run driver, called at t = 0, every frame_dt and at the end. */
+typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);
+
+/* Progress callback (may be NULL): called every few steps with the wall-clock
+ * rate, for the progress line. */
+typedef void (*mpm_progress_fn)(void *ctx, const mpm_sim *s, double steps_per_s);
+
+/* Step until cfg.time.t_end, emitting frames. */
+int mpm_sim_run(mpm_sim *s, mpm_frame_fn frame, mpm_progress_fn progress, void *ctx,
+                mpm_err *err);
+
+#endif
