@@ -30,10 +30,11 @@ int mpm_input_write(FILE *f, const mpm_config *cfg);
 /* Run output: run.h5, run.xdmf and diagnostics.csv in one directory. */
 typedef struct mpm_output mpm_output;
 
-/* Create dir (and parents) if needed and open the files. cmdline and the
- * resolved input are stored as attributes. */
-int mpm_output_open(mpm_output **out, const char *dir, const mpm_config *cfg,
-                    const char *cmdline, const mpm_mesh *m, mpm_err *err);
+/* Create dir (and parents) if needed and open the files. The version, the
+ * command line and the resolved input text (mpm_input_write) are stored as
+ * attributes of run.h5. */
+int mpm_output_open(mpm_output **out, const char *dir, const char *cmdline,
+                    const char *input_text, const mpm_mesh *m, mpm_err *err);
 
 /* Append one frame of point fields and one diagnostics row. */
 int mpm_output_frame(mpm_output *out, const mpm_points *pts, const mpm_diag *d,
