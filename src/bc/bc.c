@@ -1,1 +1,91 @@
-/* placeholder */ typedef int mpm_placeholder_;
+/* bc.c: edge boundary conditions as a per-node mask (MODEL.md section 2, step 3).
+ * No-slip fixes both velocity components of every node on the edge;
+ * frictionless and symmetry fix the normal one. */
+#include "bc/bc.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/config.h"
+
+static const char *const bc_names[] = {
+  [MPM_BC_FREE] = "free",
+  [MPM_BC_NOSLIP] = "noslip",
+  [MPM_BC_FRICTIONLESS] = "frictionless",
+  [MPM_BC_SYMMETRY] = "symmetry",
+  [MPM_BC_PERIODIC] = "periodic",
+};
+#define NBC ((int)(sizeof bc_names / sizeof bc_names[0]))
+
+static const char *const edge_names[] = {"left", "right", "bottom", "top"};
+
+int mpm_bc_kind_from_name(const char *name)
+{
+  for (int k = 0; k < NBC; k++)
+    if (strcmp(bc_names[k], name) == 0)
+      return k;
+  return -1;
+}
+
+const char *mpm_bc_kind_name(int kind)
+{
+  return (kind >= 0 && kind < NBC) ? bc_names[kind] : "unknown";
+}
+
+/* Mask bits an edge of a given kind sets; the normal of left/right edges is x. */
+static unsigned char edge_bits(int kind, int edge)
+{
+  unsigned char normal = (edge == MPM_EDGE_LEFT || edge == MPM_EDGE_RIGHT) ? MPM_FIX_X : MPM_FIX_Y;
+  switch (kind) {
+  case MPM_BC_NOSLIP: return MPM_FIX_X | MPM_FIX_Y;
+  case MPM_BC_FRICTIONLESS:
+  case MPM_BC_SYMMETRY: return normal;
+  default: return 0;
+  }
+}
+
+int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
+{
+  for (int e = 0; e < 4; e++)
+    if (edge[e] < 0 || edge[e] >= NBC)
+      return mpm_err_set(err, MPM_EINVAL, "boundary '%s': unknown kind %d", edge_names[e], edge[e]);
+  int px = edge[MPM_EDGE_LEFT] == MPM_BC_PERIODIC, px2 = edge[MPM_EDGE_RIGHT] == MPM_BC_PERIODIC;
+  int py = edge[MPM_EDGE_BOTTOM] == MPM_BC_PERIODIC, py2 = edge[MPM_EDGE_TOP] == MPM_BC_PERIODIC;
+  if (px != px2)
+    return mpm_err_set(err, MPM_EINPUT, "boundary: 'left' and 'right' must both be periodic or neither");
+  if (py != py2)
+    return mpm_err_set(err, MPM_EINPUT, "boundary: 'bottom' and 'top' must both be periodic or neither");
+  if (px != m->periodic_x || py != m->periodic_y)
+    return mpm_err_set(err, MPM_EINVAL, "boundary: periodic edges disagree with the mesh");
+
+  memcpy(bc->edge, edge, sizeof bc->edge);
+  bc->nnodes = m->nnodes;
+  bc->fix = calloc((size_t)m->nnodes, 1);
+  if (!bc->fix)
+    return mpm_err_set(err, MPM_ENOMEM, "boundary mask: out of memory");
+  for (int j = 0; j <= m->ny; j++) {
+    bc->fix[mpm_mesh_node(m, 0, j)] |= edge_bits(edge[MPM_EDGE_LEFT], MPM_EDGE_LEFT);
+    bc->fix[mpm_mesh_node(m, m->nx, j)] |= edge_bits(edge[MPM_EDGE_RIGHT], MPM_EDGE_RIGHT);
+  }
+  for (int i = 0; i <= m->nx; i++) {
+    bc->fix[mpm_mesh_node(m, i, 0)] |= edge_bits(edge[MPM_EDGE_BOTTOM], MPM_EDGE_BOTTOM);
+    bc->fix[mpm_mesh_node(m, i, m->ny)] |= edge_bits(edge[MPM_EDGE_TOP], MPM_EDGE_TOP);
+  }
+  return MPM_OK;
+}
+
+void mpm_bc_clear(mpm_bc *bc)
+{
+  free(bc->fix);
+  bc->fix = NULL;
+  bc->nnodes = 0;
+}
+
+void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay)
+{
+  for (int i = 0; i < bc->nnodes; i++) {
+    unsigned char f = bc->fix[i];
+    if (f & MPM_FIX_X) ax[i] = 0.0;
+    if (f & MPM_FIX_Y) ay[i] = 0.0;
+  }
+}

@@ -6,4 +6,4 @@ check_PROGRAMS += tests/test_core
 TESTS += tests/test_core
 tests_test_core_SOURCES = tests/test_core.c
 tests_test_core_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_core_LDADD = libmpm_core.la $(CHECK_LIBS) -lm
+tests_test_core_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm

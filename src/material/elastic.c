@@ -1,1 +1,25 @@
-/* placeholder */ typedef int mpm_placeholder_;
+/* elastic.c: linear elastic material in Jaumann hypoelastic form
+ * (MODEL.md sections 1 and 4 step 2, without plasticity or disconnection):
+ *   sigma_{n+1} = sigma_n + dt (C:D + W sigma_n - sigma_n W). */
+#include "material/material.h"
+
+#include "core/points.h"
+
+static void elastic_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                           mpm_mpoint *pt)
+{
+  mpm_sym3 D = mpm_mat3_sym(L);
+  mpm_mat3 W = mpm_mat3_skw(L);
+  mpm_sym3 rate = mpm_sym3_add(mpm_sym3_elastic(D, par->G, par->K),   /* C:D */
+                               mpm_sym3_spin(&W, pt->sigma));        /* W s - s W */
+  pt->sigma = mpm_sym3_axpy(pt->sigma, dt, rate);
+  pt->gdp = 0.0;
+  pt->state = MPM_STATE_DENSE;
+}
+
+const mpm_material_type mpm_material_elastic = {
+  .name = "elastic",
+  .description = "linear elastic, Jaumann hypoelastic rate form",
+  .check = mpm_material_check_elastic,
+  .update = elastic_update,
+};

@@ -48,10 +48,14 @@ typedef struct mpm_material_type {
                  mpm_mpoint *pt);
 } mpm_material_type;
 
-extern const mpm_material_type mpm_material_elastic;
+extern const mpm_material_type mpm_material_elastic;  /* Jaumann hypoelastic */
+extern const mpm_material_type mpm_material_mu_i;     /* trans-phase mu(I) [DK15] */
 extern const mpm_material_type *const mpm_material_table[];
 
 /* Model by name, NULL if unknown. */
+/* Shared parameter checks for models (message names the key and range). */
+int mpm_material_check_elastic(const mpm_material_params *par, mpm_err *err);
+
 const mpm_material_type *mpm_material_lookup(const char *name);
 
 /* P-wave speed sqrt((K + 4G/3) / rho) for the time-step limit. */
