@@ -1,1 +1,266 @@
-int main(void) { return 0; }
+/* main.c: the `granmpm` command line: run, check, extract, constitutive.
+ *
+ * The only place that prints to the user or exits. Exit status: 0 success,
+ * 1 a run failed (physical or I/O failure while running), 2 bad usage or
+ * input (one error line naming file, line, key and what is allowed). */
+#define _POSIX_C_SOURCE 200809L
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/constitutive.h"
+#include "diag/diag.h"
+#include "io/io.h"
+#include "solver/solver.h"
+
+enum { EXIT_RUNTIME = 1, EXIT_USAGE = 2, MAX_SET = 256 };
+
+static const char usage_text[] =
+  "usage: granmpm COMMAND [ARGS]\n"
+  "\n"
+  "commands:\n"
+  "  run FILE [--set section.key=value]... [--output DIR] [--quiet]\n"
+  "        run the case described by FILE; writes DIR/run.h5, run.xdmf, diagnostics.csv\n"
+  "  check FILE [--set section.key=value]...\n"
+  "        validate FILE and print the fully resolved input\n"
+  "  extract RUNDIR [--frame N|last] [--fields a,b,c]\n"
+  "        print one output frame as CSV with a header row\n"
+  "  constitutive [ARGS]\n"
+  "        drive one material point through a velocity-gradient history\n"
+  "        (granmpm constitutive --help)\n"
+  "  --version, --help\n";
+
+static int usage_error(const char *fmt, const char *arg)
+{
+  fprintf(stderr, "granmpm: ");
+  fprintf(stderr, fmt, arg);
+  fprintf(stderr, " (see 'granmpm --help')\n");
+  return EXIT_USAGE;
+}
+
+/* Options shared by run and check. */
+typedef struct run_opts {
+  const char *file;
+  const char *sets[MAX_SET];
+  int nset;
+  const char *outdir;
+  int quiet;
+} run_opts;
+
+static int parse_run_opts(int argc, char **argv, int allow_run_opts, run_opts *o)
+{
+  memset(o, 0, sizeof *o);
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (strcmp(a, "--set") == 0 || strncmp(a, "--set=", 6) == 0) {
+      const char *v = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
+      if (!v)
+        return usage_error("%s needs section.key=value", "--set");
+      if (o->nset == MAX_SET)
+        return usage_error("too many %s options", "--set");
+      o->sets[o->nset++] = v;
+    } else if (allow_run_opts && strcmp(a, "--output") == 0) {
+      if (i + 1 >= argc)
+        return usage_error("%s needs a directory", "--output");
+      o->outdir = argv[++i];
+    } else if (allow_run_opts && strcmp(a, "--quiet") == 0) {
+      o->quiet = 1;
+    } else if (a[0] == '-' && a[1] != '\0') {
+      return usage_error("unknown option '%s'", a);
+    } else if (!o->file) {
+      o->file = a;
+    } else {
+      return usage_error("unexpected argument '%s'", a);
+    }
+  }
+  if (!o->file)
+    return usage_error("%s: an input FILE is required", argv[0]);
+  return 0;
+}
+
+static int load_input(const run_opts *o, mpm_config *cfg)
+{
+  mpm_err err = {0};
+  if (mpm_input_load(o->file, o->sets, o->nset, cfg, &err) != MPM_OK) {
+    fprintf(stderr, "granmpm: %s\n", err.msg);
+    return EXIT_USAGE;
+  }
+  if (o->outdir) {
+    if (strlen(o->outdir) >= sizeof cfg->output.dir)
+      return usage_error("--output '%s': path too long", o->outdir);
+    strcpy(cfg->output.dir, o->outdir);
+  }
+  return 0;
+}
+
+static int cmd_check(int argc, char **argv)
+{
+  run_opts o;
+  mpm_config cfg;
+  int rc = parse_run_opts(argc, argv, 0, &o);
+  if (rc == 0)
+    rc = load_input(&o, &cfg);
+  if (rc == 0)
+    mpm_input_write(stdout, &cfg);
+  return rc;
+}
+
+/* ---- run ------------------------------------------------------------------ */
+
+typedef struct run_ctx {
+  mpm_output *out;
+  int quiet, tty;
+  long frames;
+} run_ctx;
+
+static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
+{
+  run_ctx *c = vctx;
+  mpm_diag d;
+  mpm_diag_compute(s->pts, s->t, &d);
+  c->frames++;
+  return mpm_output_frame(c->out, s->pts, &d, err);
+}
+
+static void on_progress(void *vctx, const mpm_sim *s, double steps_per_s)
+{
+  const run_ctx *c = vctx;
+  if (c->quiet || !c->tty)
+    return;
+  double left = (s->cfg.time.t_end - s->t) / s->dt / (steps_per_s > 0 ? steps_per_s : 1);
+  fprintf(stderr, "\rt = %.4g / %.4g s  %.0f steps/s  %ld points  ETA %02d:%02d:%02d ",
+          s->t, s->cfg.time.t_end, steps_per_s, (long)s->pts->n,
+          (int)(left / 3600), (int)(left / 60) % 60, (int)left % 60);
+}
+
+/* The command line as one string, for the output attributes. */
+static char *join_args(int argc, char **argv)
+{
+  size_t len = 1;
+  for (int i = 0; i < argc; i++)
+    len += strlen(argv[i]) + 3;
+  char *s = malloc(len), *q = s;
+  if (!s)
+    return NULL;
+  for (int i = 0; i < argc; i++)
+    q += sprintf(q, i ? " %s" : "%s", argv[i]);
+  return s;
+}
+
+/* The resolved input as text, for the output attributes. */
+static char *input_text(const mpm_config *cfg)
+{
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  if (!f)
+    return NULL;
+  mpm_input_write(f, cfg);
+  fclose(f);
+  return buf;
+}
+
+static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
+{
+  run_opts o;
+  mpm_config cfg;
+  int rc = parse_run_opts(argc, argv, 1, &o);
+  if (rc == 0)
+    rc = load_input(&o, &cfg);
+  if (rc != 0)
+    return rc;
+
+  mpm_err err = {0};
+  mpm_sim *sim = NULL;
+  if (mpm_sim_create(&sim, &cfg, &err) != MPM_OK) {
+    fprintf(stderr, "granmpm: %s: %s\n", o.file, err.msg);
+    return err.code == MPM_ENOMEM ? EXIT_RUNTIME : EXIT_USAGE;
+  }
+  run_ctx ctx = {.quiet = o.quiet, .tty = isatty(STDERR_FILENO)};
+  char *cmdline = join_args(full_argc, full_argv), *text = input_text(&cfg);
+  int st = mpm_output_open(&ctx.out, cfg.output.dir, cmdline, text, &sim->mesh, &err);
+  free(cmdline);
+  free(text);
+  if (st == MPM_OK)
+    st = mpm_sim_run(sim, on_frame, on_progress, &ctx, &err);
+  if (ctx.tty && !ctx.quiet)
+    fputc('\n', stderr);
+  mpm_err cerr = {0};
+  if (mpm_output_close(ctx.out, &cerr) != MPM_OK && st == MPM_OK) {
+    st = cerr.code;
+    err = cerr;
+  }
+  if (st != MPM_OK) {
+    fprintf(stderr, "granmpm: %s\n", err.msg);
+  } else if (!o.quiet) {
+    fprintf(stderr, "granmpm: %ld steps of %.4g s, %ld frames, %zu points -> %s/run.h5\n",
+            sim->step, sim->dt, ctx.frames, sim->pts->n, cfg.output.dir);
+  }
+  mpm_sim_free(sim);
+  return st == MPM_OK ? 0 : EXIT_RUNTIME;
+}
+
+/* ---- extract --------------------------------------------------------------- */
+
+static int cmd_extract(int argc, char **argv)
+{
+  const char *dir = NULL, *fields = NULL;
+  int frame = -1;
+  for (int i = 1; i < argc; i++) {
+    if (strcmp(argv[i], "--frame") == 0 && i + 1 < argc) {
+      const char *v = argv[++i];
+      char *end;
+      if (strcmp(v, "last") == 0) {
+        frame = -1;
+      } else {
+        long n = strtol(v, &end, 10);
+        if (*v == '\0' || *end != '\0' || n < 0 || n > 1000000000L)
+          return usage_error("--frame '%s': expected a frame number >= 0 or 'last'", v);
+        frame = (int)n;
+      }
+    } else if (strcmp(argv[i], "--fields") == 0 && i + 1 < argc) {
+      fields = argv[++i];
+    } else if (argv[i][0] == '-') {
+      return usage_error("extract: unknown or incomplete option '%s'", argv[i]);
+    } else if (!dir) {
+      dir = argv[i];
+    } else {
+      return usage_error("extract: unexpected argument '%s'", argv[i]);
+    }
+  }
+  if (!dir)
+    return usage_error("%s: a run directory is required", "extract");
+  mpm_err err = {0};
+  if (mpm_extract(dir, frame, fields, stdout, &err) != MPM_OK) {
+    fprintf(stderr, "granmpm: %s\n", err.msg);
+    return EXIT_USAGE;
+  }
+  return 0;
+}
+
+int main(int argc, char **argv)
+{
+  if (argc < 2)
+    return usage_error("%s", "a command is required");
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+    fputs(usage_text, stdout);
+    return 0;
+  }
+  if (strcmp(cmd, "--version") == 0) {
+    printf("granmpm %s\n", PACKAGE_VERSION);
+    return 0;
+  }
+  if (strcmp(cmd, "run") == 0)
+    return cmd_run(argc - 1, argv + 1, argc, argv);
+  if (strcmp(cmd, "check") == 0)
+    return cmd_check(argc - 1, argv + 1);
+  if (strcmp(cmd, "extract") == 0)
+    return cmd_extract(argc - 1, argv + 1);
+  if (strcmp(cmd, "constitutive") == 0)
+    return mpm_app_constitutive(argc - 1, argv + 1);
+  return usage_error("unknown command '%s'", cmd);
+}

@@ -37,6 +37,7 @@ typedef struct mpm_sim {
   double t, dt;                   /* current time, time step [s] */
   long step;
   double mass0;                   /* initial mass, for bookkeeping */
+  double mtiny;                   /* nodes lighter than this are skipped */
 } mpm_sim;
 
 /* Build a simulation from a resolved configuration. */
