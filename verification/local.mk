@@ -1,3 +1,5 @@
 # Verification cases: each verification/V<n>-<name>/ has a README and an
 # executable `check`; `make check` runs `check --quick`, `make verify` runs `check`.
 VERIFY_CASES =
+include verification/V0-kernels/local.mk
+include verification/V1-elastic-waves/local.mk

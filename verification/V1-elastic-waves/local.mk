@@ -1,0 +1,2 @@
+VERIFY_CASES += verification/V1-elastic-waves
+TESTS += verification/V1-elastic-waves/check
