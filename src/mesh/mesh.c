@@ -1,1 +1,308 @@
-/* placeholder */ typedef int mpm_placeholder_;
+/* mesh.c: structured 2D background mesh (MODEL.md section 3).
+ *
+ * Validation of the caller's fields, node numbering with periodic aliasing
+ * (storage id = j_s * snx + i_s, i_s = i mod nx along a periodic x), unit
+ * lookup, and the element basis: bilinear Q4, or linear T3 on the half of the
+ * unit cut by its diagonal ("/", "\", or "mirror" about x = mirror_x,
+ * [DK-silo] 7.1). The basis is in the hot loop: no allocation, no division. */
+#include "mesh/mesh.h"
+
+#include <limits.h>
+#include <math.h>
+#include <string.h>
+
+/* ---------------------------------------------------------------- setup */
+
+/* Units along one axis: n >= 1, periodic flag 0/1, n >= 2 when periodic. */
+static int check_units(int n, int periodic, char axis, mpm_err *err)
+{
+  if (periodic != 0 && periodic != 1)
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.periodic_%c = %d is out of range (allowed: 0 or 1)",
+                       axis, periodic);
+  if (n < 1 || n > INT_MAX - 1)
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.n%c = %d is out of range (allowed: integer >= 1)",
+                       axis, n);
+  if (periodic && n < 2)
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.n%c = %d is out of range (allowed: n%c >= 2 when %c "
+                       "is periodic)", axis, n, axis, axis);
+  return MPM_OK;
+}
+
+/* Origin finite, unit size finite and > 0, domain end finite. */
+static int check_lengths(int n, double o, double h, char axis, mpm_err *err)
+{
+  if (!isfinite(o))
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.%c0 = %g is out of range (allowed: finite) [m]",
+                       axis, o);
+  if (!(h > 0.0) || !isfinite(h))
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.d%c = %g is out of range (allowed: finite, > 0) [m]",
+                       axis, h);
+  if (!isfinite(o + n * h))
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.%c0 + mesh.n%c * mesh.d%c = %g is not finite [m]",
+                       axis, axis, axis, o + n * h);
+  return MPM_OK;
+}
+
+/* Topology, diagonal rule, mirror line. */
+static int check_topology(const mpm_mesh *m, mpm_err *err)
+{
+  if (m->topology != MPM_TOPO_Q4 && m->topology != MPM_TOPO_T3)
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.topology = %d is out of range (allowed: %d = q4, "
+                       "%d = t3)", m->topology, MPM_TOPO_Q4, MPM_TOPO_T3);
+  if (m->diagonal < MPM_DIAG_SLASH || m->diagonal > MPM_DIAG_MIRROR)
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.diagonal = %d is out of range (allowed: %d = \"/\", "
+                       "%d = \"\\\", %d = \"mirror\")", m->diagonal,
+                       MPM_DIAG_SLASH, MPM_DIAG_BACKSLASH, MPM_DIAG_MIRROR);
+  if (m->topology == MPM_TOPO_T3 && m->diagonal == MPM_DIAG_MIRROR &&
+      !isfinite(m->mirror_x))
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.mirror_x = %g is out of range (allowed: finite) [m]",
+                       m->mirror_x);
+  return MPM_OK;
+}
+
+int mpm_mesh_setup(mpm_mesh *m, mpm_err *err)
+{
+  int rc;
+  if ((rc = check_units(m->nx, m->periodic_x, 'x', err)) != MPM_OK ||
+      (rc = check_units(m->ny, m->periodic_y, 'y', err)) != MPM_OK ||
+      (rc = check_lengths(m->nx, m->x0, m->dx, 'x', err)) != MPM_OK ||
+      (rc = check_lengths(m->ny, m->y0, m->dy, 'y', err)) != MPM_OK ||
+      (rc = check_topology(m, err)) != MPM_OK)
+    return rc;
+  int snx = m->periodic_x ? m->nx : m->nx + 1;
+  int sny = m->periodic_y ? m->ny : m->ny + 1;
+  if ((long long)snx * sny > INT_MAX)
+    return mpm_err_set(err, MPM_EINPUT,
+                       "mesh.nx = %d, mesh.ny = %d: %lld nodes is out of range "
+                       "(allowed: at most %d)", m->nx, m->ny,
+                       (long long)snx * sny, INT_MAX);
+  m->snx = snx;
+  m->sny = sny;
+  m->nnodes = snx * sny;
+  m->lx = m->nx * m->dx;
+  m->ly = m->ny * m->dy;
+  m->idx = 1.0 / m->dx;
+  m->idy = 1.0 / m->dy;
+  return MPM_OK;
+}
+
+/* ---------------------------------------------------------------- names */
+
+int mpm_mesh_topology_from_name(const char *name)
+{
+  if (!name)
+    return -1;
+  if (strcmp(name, "q4") == 0)
+    return MPM_TOPO_Q4;
+  if (strcmp(name, "t3") == 0)
+    return MPM_TOPO_T3;
+  return -1;
+}
+
+int mpm_mesh_diagonal_from_name(const char *name)
+{
+  if (!name)
+    return -1;
+  if (strcmp(name, "/") == 0)
+    return MPM_DIAG_SLASH;
+  if (strcmp(name, "\\") == 0)
+    return MPM_DIAG_BACKSLASH;
+  if (strcmp(name, "mirror") == 0)
+    return MPM_DIAG_MIRROR;
+  return -1;
+}
+
+/* ---------------------------------------------------------------- nodes */
+
+/* Logical index k along an axis of n units -> stored index (k mod n if periodic). */
+static int axis_store(int k, int n, int periodic)
+{
+  if (!periodic)
+    return k;
+  k %= n;
+  return k < 0 ? k + n : k;
+}
+
+int mpm_mesh_node(const mpm_mesh *m, int i, int j)
+{
+  int is = axis_store(i, m->nx, m->periodic_x);
+  int js = axis_store(j, m->ny, m->periodic_y);
+  return js * m->snx + is;  /* id = j_s snx + i_s */
+}
+
+void mpm_mesh_node_pos(const mpm_mesh *m, int i, int j, double *x, double *y)
+{
+  *x = m->x0 + i * m->dx;
+  *y = m->y0 + j * m->dy;
+}
+
+/* ------------------------------------------------------------- location */
+
+/* Distance s = x - o wrapped into [0, len) (or len after round-off). */
+static double axis_wrap(double s, double len)
+{
+  if (!(s >= 0.0 && s < len)) {
+    s -= len * floor(s / len);  /* s mod len */
+    if (s >= len)
+      s = 0.0;                  /* -tiny rounds to len: the same point */
+  }
+  return s;
+}
+
+/* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of
+ * origin o, length len, unit size 1/ih. Periodic axes wrap first; a point on
+ * the upper end belongs to the last unit. Returns 0, or -1 outside (or NaN). */
+static int axis_locate(double x, double o, double len, double ih, int n,
+                       int periodic, int *k, double *u)
+{
+  double s;
+  if (periodic) {
+    s = axis_wrap(x - o, len);
+    if (!(s >= 0.0 && s <= len))
+      return -1;                /* non-finite */
+  } else {
+    if (!(x >= o && x <= o + len))
+      return -1;
+    s = x - o;
+  }
+  double xi = s * ih;           /* position in units */
+  int kk = (int)xi;
+  if (kk > n - 1)
+    kk = n - 1;
+  double f = xi - kk;
+  *k = kk;
+  *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
+  return 0;
+}
+
+void mpm_mesh_wrap(const mpm_mesh *m, double *x, double *y)
+{
+  if (m->periodic_x && isfinite(*x)) {
+    double s = *x - m->x0;
+    if (!(s >= 0.0 && s < m->lx))
+      *x = m->x0 + axis_wrap(s, m->lx);
+  }
+  if (m->periodic_y && isfinite(*y)) {
+    double s = *y - m->y0;
+    if (!(s >= 0.0 && s < m->ly))
+      *y = m->y0 + axis_wrap(s, m->ly);
+  }
+}
+
+int mpm_mesh_unit(const mpm_mesh *m, double x, double y, int *i, int *j)
+{
+  double u, v;
+  if (axis_locate(x, m->x0, m->lx, m->idx, m->nx, m->periodic_x, i, &u) ||
+      axis_locate(y, m->y0, m->ly, m->idy, m->ny, m->periodic_y, j, &v))
+    return MPM_EOUTSIDE;
+  return MPM_OK;
+}
+
+int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j)
+{
+  (void)j;
+  switch (m->diagonal) {
+  case MPM_DIAG_SLASH:
+    return 1;
+  case MPM_DIAG_BACKSLASH:
+    return 0;
+  default:  /* mirror: "/" when the unit centre is left of x = mirror_x */
+    return m->x0 + (i + 0.5) * m->dx < m->mirror_x;
+  }
+}
+
+/* ---------------------------------------------------------------- basis */
+
+/* Q4 at local (u, v); corner order (0,0) (1,0) (1,1) (0,1). */
+static void basis_q4(const mpm_mesh *m, double u, double v, const int c[4],
+                     int node[4], double N[4], double dNx[4], double dNy[4])
+{
+  const double ix = m->idx, iy = m->idy;
+  /* N = (1-u)(1-v), u(1-v), uv, (1-u)v; grad = (dN/du / dx, dN/dv / dy) */
+  N[0] = (1.0 - u) * (1.0 - v);
+  N[1] = u * (1.0 - v);
+  N[2] = u * v;
+  N[3] = (1.0 - u) * v;
+  dNx[0] = -(1.0 - v) * ix;
+  dNx[1] = (1.0 - v) * ix;
+  dNx[2] = v * ix;
+  dNx[3] = -v * ix;
+  dNy[0] = -(1.0 - u) * iy;
+  dNy[1] = -u * iy;
+  dNy[2] = u * iy;
+  dNy[3] = (1.0 - u) * iy;
+  for (int a = 0; a < 4; a++)
+    node[a] = c[a];
+}
+
+/* One linear triangle: corners a, b, d of c[], values and (du, dv) slopes. */
+static void set_tri(const mpm_mesh *m, const int c[4], int a, int b, int d,
+                    const double n3[3], const double du[3], const double dv[3],
+                    int node[4], double N[4], double dNx[4], double dNy[4])
+{
+  node[0] = c[a];
+  node[1] = c[b];
+  node[2] = c[d];
+  for (int k = 0; k < 3; k++) {
+    N[k] = n3[k];
+    dNx[k] = du[k] * m->idx;  /* dN/dx = dN/du / dx */
+    dNy[k] = dv[k] * m->idy;
+  }
+}
+
+/* T3: the half of the unit containing (u, v); ties on the diagonal go to the
+ * lower triangle. Corner order of c[] as in basis_q4. */
+static void basis_t3(const mpm_mesh *m, int slash, double u, double v,
+                     const int c[4], int node[4], double N[4], double dNx[4],
+                     double dNy[4])
+{
+  if (slash && u >= v) {         /* (0,0) (1,0) (1,1): N = 1-u, u-v, v */
+    const double n3[3] = {1.0 - u, u - v, v};
+    const double du[3] = {-1.0, 1.0, 0.0}, dv[3] = {0.0, -1.0, 1.0};
+    set_tri(m, c, 0, 1, 2, n3, du, dv, node, N, dNx, dNy);
+  } else if (slash) {            /* (0,0) (1,1) (0,1): N = 1-v, u, v-u */
+    const double n3[3] = {1.0 - v, u, v - u};
+    const double du[3] = {0.0, 1.0, -1.0}, dv[3] = {-1.0, 0.0, 1.0};
+    set_tri(m, c, 0, 2, 3, n3, du, dv, node, N, dNx, dNy);
+  } else if (u + v <= 1.0) {     /* (0,0) (1,0) (0,1): N = 1-u-v, u, v */
+    const double n3[3] = {1.0 - u - v, u, v};
+    const double du[3] = {-1.0, 1.0, 0.0}, dv[3] = {-1.0, 0.0, 1.0};
+    set_tri(m, c, 0, 1, 3, n3, du, dv, node, N, dNx, dNy);
+  } else {                       /* (1,0) (1,1) (0,1): N = 1-v, u+v-1, 1-u */
+    const double n3[3] = {1.0 - v, u + v - 1.0, 1.0 - u};
+    const double du[3] = {0.0, 1.0, -1.0}, dv[3] = {-1.0, 1.0, 0.0};
+    set_tri(m, c, 1, 2, 3, n3, du, dv, node, N, dNx, dNy);
+  }
+}
+
+int mpm_mesh_basis(const mpm_mesh *m, double x, double y, int node[4],
+                   double N[4], double dNx[4], double dNy[4])
+{
+  int i, j;
+  double u, v;
+  if (axis_locate(x, m->x0, m->lx, m->idx, m->nx, m->periodic_x, &i, &u) ||
+      axis_locate(y, m->y0, m->ly, m->idy, m->ny, m->periodic_y, &j, &v))
+    return -1;
+  int i1 = i + 1, j1 = j + 1;
+  if (m->periodic_x && i1 == m->nx)
+    i1 = 0;                      /* node nx aliases node 0 */
+  if (m->periodic_y && j1 == m->ny)
+    j1 = 0;
+  const int r0 = j * m->snx, r1 = j1 * m->snx;
+  const int c[4] = {r0 + i, r0 + i1, r1 + i1, r1 + i};
+  if (m->topology == MPM_TOPO_Q4) {
+    basis_q4(m, u, v, c, node, N, dNx, dNy);
+    return 4;
+  }
+  basis_t3(m, mpm_mesh_unit_is_slash(m, i, j), u, v, c, node, N, dNx, dNy);
+  return 3;
+}

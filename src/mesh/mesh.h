@@ -26,6 +26,7 @@ typedef struct mpm_mesh {
   int snx, sny;          /* stored nodes per row / column (nx or nx+1) */
   int nnodes;            /* snx * sny */
   double lx, ly;         /* domain size nx*dx, ny*dy */
+  double idx, idy;       /* 1/dx, 1/dy (kept for the hot loops) */
 } mpm_mesh;
 
 /* Validate the caller's fields and fill the derived ones. */

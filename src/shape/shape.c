@@ -1,1 +1,124 @@
-/* placeholder */ typedef int mpm_placeholder_;
+/* shape.c: the shape-variant registry and the per-point stencil
+ * (MODEL.md section 3, step 1 of section 2).
+ *
+ * The stencil stores, for point p, count[p] nodes in slots
+ * [p * MPM_STENCIL_W, p * MPM_STENCIL_W + count[p]) of node, S, dSx, dSy.
+ * Points are independent, so the loop runs in parallel; a point outside the
+ * mesh is reported after the loop (the first one in point order). */
+#include "shape/shape.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+const mpm_shape_type *const mpm_shape_table[] = {
+  &mpm_shape_delta,
+  &mpm_shape_ugimp,
+  NULL
+};
+
+const mpm_shape_type *mpm_shape_lookup(const char *name)
+{
+  if (!name)
+    return NULL;
+  for (const mpm_shape_type *const *t = mpm_shape_table; *t; t++)
+    if (strcmp((*t)->name, name) == 0)
+      return *t;
+  return NULL;
+}
+
+/* Grow one array to n elements of size sz (contents need not survive). */
+static int grow(void **a, size_t n, size_t sz)
+{
+  void *p = realloc(*a, n * sz);
+  if (!p)
+    return MPM_ENOMEM;
+  *a = p;
+  return MPM_OK;
+}
+
+/* Make room for cap points; on failure the old arrays and cap stay valid. */
+static int stencil_reserve(mpm_stencil *st, size_t cap)
+{
+  if (cap <= st->cap && st->count)
+    return MPM_OK;
+  if (cap == 0)
+    cap = 1;
+  if (cap > SIZE_MAX / (MPM_STENCIL_W * sizeof(double)))
+    return MPM_ENOMEM;
+  const size_t w = cap * MPM_STENCIL_W;
+  if (grow((void **)&st->count, cap, sizeof *st->count) != MPM_OK ||
+      grow((void **)&st->node, w, sizeof *st->node) != MPM_OK ||
+      grow((void **)&st->S, w, sizeof *st->S) != MPM_OK ||
+      grow((void **)&st->dSx, w, sizeof *st->dSx) != MPM_OK ||
+      grow((void **)&st->dSy, w, sizeof *st->dSy) != MPM_OK)
+    return MPM_ENOMEM;
+  st->cap = cap;
+  return MPM_OK;
+}
+
+mpm_stencil *mpm_stencil_alloc(size_t cap)
+{
+  mpm_stencil *st = calloc(1, sizeof *st);
+  if (!st)
+    return NULL;
+  if (stencil_reserve(st, cap) != MPM_OK) {
+    mpm_stencil_free(st);
+    return NULL;
+  }
+  return st;
+}
+
+void mpm_stencil_free(mpm_stencil *st)
+{
+  if (!st)
+    return;
+  free(st->count);
+  free(st->node);
+  free(st->S);
+  free(st->dSx);
+  free(st->dSy);
+  free(st);
+}
+
+/* Evaluate every point; returns the index of the first one outside, or n. */
+static long stencil_fill(mpm_stencil *st, const mpm_shape_type *type,
+                         const mpm_mesh *m, const mpm_points *pts)
+{
+  const long n = (long)pts->n;
+  long first = n;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) reduction(min : first)
+#endif
+  for (long p = 0; p < n; p++) {
+    const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
+    const size_t o = (size_t)p * MPM_STENCIL_W;
+    /* (node, S_ip, gradS_ip) of point p */
+    int c = type->eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o,
+                       st->dSx + o, st->dSy + o);
+    st->count[p] = c;
+    if (c < 0 && p < first)
+      first = p;
+  }
+  return first;
+}
+
+int mpm_stencil_compute(mpm_stencil *st, const mpm_shape_type *type,
+                        const mpm_mesh *m, const mpm_points *pts, double t,
+                        mpm_err *err)
+{
+  if (!st || !type || !m || !pts)
+    return mpm_err_set(err, MPM_EINVAL, "stencil: missing stencil, shape, "
+                       "mesh or points");
+  if (pts->n > st->cap && stencil_reserve(st, pts->n) != MPM_OK)
+    return mpm_err_set(err, MPM_ENOMEM, "stencil for %zu points: out of memory",
+                       pts->n);
+  const long bad = stencil_fill(st, type, m, pts);
+  if (bad < (long)pts->n)
+    return mpm_err_set(err, MPM_EOUTSIDE,
+                       "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s "
+                       "(mesh [%g, %g] x [%g, %g] m)",
+                       pts->id[bad], pts->x[bad], pts->y[bad], t, m->x0,
+                       m->x0 + m->lx, m->y0, m->y0 + m->ly);
+  return MPM_OK;
+}

@@ -1,0 +1,85 @@
+/* ugimp.c: uGIMP through the CPDI corner rule with a fixed extent
+ * (MODEL.md section 3, [DK-silo] App. B).
+ *
+ * Corners x1 = xp - r1 - r2, x2 = xp + r1 - r2, x3 = xp + r1 + r2,
+ * x4 = xp - r1 + r2;
+ *   S_ip     = 1/4 sum_c N_i(x_c),
+ *   gradS_ip = (1/A_p) { [N_i(x1) - N_i(x3)] (r1y - r2y, r2x - r1x)
+ *                      + [N_i(x2) - N_i(x4)] (r1y + r2y, -r1x - r2x) },
+ *   A_p = 4 (r1x r2y - r1y r2x), signed.
+ * Corners beyond a non-periodic edge are clamped onto it (then the first-order
+ * invariants hold only approximately there); periodic directions wrap through
+ * the mesh basis. An extent of zero area falls back to the delta weights, the
+ * limit of the rule as the extent shrinks. */
+#include "shape/shape.h"
+
+/* Add weight (s, gx, gy) of storage node id to the merged list of *cnt nodes. */
+static void merge_node(int id, double s, double gx, double gy, int *node,
+                       double *S, double *dSx, double *dSy, int *cnt)
+{
+  int k = 0;
+  while (k < *cnt && node[k] != id)
+    k++;
+  if (k == *cnt) {
+    node[k] = id;
+    S[k] = dSx[k] = dSy[k] = 0.0;
+    (*cnt)++;
+  }
+  S[k] += s;
+  dSx[k] += gx;
+  dSy[k] += gy;
+}
+
+/* Move (x, y) onto the domain along non-periodic directions. */
+static void clamp_corner(const mpm_mesh *m, double *x, double *y)
+{
+  if (!m->periodic_x) {
+    double hi = m->x0 + m->lx;
+    *x = *x < m->x0 ? m->x0 : (*x > hi ? hi : *x);
+  }
+  if (!m->periodic_y) {
+    double hi = m->y0 + m->ly;
+    *y = *y < m->y0 ? m->y0 : (*y > hi ? hi : *y);
+  }
+}
+
+static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
+                      int *node, double *S, double *dSx, double *dSy)
+{
+  int iu, ju;
+  if (mpm_mesh_unit(m, x, y, &iu, &ju) != MPM_OK)
+    return -1;                               /* the centre decides */
+  const double r1x = r[0], r1y = r[1], r2x = r[2], r2y = r[3];
+  const double A = 4.0 * (r1x * r2y - r1y * r2x);  /* A_p, signed */
+  if (A == 0.0)
+    return mpm_mesh_basis(m, x, y, node, S, dSx, dSy);
+  const double iA = 1.0 / A;
+  /* corner offsets x_c - x_p, c = 1..4 */
+  const double ox[4] = {-r1x - r2x, r1x - r2x, r1x + r2x, -r1x + r2x};
+  const double oy[4] = {-r1y - r2y, r1y - r2y, r1y + r2y, -r1y + r2y};
+  /* gradient weight of N(x_c): +a, +b, -a, -b with
+   * a = (r1y - r2y, r2x - r1x)/A, b = (r1y + r2y, -r1x - r2x)/A */
+  const double ax = (r1y - r2y) * iA, ay = (r2x - r1x) * iA;
+  const double bx = (r1y + r2y) * iA, by = -(r1x + r2x) * iA;
+  const double wx[4] = {ax, bx, -ax, -bx}, wy[4] = {ay, by, -ay, -by};
+  int cnt = 0;
+  for (int c = 0; c < 4; c++) {
+    double cx = x + ox[c], cy = y + oy[c];
+    clamp_corner(m, &cx, &cy);
+    int id[4];
+    double N[4], gx[4], gy[4];
+    int k = mpm_mesh_basis(m, cx, cy, id, N, gx, gy);
+    if (k < 0)
+      return -1;                             /* non-finite extent */
+    for (int a = 0; a < k; a++)              /* S += N/4, gradS += w_c N */
+      merge_node(id[a], 0.25 * N[a], wx[c] * N[a], wy[c] * N[a], node, S,
+                 dSx, dSy, &cnt);
+  }
+  return cnt;
+}
+
+const mpm_shape_type mpm_shape_ugimp = {
+  "ugimp",
+  "uGIMP, CPDI corner rule with a fixed parallelogram extent (r1, r2)",
+  ugimp_eval
+};
