@@ -33,6 +33,7 @@ typedef struct mpm_fill_config {
   double density;              /* initial density [kg/m^3] */
   double vx, vy;               /* initial velocity [m/s] */
   int lithostatic;             /* 1: pre-stress from the weight above (K0 = nu/(1-nu)) */
+  char name[MPM_NAME_MAX];     /* title of the fill section ("fill NAME { ... }") */
 } mpm_fill_config;
 
 typedef struct mpm_config {

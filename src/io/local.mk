@@ -1,2 +1,22 @@
 noinst_LTLIBRARIES += libmpm_io.la
 libmpm_io_la_SOURCES = src/io/input.c src/io/output.c src/io/extract.c src/io/io.h
+
+# test_output compiles the output and extract sources directly, so it does not
+# need the input parser (libconfuse, name tables) that libmpm_io.la carries.
+check_PROGRAMS += tests/test_output
+TESTS += tests/test_output
+tests_test_output_SOURCES = tests/test_output.c src/io/output.c src/io/extract.c
+tests_test_output_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_output_LDADD = libmpm_diag.la libmpm_core.la $(HDF5_LIBS) $(CHECK_LIBS) -lm
+
+# test_input compiles the input parser directly, so it needs libconfuse and the
+# name tables (material, shape, bc, mesh) but not HDF5. cli-input.sh runs
+# `granmpm check` on every file under tests/inputs/bad and on the good inputs.
+check_PROGRAMS += tests/test_input
+TESTS += tests/test_input tests/cli-input.sh
+tests_test_input_SOURCES = tests/test_input.c src/io/input.c
+tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
+tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_mesh.la \
+	libmpm_core.la $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
+EXTRA_DIST += tests/cli-input.sh tests/inputs

@@ -1,1 +1,732 @@
-/* placeholder */ typedef int mpm_placeholder_;
+/* output.c: run output in one directory (DESIGN.md, "Input, output, command line").
+ *
+ *   run.h5           root attributes version, command_line, input (resolved text);
+ *                    /mesh       attributes of the background mesh, node lines;
+ *                    /frames/NNNNNN  attributes time, npoints; one 1-D dataset
+ *                                per point field, each with "unit" and
+ *                                "description" attributes;
+ *                    /xdmf/xy_NNNNNN  n x 2 virtual view of the frame's x and y
+ *                                (no copy), the XY points of run.xdmf;
+ *                    /xdmf/vertex_NNNNNN  0..n-1, the Polyvertex connectivity,
+ *                                shared by consecutive frames with n points.
+ *   run.xdmf         XDMF 3 temporal collection of one Polyvertex grid per frame.
+ *   diagnostics.csv  one mpm_diag row per frame.
+ *
+ * Every frame is flushed (H5Fflush, fflush) and run.xdmf is kept complete
+ * after each frame, so a run killed midway leaves readable output. run.h5
+ * uses the HDF5 1.8 file format (superblock v2) plus 1.10 virtual datasets:
+ * attributes larger than 64 KiB (a long resolved input) are allowed, and a
+ * run killed while the file is open leaves no "file open for writing" flag
+ * that readers refuse. Everything but the XY views reads with HDF5 1.8. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "config.h" /* PACKAGE_VERSION */
+
+#include <errno.h>
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include "io/io.h"
+
+/* One output field: name in run.h5, unit, where it comes from. */
+enum field_kind { FIELD_REAL, FIELD_INT, FIELD_PRESSURE };
+
+typedef struct field_spec {
+  const char *name;
+  const char *unit;
+  const char *description;
+  int kind;      /* enum field_kind */
+  size_t offset; /* offsetof(mpm_points, array) for FIELD_REAL / FIELD_INT */
+} field_spec;
+
+/* The order here is the order of the datasets in each frame group, which is
+ * the default column order of mpm_extract. */
+static const field_spec output_fields[] = {
+  {"x", "m", "position x", FIELD_REAL, offsetof(mpm_points, x)},
+  {"y", "m", "position y", FIELD_REAL, offsetof(mpm_points, y)},
+  {"vx", "m/s", "velocity x", FIELD_REAL, offsetof(mpm_points, vx)},
+  {"vy", "m/s", "velocity y", FIELD_REAL, offsetof(mpm_points, vy)},
+  {"sxx", "Pa", "Cauchy stress xx", FIELD_REAL, offsetof(mpm_points, sxx)},
+  {"syy", "Pa", "Cauchy stress yy", FIELD_REAL, offsetof(mpm_points, syy)},
+  {"szz", "Pa", "Cauchy stress zz (out of plane)", FIELD_REAL, offsetof(mpm_points, szz)},
+  {"sxy", "Pa", "Cauchy stress xy", FIELD_REAL, offsetof(mpm_points, sxy)},
+  {"p", "Pa", "pressure -(sxx+syy+szz)/3", FIELD_PRESSURE, 0},
+  {"mass", "kg/m", "mass per unit thickness", FIELD_REAL, offsetof(mpm_points, mass)},
+  {"volume", "m^2", "true volume per unit thickness", FIELD_REAL, offsetof(mpm_points, vol)},
+  {"state", "-", "0 dense, 1 disconnected", FIELD_INT, offsetof(mpm_points, state)},
+  {"gdot_p", "1/s", "equivalent plastic shear rate", FIELD_REAL, offsetof(mpm_points, gdp)},
+  {"g", "1/s", "granular fluidity", FIELD_REAL, offsetof(mpm_points, g)},
+  {"id", "-", "persistent point id", FIELD_INT, offsetof(mpm_points, id)},
+};
+#define COUNT(a) (sizeof(a) / sizeof((a)[0]))
+#define NFIELDS COUNT(output_fields)
+
+static const char *const topology_names[] = {"q4", "t3"};
+static const char *const diagonal_names[] = {"/", "\\", "mirror"};
+
+static const char xdmf_head[] =
+    "<?xml version=\"1.0\" ?>\n"
+    "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+    "  <Domain>\n"
+    "    <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+static const char xdmf_tail[] = "    </Grid>\n  </Domain>\n</Xdmf>\n";
+
+struct mpm_output {
+  char *h5_path, *csv_path, *xdmf_path;
+  hid_t file;       /* run.h5 */
+  hid_t frames;     /* /frames */
+  hid_t xdmf_group; /* /xdmf */
+  FILE *csv;
+  FILE *xdmf;
+  long xdmf_tail_pos; /* offset of the closing tags in run.xdmf */
+  int nframes;
+  size_t vertex_n;   /* length of the newest /xdmf/vertex_NNNNNN */
+  int vertex_frame;  /* its frame number, -1 before the first */
+  double *work;      /* per-point scratch for derived fields */
+  size_t work_cap;
+};
+
+/* ---- HDF5 error handling ------------------------------------------------ */
+
+/* Inside the public functions HDF5's automatic error printing is replaced
+ * by a handler that keeps the innermost message of the first failing call
+ * (later clean-up calls clear HDF5's own stack); the previous handler is
+ * restored on return and failures become mpm_err messages. */
+typedef struct h5_quiet {
+  H5E_auto2_t func;
+  void *data;
+  char reason[200];
+} h5_quiet;
+
+typedef struct reason_buf {
+  char *buf;
+  size_t len;
+} reason_buf;
+
+/* File-driver errors carry the system's own text after this key. */
+static const char system_text_key[] = "error message = '";
+
+/* Keep the innermost entry of the stack, which names the cause. */
+static herr_t reason_first(unsigned n, const H5E_error2_t *e, void *data)
+{
+  const char *key = system_text_key;
+  const size_t klen = sizeof system_text_key - 1;
+  reason_buf *r = data;
+  const char *desc = e->desc ? e->desc : "";
+  const char *p = strstr(desc, key);
+  const char *end = p ? strchr(p + klen, '\'') : NULL;
+  (void)n;
+  if (end)
+    snprintf(r->buf, r->len, "%.*s", (int)(end - p - klen), p + klen);
+  else
+    snprintf(r->buf, r->len, "%s", desc);
+  return 1;
+}
+
+static herr_t h5_capture(hid_t stack, void *data)
+{
+  h5_quiet *q = data;
+  reason_buf r = {q->reason, sizeof q->reason};
+  if (!q->reason[0])
+    H5Ewalk2(stack, H5E_WALK_UPWARD, reason_first, &r);
+  return 0;
+}
+
+static void h5_quiet_begin(h5_quiet *q)
+{
+  q->reason[0] = '\0';
+  if (H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data) < 0) {
+    q->func = NULL;
+    q->data = NULL;
+  }
+  H5Eset_auto2(H5E_DEFAULT, h5_capture, q);
+}
+
+static void h5_quiet_end(const h5_quiet *q)
+{
+  H5Eset_auto2(H5E_DEFAULT, q->func, q->data);
+}
+
+static const char *h5_reason(const h5_quiet *q)
+{
+  return q->reason[0] ? q->reason : "HDF5 error";
+}
+
+static int h5_fail(mpm_err *err, const h5_quiet *q, const char *what, const char *path)
+{
+  return mpm_err_set(err, MPM_EIO, "%s '%s': %s", what, path, h5_reason(q));
+}
+
+/* ---- small HDF5 writers --------------------------------------------------- */
+
+static void h5_close_all(hid_t a, hid_t b, hid_t c)
+{
+  if (c >= 0)
+    H5Aclose(c);
+  if (b >= 0)
+    H5Sclose(b);
+  if (a >= 0)
+    H5Tclose(a);
+}
+
+/* Scalar attribute of a predefined type. */
+static herr_t attr_scalar(hid_t obj, const char *name, hid_t type, const void *v)
+{
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = space < 0 ? H5I_INVALID_HID
+                         : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t rc = attr < 0 ? -1 : H5Awrite(attr, type, v);
+  h5_close_all(H5I_INVALID_HID, space, attr);
+  return rc;
+}
+
+static herr_t attr_double(hid_t obj, const char *name, double v)
+{
+  return attr_scalar(obj, name, H5T_NATIVE_DOUBLE, &v);
+}
+
+static herr_t attr_int(hid_t obj, const char *name, int v)
+{
+  return attr_scalar(obj, name, H5T_NATIVE_INT, &v);
+}
+
+/* Fixed-length, NUL-terminated string attribute; NULL is the empty string. */
+static herr_t attr_string(hid_t obj, const char *name, const char *s)
+{
+  const char *v = s ? s : "";
+  hid_t type = H5Tcopy(H5T_C_S1);
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = H5I_INVALID_HID;
+  herr_t rc = -1;
+  if (type >= 0 && space >= 0 && H5Tset_size(type, strlen(v) + 1) >= 0 &&
+      H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0) {
+    attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (attr >= 0)
+      rc = H5Awrite(attr, type, v);
+  }
+  h5_close_all(type, space, attr);
+  return rc;
+}
+
+/* 1-D dataset of n values with unit and description attributes. */
+static herr_t write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype, size_t n,
+                          const void *buf, const char *unit, const char *desc)
+{
+  hsize_t dims[1] = {(hsize_t)n};
+  hid_t space = H5Screate_simple(1, dims, NULL);
+  hid_t dset = space < 0 ? H5I_INVALID_HID
+                         : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT,
+                                      H5P_DEFAULT);
+  herr_t rc = dset < 0 ? -1 : 0;
+  if (rc >= 0 && n > 0)
+    rc = H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
+  if (rc >= 0 && unit)
+    rc = attr_string(dset, "unit", unit);
+  if (rc >= 0 && desc)
+    rc = attr_string(dset, "description", desc);
+  if (dset >= 0)
+    H5Dclose(dset);
+  if (space >= 0)
+    H5Sclose(space);
+  return rc;
+}
+
+/* ---- directory and paths --------------------------------------------------- */
+
+static char *path_join(const char *dir, const char *name)
+{
+  size_t n = strlen(dir) + strlen(name) + 2;
+  char *p = malloc(n);
+  if (p)
+    snprintf(p, n, "%s/%s", dir, name);
+  return p;
+}
+
+/* Create one directory; an existing one is fine (a file in the way shows up
+ * at the next level, or in make_dirs' final check). */
+static int mkdir_one(const char *path, mpm_err *err)
+{
+  struct stat st;
+  int e;
+  if (mkdir(path, 0777) == 0 || errno == EEXIST)
+    return MPM_OK;
+  e = errno;
+  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) /* e.g. EROFS on an existing one */
+    return MPM_OK;
+  return mpm_err_set(err, MPM_EIO, "cannot create directory '%s': %s", path, strerror(e));
+}
+
+/* mkdir -p: create dir and its missing parents. */
+static int make_dirs(const char *dir, mpm_err *err)
+{
+  char *p = malloc(strlen(dir) + 1);
+  struct stat st;
+  int rc = MPM_OK;
+  if (!p)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory creating '%s'", dir);
+  strcpy(p, dir);
+  for (char *s = p + 1; rc == MPM_OK && *s; s++) {
+    if (*s != '/')
+      continue;
+    *s = '\0';
+    rc = mkdir_one(p, err);
+    *s = '/';
+  }
+  if (rc == MPM_OK)
+    rc = mkdir_one(p, err);
+  free(p);
+  if (rc == MPM_OK && stat(dir, &st) != 0)
+    rc = mpm_err_set(err, MPM_EIO, "cannot create directory '%s': %s", dir, strerror(errno));
+  else if (rc == MPM_OK && !S_ISDIR(st.st_mode))
+    rc = mpm_err_set(err, MPM_EIO, "cannot create directory '%s': %s", dir, strerror(ENOTDIR));
+  return rc;
+}
+
+/* ---- open ------------------------------------------------------------------- */
+
+static void output_free(mpm_output *out)
+{
+  if (!out)
+    return;
+  if (out->xdmf_group >= 0)
+    H5Gclose(out->xdmf_group);
+  if (out->frames >= 0)
+    H5Gclose(out->frames);
+  if (out->file >= 0)
+    H5Fclose(out->file);
+  if (out->csv)
+    fclose(out->csv);
+  if (out->xdmf)
+    fclose(out->xdmf);
+  free(out->h5_path);
+  free(out->csv_path);
+  free(out->xdmf_path);
+  free(out->work);
+  free(out);
+}
+
+static mpm_output *output_alloc(const char *dir)
+{
+  mpm_output *out = calloc(1, sizeof *out);
+  if (!out)
+    return NULL;
+  out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
+  out->vertex_frame = -1;
+  out->h5_path = path_join(dir, "run.h5");
+  out->csv_path = path_join(dir, "diagnostics.csv");
+  out->xdmf_path = path_join(dir, "run.xdmf");
+  if (!out->h5_path || !out->csv_path || !out->xdmf_path) {
+    output_free(out);
+    return NULL;
+  }
+  return out;
+}
+
+static int open_text(FILE **f, const char *path, const char *text, mpm_err *err)
+{
+  *f = fopen(path, "w");
+  if (!*f)
+    return mpm_err_set(err, MPM_EIO, "cannot create '%s': %s", path, strerror(errno));
+  if (fputs(text, *f) < 0 || fflush(*f) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
+  return MPM_OK;
+}
+
+/* run.xdmf starts as an empty temporal collection; frames are inserted
+ * before the closing tags, which are rewritten after each frame. */
+static int open_xdmf(mpm_output *out, mpm_err *err)
+{
+  int rc = open_text(&out->xdmf, out->xdmf_path, xdmf_head, err);
+  if (rc != MPM_OK)
+    return rc;
+  out->xdmf_tail_pos = ftell(out->xdmf);
+  if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, out->xdmf) < 0 || fflush(out->xdmf) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
+                       strerror(errno));
+  return MPM_OK;
+}
+
+static hid_t create_h5(const char *path)
+{
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  hid_t file = H5I_INVALID_HID;
+  if (fapl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110) >= 0)
+    file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  if (fapl >= 0)
+    H5Pclose(fapl);
+  return file;
+}
+
+static const char *name_of(const char *const *names, size_t n, int i)
+{
+  return (i >= 0 && (size_t)i < n) ? names[i] : "unknown";
+}
+
+/* Coordinates of the n+1 mesh lines x0 + i dx. */
+static herr_t write_lines(hid_t g, const char *name, int n, double x0, double dx,
+                          const char *desc)
+{
+  size_t len = n >= 0 ? (size_t)n + 1 : 0;
+  double *c = malloc((len ? len : 1) * sizeof *c);
+  herr_t rc;
+  if (!c)
+    return -1;
+  for (size_t i = 0; i < len; i++)
+    c[i] = x0 + (double)i * dx;
+  rc = write_array(g, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, len, c, "m", desc);
+  free(c);
+  return rc;
+}
+
+static herr_t write_mesh(hid_t file, const mpm_mesh *m)
+{
+  hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t rc = g < 0 ? -1 : 0;
+  if (rc >= 0) /* a negative status in any term makes the OR negative */
+    rc = attr_int(g, "nx", m->nx) | attr_int(g, "ny", m->ny) | attr_double(g, "x0", m->x0) |
+         attr_double(g, "y0", m->y0) | attr_double(g, "dx", m->dx) |
+         attr_double(g, "dy", m->dy) |
+         attr_string(g, "topology", name_of(topology_names, COUNT(topology_names), m->topology)) |
+         attr_string(g, "diagonal", name_of(diagonal_names, COUNT(diagonal_names), m->diagonal)) |
+         attr_double(g, "mirror_x", m->mirror_x) | attr_int(g, "periodic_x", m->periodic_x) |
+         attr_int(g, "periodic_y", m->periodic_y);
+  if (rc >= 0)
+    rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the vertical mesh lines");
+  if (rc >= 0)
+    rc = write_lines(g, "node_y", m->ny, m->y0, m->dy, "y of the horizontal mesh lines");
+  if (g >= 0)
+    H5Gclose(g);
+  return rc;
+}
+
+static herr_t write_header(mpm_output *out, const char *cmdline, const char *input,
+                           const mpm_mesh *m)
+{
+  herr_t rc = attr_string(out->file, "version", PACKAGE_VERSION);
+  if (rc >= 0)
+    rc = attr_string(out->file, "command_line", cmdline);
+  if (rc >= 0)
+    rc = attr_string(out->file, "input", input);
+  if (rc >= 0 && m)
+    rc = write_mesh(out->file, m);
+  if (rc >= 0) {
+    out->frames = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    out->xdmf_group = H5Gcreate2(out->file, "xdmf", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    rc = (out->frames < 0 || out->xdmf_group < 0) ? -1 : 0;
+  }
+  if (rc >= 0)
+    rc = H5Fflush(out->file, H5F_SCOPE_LOCAL);
+  return rc;
+}
+
+static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
+                       const char *input, const mpm_mesh *m, const h5_quiet *q,
+                       mpm_err *err)
+{
+  int rc = make_dirs(dir, err);
+  mpm_output *out;
+  if (rc != MPM_OK)
+    return rc;
+  out = output_alloc(dir);
+  if (!out)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
+  rc = open_text(&out->csv, out->csv_path, mpm_diag_csv_header(), err);
+  if (rc == MPM_OK)
+    rc = open_xdmf(out, err);
+  if (rc == MPM_OK) {
+    out->file = create_h5(out->h5_path);
+    if (out->file < 0)
+      rc = h5_fail(err, q, "cannot create", out->h5_path);
+  }
+  if (rc == MPM_OK && write_header(out, cmdline, input, m) < 0)
+    rc = h5_fail(err, q, "cannot write header of", out->h5_path);
+  if (rc != MPM_OK) {
+    output_free(out);
+    return rc;
+  }
+  *pout = out;
+  return MPM_OK;
+}
+
+int mpm_output_open(mpm_output **out, const char *dir, const char *cmdline,
+                    const char *input_text, const mpm_mesh *m, mpm_err *err)
+{
+  h5_quiet q;
+  int rc;
+  if (!out)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_output_open: no output handle");
+  *out = NULL;
+  if (!dir || !dir[0])
+    return mpm_err_set(err, MPM_EINVAL, "mpm_output_open: empty output directory");
+  h5_quiet_begin(&q);
+  rc = output_open(out, dir, cmdline, input_text, m, &q, err);
+  h5_quiet_end(&q);
+  return rc;
+}
+
+/* ---- frames ------------------------------------------------------------------ */
+
+static int work_reserve(mpm_output *out, size_t n)
+{
+  if (n <= out->work_cap)
+    return MPM_OK;
+  double *w = realloc(out->work, n * sizeof *w);
+  if (!w)
+    return MPM_ENOMEM;
+  out->work = w;
+  out->work_cap = n;
+  return MPM_OK;
+}
+
+/* Pointer to the values of one field; derived fields are computed into work. */
+static const void *field_values(mpm_output *out, const field_spec *f, const mpm_points *pts)
+{
+  const char *base = (const char *)pts + f->offset;
+  if (f->kind == FIELD_REAL)
+    return *(double *const *)base;
+  if (f->kind == FIELD_INT)
+    return *(int *const *)base;
+  for (size_t i = 0; i < pts->n; i++)
+    out->work[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0; /* p */
+  return out->work;
+}
+
+static int write_fields(mpm_output *out, hid_t g, const mpm_points *pts,
+                        const h5_quiet *q, mpm_err *err)
+{
+  for (size_t k = 0; k < NFIELDS; k++) {
+    const field_spec *f = &output_fields[k];
+    int isint = f->kind == FIELD_INT;
+    herr_t rc = write_array(g, f->name, isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
+                            isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, pts->n,
+                            field_values(out, f, pts), f->unit, f->description);
+    if (rc < 0)
+      return mpm_err_set(err, MPM_EIO, "cannot write field '%s' of frame %d to '%s': %s",
+                         f->name, out->nframes, out->h5_path, h5_reason(q));
+  }
+  return MPM_OK;
+}
+
+/* Polyvertex connectivity 0..n-1, written again only when n changes. */
+static int write_vertices(mpm_output *out, size_t n, const h5_quiet *q, mpm_err *err)
+{
+  char name[32];
+  int *v;
+  herr_t rc;
+  if (n == 0 || (out->vertex_frame >= 0 && out->vertex_n == n))
+    return MPM_OK;
+  v = malloc(n * sizeof *v);
+  if (!v)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory writing frame %d", out->nframes);
+  for (size_t i = 0; i < n; i++)
+    v[i] = (int)i;
+  snprintf(name, sizeof name, "vertex_%06d", out->nframes);
+  rc = write_array(out->xdmf_group, name, H5T_STD_I32LE, H5T_NATIVE_INT, n, v, NULL,
+                   "Polyvertex connectivity of run.xdmf");
+  free(v);
+  if (rc < 0)
+    return h5_fail(err, q, "cannot write connectivity to", out->h5_path);
+  out->vertex_n = n;
+  out->vertex_frame = out->nframes;
+  return MPM_OK;
+}
+
+/* /xdmf/xy_NNNNNN: an n x 2 virtual dataset whose columns are the frame's x
+ * and y datasets, so readers that want interleaved XY points get them
+ * without a second copy of the positions. */
+static herr_t write_xy_view(hid_t xg, int frame, size_t n)
+{
+  hsize_t vdims[2] = {(hsize_t)n, 2}, sdims[1] = {(hsize_t)n};
+  hsize_t start[2] = {0, 0}, count[2] = {(hsize_t)n, 1};
+  hid_t vspace = H5Screate_simple(2, vdims, NULL);
+  hid_t sspace = H5Screate_simple(1, sdims, NULL);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  hid_t dset = H5I_INVALID_HID;
+  herr_t rc = (vspace < 0 || sspace < 0 || dcpl < 0) ? -1 : 0;
+  char src[48], name[32];
+  for (int c = 0; c < 2 && rc >= 0; c++) {
+    start[1] = (hsize_t)c;
+    snprintf(src, sizeof src, "/frames/%06d/%s", frame, c ? "y" : "x");
+    rc = H5Sselect_hyperslab(vspace, H5S_SELECT_SET, start, NULL, count, NULL);
+    if (rc >= 0)
+      rc = H5Pset_virtual(dcpl, vspace, ".", src, sspace);
+  }
+  snprintf(name, sizeof name, "xy_%06d", frame);
+  if (rc >= 0)
+    dset = H5Dcreate2(xg, name, H5T_IEEE_F64LE, vspace, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (rc >= 0 && dset < 0)
+    rc = -1;
+  if (dset >= 0)
+    H5Dclose(dset);
+  if (dcpl >= 0)
+    H5Pclose(dcpl);
+  if (sspace >= 0)
+    H5Sclose(sspace);
+  if (vspace >= 0)
+    H5Sclose(vspace);
+  return rc;
+}
+
+static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
+                          const h5_quiet *q, mpm_err *err)
+{
+  char name[32];
+  hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+  hid_t g = H5I_INVALID_HID;
+  int rc = MPM_OK;
+  snprintf(name, sizeof name, "%06d", out->nframes);
+  /* creation order lets readers list the fields in the order written */
+  if (gcpl >= 0 &&
+      H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) >= 0)
+    g = H5Gcreate2(out->frames, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  if (gcpl >= 0)
+    H5Pclose(gcpl);
+  if (g < 0 || attr_double(g, "time", t) < 0 ||
+      attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
+    rc = h5_fail(err, q, "cannot create frame group in", out->h5_path);
+  if (rc == MPM_OK)
+    rc = write_fields(out, g, pts, q, err);
+  if (g >= 0)
+    H5Gclose(g);
+  if (rc == MPM_OK)
+    rc = write_vertices(out, pts->n, q, err);
+  if (rc == MPM_OK && pts->n > 0 && write_xy_view(out->xdmf_group, out->nframes, pts->n) < 0)
+    rc = h5_fail(err, q, "cannot write XY view to", out->h5_path);
+  if (rc == MPM_OK && H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
+    rc = h5_fail(err, q, "cannot flush", out->h5_path);
+  return rc;
+}
+
+static int write_csv_row(mpm_output *out, const mpm_diag *d, mpm_err *err)
+{
+  char row[512];
+  if (mpm_diag_csv_row(d, row, sizeof row) != MPM_OK)
+    return mpm_err_set(err, MPM_EINVAL, "diagnostics row of frame %d too long", out->nframes);
+  if (fputs(row, out->csv) < 0 || fflush(out->csv) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->csv_path, strerror(errno));
+  return MPM_OK;
+}
+
+/* One <DataItem> referring to dataset path (relative to run.h5) of n values. */
+static void xdmf_item(FILE *f, const char *path, size_t n, int isint, const char *indent)
+{
+  fprintf(f,
+          "%s<DataItem Dimensions=\"%zu\" NumberType=\"%s\" Precision=\"%d\" "
+          "Format=\"HDF\">run.h5:%s</DataItem>\n",
+          indent, n, isint ? "Int" : "Float", isint ? 4 : 8, path);
+}
+
+/* Geometry "XY" from one n x 2 array, the frame's virtual XY view: ParaView
+ * (5.11) opens it with all three of its XDMF readers (XDMF, Xdmf3 S/T) and
+ * sets z = 0. Geometries assembled from the separate x and y datasets do not
+ * work there: "X_Y" and a JOIN function crash the Xdmf3 readers and "X_Y_Z"
+ * loses the points; only the legacy XDMF reader understands them. */
+static void xdmf_grid(FILE *f, const mpm_output *out, double t, size_t n)
+{
+  char path[64];
+  fprintf(f, "      <Grid Name=\"frame_%06d\" GridType=\"Uniform\">\n", out->nframes);
+  fprintf(f, "        <Time Value=\"%.17g\"/>\n", t);
+  fprintf(f,
+          "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%zu\" "
+          "NodesPerElement=\"1\">\n",
+          n);
+  snprintf(path, sizeof path, "/xdmf/vertex_%06d", out->vertex_frame);
+  xdmf_item(f, path, n, 1, "          ");
+  fprintf(f, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+  fprintf(f,
+          "          <DataItem Dimensions=\"%zu 2\" NumberType=\"Float\" Precision=\"8\" "
+          "Format=\"HDF\">run.h5:/xdmf/xy_%06d</DataItem>\n",
+          n, out->nframes);
+  fprintf(f, "        </Geometry>\n");
+  for (size_t k = 0; k < NFIELDS; k++) {
+    const field_spec *s = &output_fields[k];
+    fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",
+            s->name);
+    snprintf(path, sizeof path, "/frames/%06d/%s", out->nframes, s->name);
+    xdmf_item(f, path, n, s->kind == FIELD_INT, "          ");
+    fprintf(f, "        </Attribute>\n");
+  }
+  fprintf(f, "      </Grid>\n");
+}
+
+/* Insert the frame's grid before the closing tags. A frame without points
+ * gets no grid: readers reject empty datasets. */
+static int write_xdmf_frame(mpm_output *out, double t, size_t n, mpm_err *err)
+{
+  FILE *f = out->xdmf;
+  if (n == 0)
+    return MPM_OK;
+  if (fseek(f, out->xdmf_tail_pos, SEEK_SET) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot seek in '%s': %s", out->xdmf_path,
+                       strerror(errno));
+  xdmf_grid(f, out, t, n);
+  out->xdmf_tail_pos = ftell(f);
+  if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, f) < 0 || fflush(f) != 0 || ferror(f))
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
+                       strerror(errno));
+  return MPM_OK;
+}
+
+int mpm_output_frame(mpm_output *out, const mpm_points *pts, const mpm_diag *d,
+                     mpm_err *err)
+{
+  h5_quiet q;
+  int rc;
+  if (!out || !pts || !d)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_output_frame: missing output, points or diagnostics");
+  if (work_reserve(out, pts->n) != MPM_OK)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory writing frame %d", out->nframes);
+  h5_quiet_begin(&q);
+  rc = write_frame_h5(out, pts, d->t, &q, err);
+  h5_quiet_end(&q);
+  if (rc == MPM_OK)
+    rc = write_csv_row(out, d, err);
+  if (rc == MPM_OK)
+    rc = write_xdmf_frame(out, d->t, pts->n, err);
+  if (rc == MPM_OK)
+    out->nframes++;
+  return rc;
+}
+
+/* ---- close -------------------------------------------------------------------- */
+
+static int close_text(FILE **f, const char *path, int rc, mpm_err *err)
+{
+  if (*f && fclose(*f) != 0 && rc == MPM_OK)
+    rc = mpm_err_set(err, MPM_EIO, "cannot close '%s': %s", path, strerror(errno));
+  *f = NULL;
+  return rc;
+}
+
+static int close_h5(mpm_output *out, const h5_quiet *q, mpm_err *err)
+{
+  int bad = 0;
+  if (out->xdmf_group >= 0)
+    bad |= H5Gclose(out->xdmf_group) < 0;
+  if (out->frames >= 0)
+    bad |= H5Gclose(out->frames) < 0;
+  if (out->file >= 0)
+    bad |= H5Fclose(out->file) < 0;
+  out->xdmf_group = out->frames = out->file = H5I_INVALID_HID;
+  return bad ? h5_fail(err, q, "cannot close", out->h5_path) : MPM_OK;
+}
+
+int mpm_output_close(mpm_output *out, mpm_err *err)
+{
+  h5_quiet q;
+  int rc;
+  if (!out)
+    return MPM_OK;
+  h5_quiet_begin(&q);
+  rc = close_h5(out, &q, err);
+  h5_quiet_end(&q);
+  rc = close_text(&out->csv, out->csv_path, rc, err);
+  rc = close_text(&out->xdmf, out->xdmf_path, rc, err);
+  output_free(out);
+  return rc;
+}

@@ -1,0 +1,112 @@
+#!/bin/sh
+# cli-input.sh: `granmpm check` on bad and good inputs (docs/input-reference.md).
+#
+# Every file in tests/inputs/bad must give exit status 2 (not a signal),
+# nothing on stdout and exactly one line on stderr, naming the file and the
+# line: "granmpm: FILE:LINE: ...", equal to the message on the file's
+# "# expect: " line (one ending in "..." is a prefix: for lists of names that
+# other modules own, such as the material models). So must a missing file, a directory, a file with a NUL
+# byte and bad --set arguments. Good inputs (tests/inputs/good and the shipped
+# inputs/) exit 0, and the resolved input they print is itself an input that
+# checks and prints the same.
+set -u
+: "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
+srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/cli-input.XXXXXX") || exit 99
+trap 'rm -rf "$tmp"' EXIT INT TERM
+fails=0
+count=0
+
+fail() {
+  echo "FAIL $1"
+  fails=$((fails + 1))
+}
+
+# check_bad LABEL WANT [ARGS...]: `granmpm check ARGS` must exit 2 and print
+# exactly the line WANT on stderr, nothing on stdout.
+check_bad() {
+  label=$1
+  want=$2
+  shift 2
+  count=$((count + 1))
+  "$GRANMPM" check "$@" >"$tmp/out" 2>"$tmp/err"
+  st=$?
+  if [ "$st" -ge 128 ]; then
+    fail "$label: killed by signal $((st - 128))"
+    return
+  fi
+  [ "$st" -eq 2 ] || { fail "$label: exit status $st (want 2)"; return; }
+  [ -s "$tmp/out" ] && { fail "$label: output on stdout"; return; }
+  lines=$(wc -l <"$tmp/err")
+  [ "$lines" -eq 1 ] || { fail "$label: $lines lines on stderr (want 1)"; cat "$tmp/err"; return; }
+  got=$(cat "$tmp/err")
+  case "$want" in
+    *...) case "$got" in "${want%...}"*) return ;; esac ;;  # a prefix
+    *) [ "$got" = "$want" ] && return ;;
+  esac
+  fail "$label"
+  echo "  want: $want"
+  echo "  got:  $got"
+}
+
+# Every bad input file names itself and a line.
+for f in "$srcdir"/tests/inputs/bad/*.conf; do
+  msg=$(sed -n 's/^# expect: //p' "$f" | head -n 1)
+  [ -n "$msg" ] || { fail "$f: no '# expect: ' line"; continue; }
+  case "$msg" in
+    [0-9]*:*) ;;
+    *) fail "$f: the expected message has no line number"; continue ;;
+  esac
+  check_bad "$(basename "$f")" "granmpm: $f:$msg" "$f"
+done
+[ "$count" -ge 50 ] || fail "only $count bad inputs found under $srcdir/tests/inputs/bad"
+
+# The file itself is the problem.
+check_bad missing "granmpm: $tmp/missing.conf: cannot open input file: No such file or directory" \
+  "$tmp/missing.conf"
+check_bad directory "granmpm: $tmp: cannot read input file: Is a directory" "$tmp"
+printf 'mesh {\n  nx = 1\000\n}\n' >"$tmp/nul.conf"
+check_bad nul-byte "granmpm: $tmp/nul.conf:2: NUL byte in the input file (allowed: text)" \
+  "$tmp/nul.conf"
+if [ "$(id -u)" -ne 0 ]; then  # root can read anything
+  cp "$srcdir/tests/inputs/good/minimal.conf" "$tmp/unreadable.conf"
+  chmod 000 "$tmp/unreadable.conf"
+  check_bad unreadable "granmpm: $tmp/unreadable.conf: cannot open input file: Permission denied" \
+    "$tmp/unreadable.conf"
+fi
+
+# Bad --set arguments name the argument instead of a line.
+good="$srcdir/tests/inputs/good/minimal.conf"
+check_bad set-type "granmpm: --set 'mesh.nx=abc': key 'mesh.nx': expected an integer, got 'abc'" \
+  "$good" --set mesh.nx=abc
+check_bad set-range "granmpm: --set 'fill.ppu=9': key 'fill.ppu': value 9 out of range (allowed: 1 ... 8)" \
+  "$good" --set fill.ppu=9
+check_bad set-key "granmpm: --set 'time.tend=1': unknown key 'time.tend' (allowed keys in 'time': dt, cfl, t_end, frame_dt)" \
+  "$good" --set time.tend=1
+check_bad set-form "granmpm: --set 'mesh.nx': expected section.key=value" "$good" --set mesh.nx
+check_bad set-cross "granmpm: --set 'time.t_end=0.001': key 'time.t_end': frame_dt = 0.01 > t_end = 0.001 (allowed: frame_dt <= t_end)" \
+  "$good" --set time.t_end=0.001
+
+# Good inputs: exit 0, and the printed input reads back to the same.
+for f in "$srcdir"/tests/inputs/good/*.conf "$srcdir"/inputs/*.conf; do
+  [ -f "$f" ] || continue
+  count=$((count + 1))
+  name=$(basename "$f")
+  if ! "$GRANMPM" check "$f" >"$tmp/resolved.conf" 2>"$tmp/err"; then
+    fail "$name: exit status $? for a good input"
+    cat "$tmp/err"
+    continue
+  fi
+  [ -s "$tmp/err" ] && { fail "$name: output on stderr"; cat "$tmp/err"; }
+  if ! "$GRANMPM" check "$tmp/resolved.conf" >"$tmp/again.conf" 2>"$tmp/err"; then
+    fail "$name: its resolved input does not check"
+    cat "$tmp/err"
+    continue
+  fi
+  sed 1d "$tmp/resolved.conf" >"$tmp/a"  # line 1 names the source file
+  sed 1d "$tmp/again.conf" >"$tmp/b"
+  cmp -s "$tmp/a" "$tmp/b" || fail "$name: the resolved input changes when checked again"
+done
+
+echo "$count cases, $fails failed"
+[ "$fails" -eq 0 ]

@@ -1,0 +1,728 @@
+/* test_output.c: run output (run.h5, run.xdmf, diagnostics.csv) and frame
+ * extraction. A run of three frames with known point values is written to a
+ * temporary directory, then read back through mpm_extract and the HDF5 API:
+ * every value must come back bit for bit. */
+#define _XOPEN_SOURCE 700
+
+#include "config.h" /* PACKAGE_VERSION */
+
+#include <check.h>
+#include <ftw.h>
+#include <hdf5.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/points.h"
+#include "diag/diag.h"
+#include "io/io.h"
+
+#define NFRAMES 3
+#define DIR_MAX 256
+
+static const char *const all_fields[] = {"x", "y", "vx", "vy", "sxx", "syy", "szz", "sxy",
+                                         "p", "mass", "volume", "state", "gdot_p", "g", "id"};
+#define NALL ((int)(sizeof all_fields / sizeof all_fields[0]))
+
+/* ---- the run written by every test --------------------------------------- */
+
+static size_t frame_npoints(int f)
+{
+  return f < 2 ? 5 : 3; /* the last frame lost two points */
+}
+
+static double frame_time(int f)
+{
+  return 0.1 * f;
+}
+
+/* A distinct value for every (frame, point, field), plus a few special ones
+ * that a lossy format would not reproduce. */
+static double value(int f, size_t i, int k)
+{
+  if (f == 1 && i == 0 && k == 0)
+    return -0.0;
+  if (f == 1 && i == 1 && k == 2)
+    return 4.9406564584124654e-324; /* smallest subnormal */
+  if (f == 1 && i == 2 && k == 3)
+    return -1.7976931348623157e308;
+  return (f + 1) / 3.0 + (double)i * 0.1 + k * 1e-7 * (k % 2 ? -1.0 : 1.0);
+}
+
+static mpm_points *frame_points(int f)
+{
+  size_t n = frame_npoints(f);
+  mpm_points *pts = mpm_points_alloc(n);
+  ck_assert_ptr_nonnull(pts);
+  for (size_t k = 0; k < n; k++) {
+    size_t i;
+    ck_assert_int_eq(mpm_points_push(pts, &i), MPM_OK);
+    double *r[] = {pts->x, pts->y, pts->vx, pts->vy, pts->sxx, pts->syy, pts->szz, pts->sxy,
+                   pts->mass, pts->vol, pts->gdp, pts->g};
+    for (int c = 0; c < (int)(sizeof r / sizeof r[0]); c++)
+      r[c][i] = value(f, i, c);
+    pts->state[i] = (int)((i + (size_t)f) % 2);
+    pts->id[i] = 2147483000 + 100 * f + (int)i;
+  }
+  return pts;
+}
+
+static void fill_mesh(mpm_mesh *m)
+{
+  memset(m, 0, sizeof *m);
+  m->nx = 4;
+  m->ny = 3;
+  m->x0 = -0.5;
+  m->y0 = 0.0;
+  m->dx = 0.25;
+  m->dy = 1.0 / 3.0;
+  m->topology = MPM_TOPO_T3;
+  m->diagonal = MPM_DIAG_MIRROR;
+  m->mirror_x = 0.0;
+  m->snx = m->nx + 1;
+  m->sny = m->ny + 1;
+  m->nnodes = m->snx * m->sny;
+  m->lx = m->nx * m->dx;
+  m->ly = m->ny * m->dy;
+}
+
+static void make_tmpdir(char *dir)
+{
+  snprintf(dir, DIR_MAX, "/tmp/gm-test-output-XXXXXX");
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+}
+
+static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+  (void)st;
+  (void)flag;
+  (void)ftw;
+  return remove(path);
+}
+
+static void remove_tree(const char *dir)
+{
+  nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+static void write_frame(mpm_output *out, int f)
+{
+  mpm_err err = {0};
+  mpm_points *pts = frame_points(f);
+  mpm_diag d;
+  mpm_diag_compute(pts, frame_time(f), &d);
+  ck_assert_msg(mpm_output_frame(out, pts, &d, &err) == MPM_OK, "%s", err.msg);
+  mpm_points_free(pts);
+}
+
+static mpm_output *open_run(const char *dir, const char *input)
+{
+  mpm_err err = {0};
+  mpm_mesh m;
+  mpm_output *out = NULL;
+  fill_mesh(&m);
+  ck_assert_msg(mpm_output_open(&out, dir, "granmpm run test.conf --set a.b=1", input, &m,
+                                &err) == MPM_OK,
+                "%s", err.msg);
+  ck_assert_ptr_nonnull(out);
+  return out;
+}
+
+/* Temporary directory with a closed run of NFRAMES frames in it. */
+static void write_run(char *dir)
+{
+  mpm_err err = {0};
+  make_tmpdir(dir);
+  mpm_output *out = open_run(dir, "[mesh]\nnx = 4\n");
+  for (int f = 0; f < NFRAMES; f++)
+    write_frame(out, f);
+  ck_assert_msg(mpm_output_close(out, &err) == MPM_OK, "%s", err.msg);
+}
+
+/* ---- reading output back ------------------------------------------------------- */
+
+typedef struct text {
+  char *buf;
+  size_t len;
+} text;
+
+static int extract(const char *dir, int frame, const char *fields, text *t, mpm_err *err)
+{
+  FILE *f = open_memstream(&t->buf, &t->len);
+  ck_assert_ptr_nonnull(f);
+  int rc = mpm_extract(dir, frame, fields, f, err);
+  fclose(f);
+  return rc;
+}
+
+static char *read_file(const char *dir, const char *name)
+{
+  char path[DIR_MAX + 32];
+  snprintf(path, sizeof path, "%s%s%s", dir, name[0] ? "/" : "", name);
+  FILE *f = fopen(path, "r");
+  ck_assert_msg(f != NULL, "cannot open %s", path);
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  rewind(f);
+  char *s = malloc((size_t)n + 1);
+  ck_assert_uint_eq(fread(s, 1, (size_t)n, f), (size_t)n);
+  s[n] = '\0';
+  fclose(f);
+  return s;
+}
+
+static int count_lines(const char *s)
+{
+  int n = 0;
+  for (; *s; s++)
+    n += *s == '\n';
+  return n;
+}
+
+static int count_substr(const char *s, const char *sub)
+{
+  int n = 0;
+  for (const char *p = strstr(s, sub); p; p = strstr(p + 1, sub))
+    n++;
+  return n;
+}
+
+/* Split s in place at sep; returns the number of pieces. */
+static int split(char *s, char sep, char **piece, int max)
+{
+  int n = 0;
+  piece[n++] = s;
+  for (; *s && n < max; s++)
+    if (*s == sep) {
+      *s = '\0';
+      piece[n++] = s + 1;
+    }
+  return n;
+}
+
+static int field_index(const char *name)
+{
+  for (int k = 0; k < NALL; k++)
+    if (strcmp(all_fields[k], name) == 0)
+      return k;
+  ck_abort_msg("unexpected field '%s'", name);
+  return -1;
+}
+
+/* Check one CSV cell against the value written for point i of pts. */
+static void check_cell(const char *cell, const mpm_points *pts, const char *name, size_t i)
+{
+  const double *real[] = {pts->x, pts->y, pts->vx, pts->vy, pts->sxx, pts->syy, pts->szz,
+                          pts->sxy, NULL, pts->mass, pts->vol, NULL, pts->gdp, pts->g, NULL};
+  int k = field_index(name);
+  char want[64];
+  if (strcmp(name, "state") == 0 || strcmp(name, "id") == 0) {
+    snprintf(want, sizeof want, "%d", k == 11 ? pts->state[i] : pts->id[i]);
+    ck_assert_str_eq(cell, want);
+    return;
+  }
+  double w = real[k] ? real[k][i] : -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+  char *end;
+  double got = strtod(cell, &end);
+  ck_assert_msg(*end == '\0', "bad number '%s'", cell);
+  ck_assert_msg(memcmp(&got, &w, sizeof got) == 0, "%s[%zu]: got %s, want %.17g", name, i,
+                cell, w);
+}
+
+/* Compare extracted CSV with frame f: header names, then every value. */
+static void check_table(char *csv, int f, const char *const *names, int nnames)
+{
+  char *line[64], *cell[64];
+  mpm_points *pts = frame_points(f);
+  int nl = split(csv, '\n', line, 64);
+  ck_assert_int_eq(nl, (int)pts->n + 2); /* header, rows, empty piece after last '\n' */
+  ck_assert_str_eq(line[nl - 1], "");
+  ck_assert_int_eq(split(line[0], ',', cell, 64), nnames);
+  for (int k = 0; k < nnames; k++)
+    ck_assert_str_eq(cell[k], names[k]);
+  for (size_t i = 0; i < pts->n; i++) {
+    ck_assert_int_eq(split(line[i + 1], ',', cell, 64), nnames);
+    for (int k = 0; k < nnames; k++)
+      check_cell(cell[k], pts, names[k], i);
+  }
+  mpm_points_free(pts);
+}
+
+/* ---- tests ------------------------------------------------------------------------ */
+
+START_TEST(t_extract_frame1_all)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  write_run(dir);
+  ck_assert_msg(extract(dir, 1, NULL, &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, 1, all_fields, NALL);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_int_eq(extract(dir, 1, "  ", &t, &err), MPM_OK); /* blank: all fields */
+  ck_assert_int_eq(strncmp(t.buf, "x,y,vx,vy,sxx,syy,szz,sxy,p,mass,volume,state,gdot_p,g,id\n",
+                           58),
+                   0);
+  free(t.buf);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_extract_last)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  write_run(dir);
+  ck_assert_msg(extract(dir, -1, "", &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, NFRAMES - 1, all_fields, NALL);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_msg(extract(dir, 0, NULL, &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, 0, all_fields, NALL);
+  free(t.buf);
+  remove_tree(dir);
+}
+END_TEST
+
+static const char *const selected[] = {"vy", "id", "x", "p", "vy"};
+
+START_TEST(t_extract_selection)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  write_run(dir);
+  ck_assert_msg(extract(dir, 1, " vy, id ,x,\tp,vy ", &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, 1, selected, 5);
+  free(t.buf);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_extract_unknown_field)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  write_run(dir);
+  ck_assert_int_eq(extract(dir, 1, "x,foo", &t, &err), MPM_EINPUT);
+  ck_assert_int_eq(err.code, MPM_EINPUT);
+  ck_assert_msg(strstr(err.msg, "unknown field 'foo'") != NULL, "%s", err.msg);
+  ck_assert_msg(strstr(err.msg, "(available: x, y, vx, vy, sxx, syy, szz, sxy, p, mass, "
+                                "volume, state, gdot_p, g, id)") != NULL,
+                "%s", err.msg);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_int_eq(extract(dir, 1, "x,,y", &t, &err), MPM_EINPUT);
+  ck_assert_msg(strstr(err.msg, "empty field name") != NULL, "%s", err.msg);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_int_eq(extract(dir, 1, "x,", &t, &err), MPM_EINPUT);
+  free(t.buf);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_extract_frame_range)
+{
+  char dir[DIR_MAX], want[DIR_MAX + 64];
+  mpm_err err = {0};
+  text t = {0};
+  write_run(dir);
+  ck_assert_int_eq(extract(dir, 12, NULL, &t, &err), MPM_EINPUT);
+  snprintf(want, sizeof want, "frame 12 not in run '%s' (frames 0..2)", dir);
+  ck_assert_str_eq(err.msg, want);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_int_eq(extract(dir, 3, NULL, &t, &err), MPM_EINPUT);
+  free(t.buf);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_extract_missing_run)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  text t = {0};
+  make_tmpdir(dir);
+  snprintf(path, sizeof path, "%s/nothing-here", dir);
+  ck_assert_int_eq(extract(path, -1, NULL, &t, &err), MPM_EIO);
+  ck_assert_msg(strstr(err.msg, "nothing-here/run.h5") != NULL, "%s", err.msg);
+  ck_assert_msg(strstr(err.msg, "No such file") != NULL, "%s", err.msg);
+  free(t.buf);
+  t.buf = NULL;
+  /* a run.h5 that is not an HDF5 file */
+  snprintf(path, sizeof path, "%s/run.h5", dir);
+  FILE *f = fopen(path, "w");
+  fputs("not hdf5\n", f);
+  fclose(f);
+  ck_assert_int_eq(extract(dir, -1, NULL, &t, &err), MPM_EIO);
+  ck_assert_msg(strstr(err.msg, path) != NULL, "%s", err.msg);
+  free(t.buf);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_xdmf)
+{
+  char dir[DIR_MAX], want[128];
+  write_run(dir);
+  char *x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), NFRAMES);
+  ck_assert_int_eq(count_substr(x, "CollectionType=\"Temporal\""), 1);
+  ck_assert_int_eq(count_substr(x, "TopologyType=\"Polyvertex\""), NFRAMES);
+  for (int f = 0; f < NFRAMES; f++) {
+    snprintf(want, sizeof want, "<Time Value=\"%.17g\"/>", frame_time(f));
+    ck_assert_msg(strstr(x, want) != NULL, "missing %s", want);
+    snprintf(want, sizeof want, "NumberOfElements=\"%zu\"", frame_npoints(f));
+    ck_assert(strstr(x, want) != NULL);
+    for (int k = 0; k < NALL; k++) {
+      snprintf(want, sizeof want, "run.h5:/frames/%06d/%s<", f, all_fields[k]);
+      ck_assert_msg(strstr(x, want) != NULL, "missing %s", want);
+    }
+  }
+  ck_assert_int_eq(count_substr(x, "<Geometry GeometryType=\"XY\">"), NFRAMES);
+  for (int f = 0; f < NFRAMES; f++) {
+    snprintf(want, sizeof want, "Dimensions=\"%zu 2\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">run.h5:/xdmf/xy_%06d<", frame_npoints(f), f);
+    ck_assert_msg(strstr(x, want) != NULL, "missing %s", want);
+  }
+  /* frames 0 and 1 share one connectivity; frame 2 has fewer points */
+  ck_assert_int_eq(count_substr(x, "run.h5:/xdmf/vertex_000000<"), 2);
+  ck_assert_int_eq(count_substr(x, "run.h5:/xdmf/vertex_000002<"), 1);
+  ck_assert_int_eq(count_substr(x, "<Attribute "), NFRAMES * NALL);
+  ck_assert_int_eq(count_substr(x, "</Xdmf>"), 1);
+  size_t len = strlen(x);
+  ck_assert_str_eq(x + len - strlen("</Xdmf>\n"), "</Xdmf>\n");
+  free(x);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_diagnostics_csv)
+{
+  char dir[DIR_MAX], *line[8], row[512];
+  write_run(dir);
+  char *c = read_file(dir, "diagnostics.csv");
+  ck_assert_int_eq(count_lines(c), 1 + NFRAMES);
+  ck_assert_int_eq(split(c, '\n', line, 8), NFRAMES + 2);
+  ck_assert_int_eq(strncmp(line[0], "t,", 2), 0);
+  snprintf(row, sizeof row, "%s", mpm_diag_csv_header());
+  row[strlen(row) - 1] = '\0';
+  ck_assert_str_eq(line[0], row);
+  for (int f = 0; f < NFRAMES; f++) {
+    mpm_points *pts = frame_points(f);
+    mpm_diag d;
+    mpm_diag_compute(pts, frame_time(f), &d);
+    ck_assert_int_eq(mpm_diag_csv_row(&d, row, sizeof row), MPM_OK);
+    row[strlen(row) - 1] = '\0';
+    ck_assert_str_eq(line[f + 1], row);
+    mpm_points_free(pts);
+  }
+  free(c);
+  remove_tree(dir);
+}
+END_TEST
+
+static char *read_attr_string(hid_t obj, const char *name)
+{
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  ck_assert(a >= 0);
+  hid_t type = H5Aget_type(a);
+  size_t n = H5Tget_size(type);
+  char *s = calloc(n + 1, 1);
+  ck_assert(H5Aread(a, type, s) >= 0);
+  H5Tclose(type);
+  H5Aclose(a);
+  return s;
+}
+
+static double read_attr_double(hid_t obj, const char *name)
+{
+  double v = 0.0;
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  ck_assert(a >= 0);
+  ck_assert(H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0);
+  H5Aclose(a);
+  return v;
+}
+
+static void check_attr_string(hid_t obj, const char *name, const char *want)
+{
+  char *s = read_attr_string(obj, name);
+  ck_assert_str_eq(s, want);
+  free(s);
+}
+
+/* /xdmf/xy_NNNNNN reads as the frame's (x, y) pairs. */
+static void check_xy_view(hid_t file, int f)
+{
+  char name[32];
+  double xy[2 * 8];
+  mpm_points *pts = frame_points(f);
+  snprintf(name, sizeof name, "xdmf/xy_%06d", f);
+  hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
+  ck_assert(d >= 0);
+  ck_assert(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, xy) >= 0);
+  for (size_t i = 0; i < pts->n; i++) {
+    ck_assert(memcmp(&xy[2 * i], &pts->x[i], sizeof(double)) == 0);
+    ck_assert(memcmp(&xy[2 * i + 1], &pts->y[i], sizeof(double)) == 0);
+  }
+  H5Dclose(d);
+  mpm_points_free(pts);
+}
+
+/* Layout through the HDF5 API, with a resolved input larger than the 64 KiB
+ * an attribute may hold in the compact (pre-1.8) format. */
+START_TEST(t_h5_layout)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  size_t big = 100000;
+  char *input = malloc(big + 1);
+  for (size_t i = 0; i < big; i++)
+    input[i] = i % 64 == 63 ? '\n' : (char)('a' + i % 26);
+  input[big] = '\0';
+  make_tmpdir(dir);
+  mpm_output *out = open_run(dir, input);
+  for (int f = 0; f < NFRAMES; f++)
+    write_frame(out, f);
+  ck_assert_msg(mpm_output_close(out, &err) == MPM_OK, "%s", err.msg);
+
+  snprintf(path, sizeof path, "%s/run.h5", dir);
+  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert(file >= 0);
+  check_attr_string(file, "version", PACKAGE_VERSION);
+  check_attr_string(file, "command_line", "granmpm run test.conf --set a.b=1");
+  check_attr_string(file, "input", input);
+  hid_t mesh = H5Gopen2(file, "mesh", H5P_DEFAULT);
+  ck_assert(mesh >= 0);
+  check_attr_string(mesh, "topology", "t3");
+  check_attr_string(mesh, "diagonal", "mirror");
+  ck_assert(read_attr_double(mesh, "dy") == 1.0 / 3.0);
+  H5Gclose(mesh);
+  for (int f = 0; f < NFRAMES; f++) {
+    char name[32];
+    snprintf(name, sizeof name, "frames/%06d", f);
+    hid_t g = H5Gopen2(file, name, H5P_DEFAULT);
+    ck_assert(g >= 0);
+    ck_assert(read_attr_double(g, "time") == frame_time(f));
+    hid_t d = H5Dopen2(g, "vx", H5P_DEFAULT);
+    check_attr_string(d, "unit", "m/s");
+    H5Dclose(d);
+    d = H5Dopen2(g, "p", H5P_DEFAULT);
+    check_attr_string(d, "unit", "Pa");
+    H5Dclose(d);
+    H5Gclose(g);
+    check_xy_view(file, f);
+  }
+  H5Fclose(file);
+  free(input);
+  remove_tree(dir);
+}
+END_TEST
+
+/* Extract in a separate process (this program, whose path main() leaves in
+ * TEST_OUTPUT_PROGRAM, run again with --extract), as `granmpm extract` would
+ * while a run is going; returns the exit status and the CSV in t. */
+static int extract_in_child(const char *dir, int frame, text *t)
+{
+  char path[DIR_MAX + 32], num[16];
+  int status;
+  snprintf(path, sizeof path, "%s.csv", dir);
+  snprintf(num, sizeof num, "%d", frame);
+  pid_t pid = fork();
+  ck_assert(pid >= 0);
+  if (pid == 0) {
+    const char *self = getenv("TEST_OUTPUT_PROGRAM");
+    if (self && freopen(path, "w", stdout))
+      execl(self, self, "--extract", dir, num, (char *)NULL);
+    _exit(127);
+  }
+  ck_assert(waitpid(pid, &status, 0) == pid);
+  ck_assert(WIFEXITED(status));
+  t->buf = read_file(path, "");
+  remove(path);
+  return WEXITSTATUS(status);
+}
+
+/* A run still being written can be extracted from after each frame. */
+START_TEST(t_live_extract)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  make_tmpdir(dir);
+  mpm_output *out = open_run(dir, NULL);
+  write_frame(out, 0);
+  write_frame(out, 1);
+  ck_assert_int_eq(extract_in_child(dir, -1, &t), MPM_OK);
+  check_table(t.buf, 1, all_fields, NALL);
+  free(t.buf);
+  char *x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 2);
+  ck_assert_str_eq(x + strlen(x) - strlen("</Xdmf>\n"), "</Xdmf>\n");
+  free(x);
+  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  remove_tree(dir);
+}
+END_TEST
+
+/* A run killed after two frames (no mpm_output_close) leaves both frames
+ * readable and a complete run.xdmf. */
+START_TEST(t_killed_run)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  int status;
+  make_tmpdir(dir);
+  pid_t pid = fork();
+  ck_assert(pid >= 0);
+  if (pid == 0) {
+    mpm_output *out = open_run(dir, NULL);
+    write_frame(out, 0);
+    write_frame(out, 1);
+    raise(SIGKILL);
+  }
+  ck_assert(waitpid(pid, &status, 0) == pid);
+  ck_assert(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  ck_assert_msg(extract(dir, -1, NULL, &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, 1, all_fields, NALL);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_msg(extract(dir, 0, NULL, &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, 0, all_fields, NALL);
+  free(t.buf);
+  char *x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 2);
+  ck_assert_str_eq(x + strlen(x) - strlen("</Xdmf>\n"), "</Xdmf>\n");
+  free(x);
+  char *c = read_file(dir, "diagnostics.csv");
+  ck_assert_int_eq(count_lines(c), 3);
+  free(c);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_empty_frame)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  make_tmpdir(dir);
+  mpm_output *out = open_run(dir, "");
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_diag d;
+  mpm_diag_compute(pts, 1.5, &d);
+  ck_assert_int_eq(mpm_output_frame(out, pts, &d, &err), MPM_OK);
+  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  ck_assert_msg(extract(dir, 0, "x,id", &t, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_str_eq(t.buf, "x,id\n");
+  free(t.buf);
+  char *x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 0); /* no empty grids */
+  free(x);
+  char *c = read_file(dir, "diagnostics.csv");
+  ck_assert_int_eq(count_lines(c), 2);
+  free(c);
+  mpm_points_free(pts);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_open_creates_parents)
+{
+  char dir[DIR_MAX], sub[DIR_MAX + 32];
+  mpm_err err = {0};
+  struct stat st;
+  make_tmpdir(dir);
+  snprintf(sub, sizeof sub, "%s/a/b//c/", dir);
+  mpm_output *out = open_run(sub, NULL);
+  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  snprintf(sub, sizeof sub, "%s/a/b/c/run.h5", dir);
+  ck_assert_int_eq(stat(sub, &st), 0);
+  /* opening again truncates */
+  snprintf(sub, sizeof sub, "%s/a/b/c", dir);
+  out = open_run(sub, NULL);
+  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  remove_tree(dir);
+}
+END_TEST
+
+START_TEST(t_open_fails)
+{
+  char dir[DIR_MAX], file[DIR_MAX + 32], sub[DIR_MAX + 64], want[DIR_MAX + 128];
+  mpm_err err = {0};
+  mpm_mesh m;
+  mpm_output *out = NULL;
+  fill_mesh(&m);
+  make_tmpdir(dir);
+  snprintf(file, sizeof file, "%s/plain", dir);
+  FILE *f = fopen(file, "w");
+  fclose(f);
+  snprintf(sub, sizeof sub, "%s/run", file);
+  ck_assert_int_eq(mpm_output_open(&out, sub, "", "", &m, &err), MPM_EIO);
+  ck_assert_ptr_null(out);
+  snprintf(want, sizeof want, "cannot create directory '%s': Not a directory", sub);
+  ck_assert_str_eq(err.msg, want);
+  ck_assert_int_eq(mpm_output_open(&out, file, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_output_open(&out, "", "", "", &m, &err), MPM_EINVAL);
+  /* run.h5 cannot be created: a directory is in the way */
+  snprintf(sub, sizeof sub, "%s/run.h5", dir);
+  ck_assert_int_eq(mkdir(sub, 0777), 0);
+  ck_assert_int_eq(mpm_output_open(&out, dir, "", "", &m, &err), MPM_EIO);
+  ck_assert_ptr_null(out);
+  snprintf(want, sizeof want, "cannot create '%s/run.h5': Is a directory", dir);
+  ck_assert_str_eq(err.msg, want);
+  ck_assert_int_eq(mpm_output_close(NULL, &err), MPM_OK);
+  remove_tree(dir);
+}
+END_TEST
+
+/* `test_output --extract DIR FRAME`: print one frame to stdout. */
+static int extract_main(const char *dir, const char *frame)
+{
+  mpm_err err = {0};
+  int rc = mpm_extract(dir, atoi(frame), NULL, stdout, &err);
+  if (rc != MPM_OK)
+    fprintf(stderr, "%s\n", err.msg);
+  return rc;
+}
+
+int main(int argc, char **argv)
+{
+  if (argc == 4 && strcmp(argv[1], "--extract") == 0)
+    return extract_main(argv[2], argv[3]);
+  setenv("TEST_OUTPUT_PROGRAM", argv[0], 1);
+  Suite *s = suite_create("output");
+  TCase *tc = tcase_create("output");
+  tcase_set_timeout(tc, 60);
+  tcase_add_test(tc, t_extract_frame1_all);
+  tcase_add_test(tc, t_extract_last);
+  tcase_add_test(tc, t_extract_selection);
+  tcase_add_test(tc, t_extract_unknown_field);
+  tcase_add_test(tc, t_extract_frame_range);
+  tcase_add_test(tc, t_extract_missing_run);
+  tcase_add_test(tc, t_xdmf);
+  tcase_add_test(tc, t_diagnostics_csv);
+  tcase_add_test(tc, t_h5_layout);
+  tcase_add_test(tc, t_live_extract);
+  tcase_add_test(tc, t_killed_run);
+  tcase_add_test(tc, t_empty_frame);
+  tcase_add_test(tc, t_open_creates_parents);
+  tcase_add_test(tc, t_open_fails);
+  suite_add_tcase(s, tc);
+  SRunner *sr = srunner_create(s);
+  srunner_run_all(sr, CK_NORMAL);
+  int nf = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return nf ? EXIT_FAILURE : EXIT_SUCCESS;
+}
