@@ -161,8 +161,8 @@ static double axis_wrap(double s, double len)
 /* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of
  * origin o, length len, unit size 1/ih. Periodic axes wrap first; a point on
  * the upper end belongs to the last unit. Returns 0, or -1 outside (or NaN). */
-static int axis_locate(double x, double o, double len, double ih, int n,
-                       int periodic, int *k, double *u)
+static inline int axis_locate(double x, double o, double len, double ih, int n,
+                              int periodic, int *k, double *u)
 {
   double s;
   if (periodic) {
@@ -207,9 +207,9 @@ int mpm_mesh_unit(const mpm_mesh *m, double x, double y, int *i, int *j)
   return MPM_OK;
 }
 
-int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j)
+/* "/" (1) or "\\" (0) for unit column i (the rule does not depend on the row). */
+static inline int unit_is_slash(const mpm_mesh *m, int i)
 {
-  (void)j;
   switch (m->diagonal) {
   case MPM_DIAG_SLASH:
     return 1;
@@ -218,6 +218,12 @@ int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j)
   default:  /* mirror: "/" when the unit centre is left of x = mirror_x */
     return m->x0 + (i + 0.5) * m->dx < m->mirror_x;
   }
+}
+
+int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j)
+{
+  (void)j;
+  return unit_is_slash(m, i);
 }
 
 /* ---------------------------------------------------------------- basis */
@@ -244,43 +250,35 @@ static void basis_q4(const mpm_mesh *m, double u, double v, const int c[4],
     node[a] = c[a];
 }
 
-/* One linear triangle: corners a, b, d of c[], values and (du, dv) slopes. */
-static void set_tri(const mpm_mesh *m, const int c[4], int a, int b, int d,
-                    const double n3[3], const double du[3], const double dv[3],
-                    int node[4], double N[4], double dNx[4], double dNy[4])
-{
-  node[0] = c[a];
-  node[1] = c[b];
-  node[2] = c[d];
-  for (int k = 0; k < 3; k++) {
-    N[k] = n3[k];
-    dNx[k] = du[k] * m->idx;  /* dN/dx = dN/du / dx */
-    dNy[k] = dv[k] * m->idy;
-  }
-}
-
 /* T3: the half of the unit containing (u, v); ties on the diagonal go to the
- * lower triangle. Corner order of c[] as in basis_q4. */
+ * lower triangle. Corner order of c[] as in basis_q4. The slopes dN/du and
+ * dN/dv are -1, 0 or 1, so grad N = (dN/du / dx, dN/dv / dy) is -1/dx, 0 or
+ * 1/dx (likewise in y). */
 static void basis_t3(const mpm_mesh *m, int slash, double u, double v,
                      const int c[4], int node[4], double N[4], double dNx[4],
                      double dNy[4])
 {
+  const double ix = m->idx, iy = m->idy;
   if (slash && u >= v) {         /* (0,0) (1,0) (1,1): N = 1-u, u-v, v */
-    const double n3[3] = {1.0 - u, u - v, v};
-    const double du[3] = {-1.0, 1.0, 0.0}, dv[3] = {0.0, -1.0, 1.0};
-    set_tri(m, c, 0, 1, 2, n3, du, dv, node, N, dNx, dNy);
+    node[0] = c[0]; node[1] = c[1]; node[2] = c[2];
+    N[0] = 1.0 - u; N[1] = u - v; N[2] = v;
+    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0;
+    dNy[0] = 0.0; dNy[1] = -iy; dNy[2] = iy;
   } else if (slash) {            /* (0,0) (1,1) (0,1): N = 1-v, u, v-u */
-    const double n3[3] = {1.0 - v, u, v - u};
-    const double du[3] = {0.0, 1.0, -1.0}, dv[3] = {-1.0, 0.0, 1.0};
-    set_tri(m, c, 0, 2, 3, n3, du, dv, node, N, dNx, dNy);
+    node[0] = c[0]; node[1] = c[2]; node[2] = c[3];
+    N[0] = 1.0 - v; N[1] = u; N[2] = v - u;
+    dNx[0] = 0.0; dNx[1] = ix; dNx[2] = -ix;
+    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = iy;
   } else if (u + v <= 1.0) {     /* (0,0) (1,0) (0,1): N = 1-u-v, u, v */
-    const double n3[3] = {1.0 - u - v, u, v};
-    const double du[3] = {-1.0, 1.0, 0.0}, dv[3] = {-1.0, 0.0, 1.0};
-    set_tri(m, c, 0, 1, 3, n3, du, dv, node, N, dNx, dNy);
+    node[0] = c[0]; node[1] = c[1]; node[2] = c[3];
+    N[0] = 1.0 - u - v; N[1] = u; N[2] = v;
+    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0;
+    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = iy;
   } else {                       /* (1,0) (1,1) (0,1): N = 1-v, u+v-1, 1-u */
-    const double n3[3] = {1.0 - v, u + v - 1.0, 1.0 - u};
-    const double du[3] = {0.0, 1.0, -1.0}, dv[3] = {-1.0, 1.0, 0.0};
-    set_tri(m, c, 1, 2, 3, n3, du, dv, node, N, dNx, dNy);
+    node[0] = c[1]; node[1] = c[2]; node[2] = c[3];
+    N[0] = 1.0 - v; N[1] = u + v - 1.0; N[2] = 1.0 - u;
+    dNx[0] = 0.0; dNx[1] = ix; dNx[2] = -ix;
+    dNy[0] = -iy; dNy[1] = iy; dNy[2] = 0.0;
   }
 }
 
@@ -303,6 +301,6 @@ int mpm_mesh_basis(const mpm_mesh *m, double x, double y, int node[4],
     basis_q4(m, u, v, c, node, N, dNx, dNy);
     return 4;
   }
-  basis_t3(m, mpm_mesh_unit_is_slash(m, i, j), u, v, c, node, N, dNx, dNy);
+  basis_t3(m, unit_is_slash(m, i), u, v, c, node, N, dNx, dNy);
   return 3;
 }

@@ -4,7 +4,9 @@
  * sub-cell centre lies in the region: V_p = dx dy / n^2, m_p = rho V_p,
  * uGIMP extent r1 = (dx/2n, 0), r2 = (0, dy/2n). A lithostatic pre-stress sets
  * sigma_yy = rho g_y (y_top - y) with y_top the top of the fill above the point
- * and sigma_xx = sigma_zz = K0 sigma_yy, K0 = nu / (1 - nu) (uniaxial strain). */
+ * and sigma_xx = sigma_zz = K0 sigma_yy, K0 = nu / (1 - nu) (uniaxial strain).
+ * The pre-stressed material is compressed consistently with the hypoelastic
+ * law dp = K drho / rho: rho = rho_fill exp(p / K), so the mass grows. */
 #include "scenario/scenario.h"
 
 #include <math.h>
@@ -63,6 +65,8 @@ static int lithostatic(mpm_points *pts, size_t first, const mpm_mesh *m, int n,
     double syy = f->density * gy * (ytop[c] + 0.5 * hy - pts->y[p]);  /* gy < 0: compression */
     pts->syy[p] = syy;
     pts->sxx[p] = pts->szz[p] = k0 * syy;
+    double pr = -(1.0 + 2.0 * k0) * syy / 3.0;               /* p = -tr(sigma)/3 */
+    pts->mass[p] *= exp(pr / par->K);                         /* rho = rho_fill exp(p/K) */
   }
   free(ytop);
   return MPM_OK;

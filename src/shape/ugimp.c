@@ -13,18 +13,35 @@
  * limit of the rule as the extent shrinks. */
 #include "shape/shape.h"
 
+#include <string.h>
+
+/* The merged node list of one point: node ids in the order first seen, and
+ * an open-addressing table from id to list position, so that adding a
+ * weight costs O(1) instead of a search of the list. The table has twice as
+ * many slots as the list can hold, so probe chains stay short. */
+enum { MERGE_BITS = 5, MERGE_SLOTS = 1 << MERGE_BITS };
+_Static_assert(MERGE_SLOTS >= 2 * MPM_STENCIL_W, "merge table too small");
+
+typedef struct merge_table {
+  int id[MERGE_SLOTS];              /* node id, or -1 for a free slot */
+  int at[MERGE_SLOTS];              /* its position in the list */
+} merge_table;
+
 /* Add weight (s, gx, gy) of storage node id to the merged list of *cnt nodes. */
-static void merge_node(int id, double s, double gx, double gy, int *node,
-                       double *S, double *dSx, double *dSy, int *cnt)
+static void merge_node(merge_table *t, int id, double s, double gx, double gy,
+                       int *node, double *S, double *dSx, double *dSy, int *cnt)
 {
-  int k = 0;
-  while (k < *cnt && node[k] != id)
-    k++;
-  if (k == *cnt) {
+  unsigned h = ((unsigned)id * 2654435761u) >> (32 - MERGE_BITS);  /* Fibonacci hash */
+  while (t->id[h] != id && t->id[h] >= 0)
+    h = (h + 1) % MERGE_SLOTS;
+  if (t->id[h] < 0) {                                 /* first time: append */
+    const int k = (*cnt)++;
+    t->id[h] = id;
+    t->at[h] = k;
     node[k] = id;
     S[k] = dSx[k] = dSy[k] = 0.0;
-    (*cnt)++;
   }
+  const int k = t->at[h];
   S[k] += s;
   dSx[k] += gx;
   dSy[k] += gy;
@@ -62,6 +79,8 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   const double ax = (r1y - r2y) * iA, ay = (r2x - r1x) * iA;
   const double bx = (r1y + r2y) * iA, by = -(r1x + r2x) * iA;
   const double wx[4] = {ax, bx, -ax, -bx}, wy[4] = {ay, by, -ay, -by};
+  merge_table t;
+  memset(t.id, -1, sizeof t.id);
   int cnt = 0;
   for (int c = 0; c < 4; c++) {
     double cx = x + ox[c], cy = y + oy[c];
@@ -72,7 +91,7 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
     if (k < 0)
       return -1;                             /* non-finite extent */
     for (int a = 0; a < k; a++)              /* S += N/4, gradS += w_c N */
-      merge_node(id[a], 0.25 * N[a], wx[c] * N[a], wy[c] * N[a], node, S,
+      merge_node(&t, id[a], 0.25 * N[a], wx[c] * N[a], wy[c] * N[a], node, S,
                  dSx, dSy, &cnt);
   }
   return cnt;

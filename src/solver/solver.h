@@ -3,8 +3,8 @@
  *
  * mpm_sim owns everything one run needs; it is built once from a resolved
  * mpm_config ("plan"), then stepped ("execute"). Workspace (nodal arrays,
- * per-point gradients, stencil) is allocated at creation and grown only when
- * points are added. */
+ * stencil) is allocated at creation; the stencil grows only when points are
+ * added. */
 #ifndef MPM_SOLVER_SOLVER_H
 #define MPM_SOLVER_SOLVER_H
 
@@ -30,9 +30,8 @@ typedef struct mpm_sim {
 
   /* nodal workspace [mesh.nnodes] */
   double *nm, *nmvx, *nmvy, *nfx, *nfy, *nvx, *nvy, *nax, *nay;
-  /* per-point velocity gradient of the last step [pts->cap] */
-  double *Lxx, *Lxy, *Lyx, *Lyy;
-  size_t wcap;                    /* capacity of per-point workspace */
+  int *nbusy;                     /* [mesh.nnodes + 1] running count of nodes with mass,
+                                   * to split point-to-grid between threads */
 
   double t, dt;                   /* current time, time step [s] */
   long step;

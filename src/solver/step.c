@@ -3,7 +3,10 @@
  *
  * One step: stencil (once) -> point-to-grid (mass, momentum, force) -> grid
  * update with boundary conditions -> grid-to-point (FLIP velocity, position,
- * velocity gradient) -> volume -> constitutive update -> periodic wrap. */
+ * velocity gradient) -> volume -> constitutive update -> periodic wrap.
+ * Threads: the stencil is parallel over points; point-to-grid and the grid
+ * update over ranges of nodes (grid_phase); the rest over points
+ * (point_phase). No sum depends on the thread count, so neither do results. */
 #include "solver/solver.h"
 
 #include <math.h>
@@ -11,6 +14,10 @@
 #include <string.h>
 
 #include "scenario/scenario.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* ---- set-up -------------------------------------------------------------- */
 
@@ -51,22 +58,6 @@ static void params_from_config(mpm_material_params *par, const mpm_config *cfg)
   mpm_material_params_derive(par);
 }
 
-/* Grow the per-point workspace to the point capacity. */
-static int workspace_reserve(mpm_sim *s, size_t cap)
-{
-  if (cap <= s->wcap)
-    return MPM_OK;
-  double **arrs[] = {&s->Lxx, &s->Lxy, &s->Lyx, &s->Lyy};
-  for (size_t k = 0; k < sizeof arrs / sizeof arrs[0]; k++) {
-    double *p = realloc(*arrs[k], cap * sizeof *p);
-    if (!p)
-      return MPM_ENOMEM;
-    *arrs[k] = p;
-  }
-  s->wcap = cap;
-  return MPM_OK;
-}
-
 static int nodal_alloc(mpm_sim *s)
 {
   size_t n = (size_t)s->mesh.nnodes;
@@ -75,6 +66,8 @@ static int nodal_alloc(mpm_sim *s)
   for (size_t k = 0; k < sizeof arrs / sizeof arrs[0]; k++)
     if (!(*arrs[k] = calloc(n, sizeof(double))))
       return MPM_ENOMEM;
+  if (!(s->nbusy = calloc(n + 1, sizeof *s->nbusy)))
+    return MPM_ENOMEM;
   return MPM_OK;
 }
 
@@ -117,7 +110,6 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++)
     rc = mpm_scenario_fill(s->pts, &s->mesh, &cfg->fill[f], &s->par, cfg->gravity.gy, err);
   if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK ||
-                       workspace_reserve(s, s->pts->cap) != MPM_OK ||
                        !(s->st = mpm_stencil_alloc(s->pts->cap))))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
   if (rc != MPM_OK) {
@@ -139,8 +131,9 @@ void mpm_sim_free(mpm_sim *s)
   mpm_bc_clear(&s->bc);
   mpm_points_free(s->pts);
   mpm_stencil_free(s->st);
+  free(s->nbusy);
   double *arrs[] = {s->nm, s->nmvx, s->nmvy, s->nfx, s->nfy, s->nvx, s->nvy,
-                    s->nax, s->nay, s->Lxx, s->Lxy, s->Lyx, s->Lyy};
+                    s->nax, s->nay};
   for (size_t k = 0; k < sizeof arrs / sizeof arrs[0]; k++)
     free(arrs[k]);
   free(s);
@@ -156,42 +149,108 @@ void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy)
 
 /* ---- the step ------------------------------------------------------------ */
 
-/* Step 2: m_i, (mv)_i, f_i = sum [-V_p sigma_p . gradS_ip + S_ip m_p b]. */
-static void point_to_grid(mpm_sim *s, double bx, double by)
+/* Point-to-grid and the grid update run in parallel over disjoint ranges of
+ * storage node ids. The thread owning [lo, hi) visits every point in point
+ * order and adds only the contributions to its own nodes, so each node sums
+ * its contributions in point order, exactly as a serial loop does: nodal
+ * values, and so the whole step, are bitwise independent of the number of
+ * threads and of where the ranges are cut. The cuts only balance the work:
+ * each range gets about the same number of nodes that carried mass in the
+ * previous step (nbusy[i] counts those among nodes [0, i)). */
+
+/* nbusy[i] = number of nodes among [0, i) heavier than mtiny. */
+static void count_busy_nodes(mpm_sim *s)
+{
+  int busy = 0;
+  for (int i = 0; i < s->mesh.nnodes; i++) {
+    s->nbusy[i] = busy;
+    busy += s->nm[i] > s->mtiny;
+  }
+  s->nbusy[s->mesh.nnodes] = busy;
+}
+
+/* First node of range t of nt: the first i >= 1 with nbusy[i] >= busy t / nt
+ * (so about t / nt of the nodes with mass lie before it), or an even split of
+ * the node ids while no node carries mass. */
+static int range_start(const mpm_sim *s, int t, int nt)
+{
+  const int nn = s->mesh.nnodes;
+  const long long busy = s->nbusy[nn];
+  if (t == 0 || t == nt)
+    return t == 0 ? 0 : nn;
+  if (busy == 0)
+    return (int)((long long)nn * t / nt);
+  const long long want = busy * t / nt;
+  int a = 0, b = nn;                       /* nbusy[a] < want <= nbusy[b] */
+  while (b - a > 1) {
+    const int c = a + (b - a) / 2;
+    if (s->nbusy[c] < want)
+      a = c;
+    else
+      b = c;
+  }
+  return b;
+}
+
+/* Step 2 on nodes [lo, hi):
+ * m_i, (mv)_i, f_i = sum_p [S_ip m_p, S_ip m_p v_p, -V_p sigma_p . gradS_ip + S_ip m_p b]. */
+static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
 {
   const mpm_points *P = s->pts;
   const mpm_stencil *st = s->st;
-  size_t nn = (size_t)s->mesh.nnodes;
-  memset(s->nm, 0, nn * sizeof(double));
-  memset(s->nmvx, 0, nn * sizeof(double));
-  memset(s->nmvy, 0, nn * sizeof(double));
-  memset(s->nfx, 0, nn * sizeof(double));
-  memset(s->nfy, 0, nn * sizeof(double));
+  const size_t len = (size_t)(hi - lo) * sizeof(double);
+  double *nm = s->nm, *nmvx = s->nmvx, *nmvy = s->nmvy, *nfx = s->nfx, *nfy = s->nfy;
+  memset(nm + lo, 0, len);
+  memset(nmvx + lo, 0, len);
+  memset(nmvy + lo, 0, len);
+  memset(nfx + lo, 0, len);
+  memset(nfy + lo, 0, len);
+  const unsigned width = (unsigned)(hi - lo);
   for (size_t p = 0; p < P->n; p++) {
-    double m = P->mass[p], V = P->vol[p];
-    double mvx = m * P->vx[p], mvy = m * P->vy[p];
-    double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
     const int *node = st->node + p * MPM_STENCIL_W;
+    const int c = st->count[p];
+    int k = 0;
+    while (k < c && (unsigned)(node[k] - lo) >= width)   /* node[k] outside [lo, hi) */
+      k++;
+    if (k == c)
+      continue;                            /* no node in the range */
     const double *S = st->S + p * MPM_STENCIL_W;
     const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
-    for (int k = 0; k < st->count[p]; k++) {
-      int i = node[k];
-      s->nm[i] += S[k] * m;
-      s->nmvx[i] += S[k] * mvx;
-      s->nmvy[i] += S[k] * mvy;
-      s->nfx[i] += -V * (sxx * gx[k] + sxy * gy[k]) + S[k] * m * bx;  /* -V sigma.gradS + S m b */
-      s->nfy[i] += -V * (sxy * gx[k] + syy * gy[k]) + S[k] * m * by;
+    const double m = P->mass[p], V = P->vol[p];
+    const double mvx = m * P->vx[p], mvy = m * P->vy[p];
+    const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
+    for (; k < c; k++) {
+      const int i = node[k];
+      if ((unsigned)(i - lo) >= width)
+        continue;                          /* another range's node */
+      const double Sk = S[k], gxk = gx[k], gyk = gy[k], Sm = Sk * m;
+      nm[i] += Sm;
+      nmvx[i] += Sk * mvx;
+      nmvy[i] += Sk * mvy;
+      nfx[i] += -V * (sxx * gxk + sxy * gyk) + Sm * bx;  /* -V sigma.gradS + S m b */
+      nfy[i] += -V * (sxy * gxk + syy * gyk) + Sm * by;
     }
   }
 }
 
-/* Step 3: boundary conditions, (mv)_i += dt f_i, a_i = f_i/m_i, v_i = (mv)_i/m_i. */
-static void grid_update(mpm_sim *s)
+/* Boundary conditions on nodes [lo, hi) only: they are a per-node mask
+ * (bc.h), so a view of the mask from node lo applies them to that range. */
+static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double *ay)
 {
-  mpm_bc_apply(&s->bc, s->nmvx, s->nmvy);
-  mpm_bc_apply(&s->bc, s->nfx, s->nfy);
-  double dt = s->dt, mt = s->mtiny;
-  for (int i = 0; i < s->mesh.nnodes; i++) {
+  mpm_bc part = *bc;
+  part.fix += lo;
+  part.nnodes = hi - lo;
+  mpm_bc_apply(&part, ax + lo, ay + lo);
+}
+
+/* Step 3 on nodes [lo, hi): boundary conditions, (mv)_i += dt f_i,
+ * a_i = f_i/m_i, v_i = (mv)_i/m_i. */
+static void grid_update(mpm_sim *s, int lo, int hi)
+{
+  bc_apply_range(&s->bc, lo, hi, s->nmvx, s->nmvy);
+  bc_apply_range(&s->bc, lo, hi, s->nfx, s->nfy);
+  const double dt = s->dt, mt = s->mtiny;
+  for (int i = lo; i < hi; i++) {
     double m = s->nm[i];
     if (m > mt) {
       s->nmvx[i] += dt * s->nfx[i];
@@ -206,66 +265,94 @@ static void grid_update(mpm_sim *s)
   }
 }
 
-/* Step 4-5: v_p += dt sum S a_i; x_p += dt sum S v_i; L_p = sum v_i (x) gradS;
- * V_p *= exp(dt tr L_p). */
-static void grid_to_point(mpm_sim *s)
+/* Steps 2-3, each thread on its own range of nodes. */
+static void grid_phase(mpm_sim *s, double bx, double by)
 {
-  mpm_points *P = s->pts;
-  const mpm_stencil *st = s->st;
-  double dt = s->dt;
-#pragma omp parallel for schedule(static)
-  for (size_t p = 0; p < P->n; p++) {
-    const int *node = st->node + p * MPM_STENCIL_W;
-    const double *S = st->S + p * MPM_STENCIL_W;
-    const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
-    double ax = 0, ay = 0, vx = 0, vy = 0, lxx = 0, lxy = 0, lyx = 0, lyy = 0;
-    for (int k = 0; k < st->count[p]; k++) {
-      int i = node[k];
-      ax += S[k] * s->nax[i];
-      ay += S[k] * s->nay[i];
-      vx += S[k] * s->nvx[i];
-      vy += S[k] * s->nvy[i];
-      lxx += s->nvx[i] * gx[k];
-      lxy += s->nvx[i] * gy[k];
-      lyx += s->nvy[i] * gx[k];
-      lyy += s->nvy[i] * gy[k];
-    }
-    P->vx[p] += dt * ax;
-    P->vy[p] += dt * ay;
-    P->x[p] += dt * vx;
-    P->y[p] += dt * vy;
-    s->Lxx[p] = lxx;
-    s->Lxy[p] = lxy;
-    s->Lyx[p] = lyx;
-    s->Lyy[p] = lyy;
-    P->vol[p] *= exp(dt * (lxx + lyy));                   /* V *= exp(dt tr L) */
+  count_busy_nodes(s);
+#pragma omp parallel
+  {
+    int t = 0, nt = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    nt = omp_get_num_threads();
+#endif
+    const int lo = range_start(s, t, nt), hi = range_start(s, t + 1, nt);
+    point_to_grid(s, lo, hi, bx, by);
+    grid_update(s, lo, hi);
   }
 }
 
-/* Step 6: constitutive update of every point with L fixed; returns the index
- * of a point whose stress became non-finite, or -1. */
-static long constitutive(mpm_sim *s)
+/* Steps 4-5 for point p: v_p += dt sum S a_i; x_p += dt sum S v_i;
+ * L_p = sum v_i (x) gradS (its in-plane part; L is zero otherwise);
+ * V_p *= exp(dt tr L_p). */
+static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
 {
   mpm_points *P = s->pts;
+  const mpm_stencil *st = s->st;
+  const double dt = s->dt;
+  const int *node = st->node + p * MPM_STENCIL_W;
+  const double *S = st->S + p * MPM_STENCIL_W;
+  const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
+  double ax = 0, ay = 0, vx = 0, vy = 0, lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+  for (int k = 0; k < st->count[p]; k++) {
+    int i = node[k];
+    ax += S[k] * s->nax[i];
+    ay += S[k] * s->nay[i];
+    vx += S[k] * s->nvx[i];
+    vy += S[k] * s->nvy[i];
+    lxx += s->nvx[i] * gx[k];
+    lxy += s->nvx[i] * gy[k];
+    lyx += s->nvy[i] * gx[k];
+    lyy += s->nvy[i] * gy[k];
+  }
+  P->vx[p] += dt * ax;
+  P->vy[p] += dt * ay;
+  P->x[p] += dt * vx;
+  P->y[p] += dt * vy;
+  P->vol[p] *= exp(dt * (lxx + lyy));                     /* V *= exp(dt tr L) */
+  L->m[0][0] = lxx;
+  L->m[0][1] = lxy;
+  L->m[1][0] = lyx;
+  L->m[1][1] = lyy;
+}
+
+/* Step 6 for point p: constitutive update with L fixed; returns 0 when the
+ * stress became non-finite. */
+static int constitutive(mpm_sim *s, size_t p, const mpm_mat3 *L)
+{
+  mpm_points *P = s->pts;
+  mpm_mpoint mp = {
+    .sigma = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0},
+    .rho = P->mass[p] / P->vol[p],                         /* rho_{n+1} = m / V_{n+1} */
+    .g = P->g[p], .gdp = P->gdp[p], .state = P->state[p],
+  };
+  s->mat->update(&s->par, L, s->dt, &mp);
+  P->sxx[p] = mp.sigma.xx;
+  P->syy[p] = mp.sigma.yy;
+  P->szz[p] = mp.sigma.zz;
+  P->sxy[p] = mp.sigma.xy;
+  P->g[p] = mp.g;
+  P->gdp[p] = mp.gdp;
+  P->state[p] = mp.state;
+  return isfinite(mp.sigma.xx + mp.sigma.yy + mp.sigma.zz + mp.sigma.xy);
+}
+
+/* Steps 4-7 point by point (once the grid is known the points are
+ * independent): grid-to-point, constitutive update, periodic wrap. Returns
+ * the largest index of a point whose stress became non-finite, or -1. */
+static long point_phase(mpm_sim *s)
+{
+  mpm_points *P = s->pts;
+  const int periodic = s->mesh.periodic_x || s->mesh.periodic_y;
   long bad = -1;
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t p = 0; p < P->n; p++) {
-    mpm_mat3 L = {{{s->Lxx[p], s->Lxy[p], 0.0}, {s->Lyx[p], s->Lyy[p], 0.0}, {0.0, 0.0, 0.0}}};
-    mpm_mpoint mp = {
-      .sigma = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0},
-      .rho = P->mass[p] / P->vol[p],                       /* rho_{n+1} = m / V_{n+1} */
-      .g = P->g[p], .gdp = P->gdp[p], .state = P->state[p],
-    };
-    s->mat->update(&s->par, &L, s->dt, &mp);
-    P->sxx[p] = mp.sigma.xx;
-    P->syy[p] = mp.sigma.yy;
-    P->szz[p] = mp.sigma.zz;
-    P->sxy[p] = mp.sigma.xy;
-    P->g[p] = mp.g;
-    P->gdp[p] = mp.gdp;
-    P->state[p] = mp.state;
-    if (!isfinite(mp.sigma.xx + mp.sigma.yy + mp.sigma.zz + mp.sigma.xy))
+    mpm_mat3 L = {{{0.0}}};
+    grid_to_point(s, p, &L);
+    if (!constitutive(s, p, &L))
       bad = (long)p > bad ? (long)p : bad;
+    if (periodic)
+      mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);           /* step 7 */
   }
   return bad;
 }
@@ -277,16 +364,12 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
     return rc;
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
-  point_to_grid(s, bx, by);
-  grid_update(s);
-  grid_to_point(s);
-  long bad = constitutive(s);
+  grid_phase(s, bx, by);
+  long bad = point_phase(s);
   if (bad >= 0)
     return mpm_err_set(err, MPM_ENONFINITE,
                        "point %d: non-finite stress at (%.6g, %.6g) m, t = %.6g s",
                        s->pts->id[bad], s->pts->x[bad], s->pts->y[bad], s->t + s->dt);
-  for (size_t p = 0; p < s->pts->n; p++)                    /* step 7: periodic wrap */
-    mpm_mesh_wrap(&s->mesh, &s->pts->x[p], &s->pts->y[p]);
   s->t += s->dt;
   s->step++;
   return MPM_OK;
