@@ -18,6 +18,9 @@ typedef struct mpm_material_params {
   double mu_s, mu_2, I0; /* mu(I): static and limit friction, I0 */
   double d;              /* grain diameter [m] */
   double A, t0;          /* NGF amplitude and time scale [s] */
+  int form;              /* NGF PDE form, enum mpm_ngf_form (0: [DK-silo]) */
+  double t_seed;         /* NGF seeding time [s]: the local mu_i update runs for
+                            t < t_seed, then g = gdot_p / mu (mpm_ngf_seed); 0: none */
   /* derived (mpm_material_params_derive) */
   double G, K;           /* shear and bulk modulus [Pa] */
   double dmu;            /* mu_2 - mu_s */
@@ -32,7 +35,9 @@ void mpm_material_params_derive(mpm_material_params *par);
 typedef struct mpm_mpoint {
   mpm_sym3 sigma;  /* Cauchy stress [Pa], in: sigma_n, out: sigma_{n+1} */
   double rho;      /* density rho_{n+1} [kg/m^3] (input) */
-  double g;        /* fluidity [1/s] */
+  double g;        /* fluidity [1/s], in: g_n, out: g_{n+1} */
+  double lap;      /* Laplacian of g of the point's unit [1/(m^2 s)] (input; read
+                      only by nonlocal models, mpm_nonlocal_point_lap) */
   double gdp;      /* equivalent plastic shear rate [1/s] (output) */
   int state;       /* enum mpm_point_state (output) */
 } mpm_mpoint;
@@ -46,10 +51,15 @@ typedef struct mpm_material_type {
    * (p -> 0, disconnection) are states, not errors. */
   void (*update)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                  mpm_mpoint *pt);
+  /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
+   * the element fluidity of the dense points (nonlocal/nonlocal.h, dense flag
+   * from mpm_ngf_dense); local models ignore pt->lap. */
+  int nonlocal;
 } mpm_material_type;
 
 extern const mpm_material_type mpm_material_elastic;  /* Jaumann hypoelastic */
 extern const mpm_material_type mpm_material_mu_i;     /* trans-phase mu(I) [DK15] */
+extern const mpm_material_type mpm_material_ngf;      /* trans-phase NGF [DK-silo] */
 extern const mpm_material_type *const mpm_material_table[];
 
 /* Model by name, NULL if unknown. */
@@ -60,5 +70,40 @@ const mpm_material_type *mpm_material_lookup(const char *name);
 
 /* P-wave speed sqrt((K + 4G/3) / rho) for the time-step limit. */
 double mpm_material_wave_speed(const mpm_material_params *par, double rho);
+
+/* ---- nonlocal granular fluidity (ngf.c, MODEL.md section 5) ----------------
+ * The PDE's local part, selectable:
+ *   MPM_NGF_DK:   - Delta_mu (mu_s - mu)/(mu_2 - mu) g   [DK-silo] eq. 2.1 (A = 0: mu(I))
+ *   MPM_NGF_HS21: - (mu_s - mu) g                       [HS21] eq. 6 (A = 0: mu_s + b I)
+ * both with - b sqrt(rho_s d^2 / p) mu g^2 and the diffusion A^2 d^2 lap(g). */
+enum mpm_ngf_form { MPM_NGF_DK = 0, MPM_NGF_HS21 };
+
+/* "dk" | "hs21" <-> enum mpm_ngf_form; -1 / NULL if unknown. */
+int mpm_ngf_form_from_name(const char *name);
+const char *mpm_ngf_form_name(int form);
+
+/* 1 if the point is dense this step (contributes to the element g):
+ * p_n = -tr(sigma_n)/3 > 0 and rho_{n+1} >= rho_c. */
+int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho);
+
+/* g_{n+1} of MODEL.md section 5 step 4: the root of the quadratic in x = g_{n+1}
+ * with the physical choice, for time step dt, pressure p = p_tr > 0, trial
+ * shear stress tau_tr >= 0, diffused fluidity gstar = g* >= 0 and
+ * mug_n = mu_n g_n (start of step). Returns x >= 0. */
+double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
+                        double gstar, double mug_n);
+
+/* Seeding from a local run: g = gdot_p / mu, mu = tau / p (0 if p <= 0 or tau = 0). */
+double mpm_ngf_seed(mpm_sym3 sigma, double gdp);
+
+/* Explicit-diffusion number (dt/n_sub) A^2 d^2 / t0 (2/dx^2 + 2/dy^2); the
+ * update is stable when it is <= 1. */
+double mpm_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
+                                double dx, double dy);
+
+/* MPM_OK if the diffusion number is <= 1, else MPM_EINPUT with the smallest
+ * n_sub that satisfies it. */
+int mpm_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub, double dx,
+                            double dy, mpm_err *err);
 
 #endif

@@ -1,0 +1,231 @@
+/* ngf.c: the trans-phase nonlocal granular fluidity material of [DK-silo]
+ * §4-5 (MODEL.md section 5 steps 3-5), the per-point part.
+ *
+ * PDE (dense): t0 dg/dt = A^2 d^2 lap(g) - F(mu) g - b sqrt(rho_s d^2/p) mu g^2,
+ *   F = Delta_mu (mu_s - mu)/(mu_2 - mu)  ([DK-silo] eq. 2.1, form "dk"), or
+ *   F = mu_s - mu                          ([HS21] eq. 6, linearised, form "hs21");
+ * flow rule gdot_p = g mu, Dp = gdot_p sigma0 / (2 tau); Jaumann elasticity.
+ * Disconnected (rho_{n+1} < rho_c or p_tr <= 0): sigma = 0, g = 0. A point that
+ * was not dense at the start of the step (p_n <= 0) starts it with g_n = 0
+ * ([DK-silo] §4: reconsolidated material starts with g = 0).
+ *
+ * One (sub)step with L fixed and lap_e of the point's unit given (pt->lap):
+ *   sigma_tr = sigma_n + dt (C:D + W sigma_n - sigma_n W),  p = -tr(sigma_tr)/3,
+ *   g* = max(0, g_n + (dt/t0) A^2 d^2 lap_e)                       [eq. 5.3]
+ *   x = g_{n+1} solves x - g* = -k x F(mu(x)) - c x with k = dt/t0,
+ *   c = k b sqrt(rho_s d^2/p) mu_n g_n, mu(x) = tau_tr/(G dt x + p)   [eq. 5.4-5.5]
+ *   tau = tau_tr p/(G dt x + p), sigma = (tau/tau_tr) sigma0_tr - p I,
+ *   gdot_p = x mu(x)                                              [eq. 5.5, 5.9]
+ * Multiplied out (Gb = G dt, beta = 1 + c, S0 = mu_s p, S2 = mu_2 p, f = k Delta_mu):
+ *   dk:   a = Gb (beta mu_2 + f mu_s), b' = beta (S2 - tau_tr) - mu_2 Gb g* + f (S0 - tau_tr),
+ *         c' = g* (tau_tr - S2)                       (MODEL.md: eq. 5.6-5.7 / sqrt(p))
+ *   hs21: a = Gb (beta + k mu_s), b' = beta p - Gb g* + k (S0 - tau_tr), c' = -g* p.
+ * Root: x = 0 if g* = 0 and tau_tr < S2 (no spontaneous fluidisation); else the
+ * larger root, x = (-b' + sqrt(disc))/(2a) for b' < 0, x = 2c'/(-b' - sqrt(disc))
+ * otherwise (no cancellation). The discriminant is evaluated as a sum of
+ * non-negative terms (algebraically equal to b'^2 - 4ac'):
+ *   dk:   disc = (beta (tau_tr - S2) - mu_2 Gb g* + f (tau_tr - S0))^2 + 4 f Delta_mu Gb g* tau_tr
+ *   hs21: disc = b'^2 + 4 a g* p. */
+#include "material/material.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/points.h"
+
+static const char *const form_names[] = {"dk", "hs21"};
+#define NGF_NFORMS ((int)(sizeof form_names / sizeof form_names[0]))
+
+int mpm_ngf_form_from_name(const char *name)
+{
+  for (int f = 0; f < NGF_NFORMS; f++)
+    if (strcmp(name, form_names[f]) == 0)
+      return f;
+  return -1;
+}
+
+const char *mpm_ngf_form_name(int form)
+{
+  return form >= 0 && form < NGF_NFORMS ? form_names[form] : NULL;
+}
+
+int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho)
+{
+  return mpm_sym3_pressure(sigma_n) > 0.0 && rho >= par->rho_c;   /* p_n > 0, rho >= rho_c */
+}
+
+double mpm_ngf_seed(mpm_sym3 sigma, double gdp)
+{
+  double p = mpm_sym3_pressure(sigma), tau = mpm_sym3_tau(sigma);
+  return p > 0.0 && tau > 0.0 ? gdp * p / tau : 0.0;              /* g = gdot_p / mu */
+}
+
+/* Quadratic a x^2 + b x + c = 0 and its discriminant, scaled together. */
+typedef struct ngf_quad { double a, b, c, disc; } ngf_quad;
+
+/* Exact power-of-two scale so that b^2 and a c are near 1 (no under/overflow
+ * as p -> 0+). t[] are the terms whose sum makes b. */
+static int quad_exponent(double a, double c, const double t[3])
+{
+  double m = fabs(t[0]) + fabs(t[1]) + fabs(t[2]) + sqrt(fabs(a)) * sqrt(fabs(c));
+  int e = 0;
+  if (m > 0.0 && isfinite(m))
+    frexp(m, &e);
+  return e;
+}
+
+/* dk form: terms T1 = beta (tau_tr - S2), T2 = mu_2 Gb g*, T3 = f (tau_tr - S0). */
+static ngf_quad quad_dk(const mpm_material_params *par, double Gb, double p, double tau_tr,
+                        double gs, double k, double beta)
+{
+  double f = k * par->dmu;                                          /* f = k Delta_mu */
+  double t[3] = {beta * (tau_tr - par->mu_2 * p), par->mu_2 * Gb * gs,
+                 f * (tau_tr - par->mu_s * p)};
+  double a = Gb * (beta * par->mu_2 + f * par->mu_s);               /* a */
+  double c = gs * (tau_tr - par->mu_2 * p);                         /* c' */
+  int e = quad_exponent(a, c, t);
+  for (int i = 0; i < 3; i++)
+    t[i] = ldexp(t[i], -e);
+  double r = ldexp(f * par->dmu * tau_tr, -e) * ldexp(Gb * gs, -e);  /* f dmu Gb g* tau_tr */
+  double bb = t[0] - t[1] + t[2];
+  return (ngf_quad){ldexp(a, -e), -(t[0] + t[1] + t[2]), ldexp(c, -e), bb * bb + 4.0 * r};
+}
+
+/* hs21 form: terms T1 = beta p, T2 = -Gb g*, T3 = k (S0 - tau_tr). */
+static ngf_quad quad_hs21(const mpm_material_params *par, double Gb, double p, double tau_tr,
+                          double gs, double k, double beta)
+{
+  double t[3] = {beta * p, -Gb * gs, k * (par->mu_s * p - tau_tr)};
+  double a = Gb * (beta + k * par->mu_s);                           /* a */
+  double c = -gs * p;                                               /* c' */
+  int e = quad_exponent(a, c, t);
+  for (int i = 0; i < 3; i++)
+    t[i] = ldexp(t[i], -e);
+  a = ldexp(a, -e);
+  c = ldexp(c, -e);
+  double b = t[0] + t[1] + t[2];
+  return (ngf_quad){a, b, c, b * b - 4.0 * a * c};                  /* -4ac' >= 0 */
+}
+
+/* Larger root without cancellation. */
+static double larger_root(ngf_quad q)
+{
+  double sq = sqrt(q.disc > 0.0 ? q.disc : 0.0);
+  if (q.b < 0.0)
+    return (-q.b + sq) / (2.0 * q.a);                               /* (-b + sqrt)/(2a) */
+  double den = -q.b - sq;
+  double x = den < 0.0 ? 2.0 * q.c / den : 0.0;                     /* 2c/(-b - sqrt) */
+  return x > 0.0 ? x : 0.0;
+}
+
+double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
+                        double gstar, double mug_n)
+{
+  if (!(dt > 0.0))
+    return gstar;
+  if (gstar == 0.0 && tau_tr < par->mu_2 * p)
+    return 0.0;                                                     /* g = 0 stays */
+  double k = dt / par->t0;                                          /* k = dt/t0 */
+  double Gb = par->G * dt;                                          /* Gb = G dt */
+  double c = k * par->b * par->d * (sqrt(par->rho_s) / sqrt(p)) * mug_n;  /* k b sqrt(rho_s d^2/p) mu_n g_n */
+  double beta = 1.0 + c;
+  ngf_quad q = par->form == MPM_NGF_HS21 ? quad_hs21(par, Gb, p, tau_tr, gstar, k, beta)
+                                         : quad_dk(par, Gb, p, tau_tr, gstar, k, beta);
+  return larger_root(q);
+}
+
+/* Stress-free point: sigma = 0, g = 0, gdot_p = sqrt(2 D0:D0) (as mu_i). */
+static void ngf_disconnect(mpm_sym3 D, mpm_mpoint *pt)
+{
+  mpm_sym3 D0 = mpm_sym3_dev(D);
+  pt->sigma = mpm_sym3_zero();
+  pt->g = 0.0;
+  pt->gdp = sqrt(2.0 * mpm_sym3_ddot(D0, D0));
+  pt->state = MPM_STATE_DISCONNECTED;
+}
+
+/* g* = max(0, g_n + (dt/t0) A^2 d^2 lap_e); NaN propagates to the stress. */
+static double ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap)
+{
+  double gs = g_n + dt / par->t0 * par->A * par->A * par->d * par->d * lap;
+  return gs < 0.0 ? 0.0 : gs;
+}
+
+static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                       mpm_mpoint *pt)
+{
+  mpm_sym3 D = mpm_mat3_sym(L);
+  double p_n = mpm_sym3_pressure(pt->sigma);
+  double g_n = p_n > 0.0 ? pt->g : 0.0;                             /* reconsolidated: g = 0 */
+  double mug_n = p_n > 0.0 ? g_n * mpm_sym3_tau(pt->sigma) / p_n : 0.0;  /* mu_n g_n */
+  if (!(pt->rho >= par->rho_c)) {                                   /* rho_{n+1} < rho_c */
+    ngf_disconnect(D, pt);
+    return;
+  }
+  mpm_mat3 W = mpm_mat3_skw(L);
+  mpm_sym3 rate = mpm_sym3_add(mpm_sym3_elastic(D, par->G, par->K),  /* C:D */
+                               mpm_sym3_spin(&W, pt->sigma));       /* W s - s W */
+  mpm_sym3 s_tr = mpm_sym3_axpy(pt->sigma, dt, rate);              /* sigma_tr */
+  double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
+  if (!(p > 0.0)) {
+    ngf_disconnect(D, pt);
+    return;
+  }
+  pt->state = MPM_STATE_DENSE;
+  mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
+  double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
+  double gs = ngf_gstar(par, dt, g_n, pt->lap);                    /* g* */
+  double x = mpm_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n);      /* g_{n+1} */
+  double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
+  pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);     /* (tau/tau_tr) s0_tr - p I */
+  pt->g = x;
+  pt->gdp = x * r * tau_tr / p;                                    /* gdot_p = x mu(x) */
+}
+
+static int ngf_check(const mpm_material_params *par, mpm_err *err)
+{
+  int rc = mpm_material_mu_i.check(par, err);                     /* E, nu, rho, mu(I), d */
+  if (rc != MPM_OK)
+    return rc;
+  if (!(par->A >= 0.0 && isfinite(par->A)))
+    return mpm_err_set(err, MPM_EINPUT, "key 'material.A' = %g: must be >= 0", par->A);
+  if (!(par->t0 > 0.0 && isfinite(par->t0)))
+    return mpm_err_set(err, MPM_EINPUT, "key 'material.t0' = %g: must be > 0 s", par->t0);
+  if (!mpm_ngf_form_name(par->form))
+    return mpm_err_set(err, MPM_EINPUT, "NGF form %d unknown (\"dk\" or \"hs21\")", par->form);
+  if (!(par->t_seed >= 0.0 && isfinite(par->t_seed)))
+    return mpm_err_set(err, MPM_EINPUT, "key 'material.t_seed' = %g: must be >= 0 s",
+                       par->t_seed);
+  return MPM_OK;
+}
+
+double mpm_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
+                                double dx, double dy)
+{
+  double D = par->A * par->A * par->d * par->d / par->t0;          /* A^2 d^2 / t0 */
+  return dt / n_sub * D * (2.0 / (dx * dx) + 2.0 / (dy * dy));
+}
+
+int mpm_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub, double dx,
+                            double dy, mpm_err *err)
+{
+  if (n_sub < 1)
+    return mpm_err_set(err, MPM_EINPUT, "NGF substeps n_sub = %d: must be >= 1", n_sub);
+  double r = mpm_ngf_diffusion_number(par, dt, n_sub, dx, dy);
+  if (r <= 1.0)
+    return MPM_OK;
+  double need = ceil(mpm_ngf_diffusion_number(par, dt, 1, dx, dy));
+  return mpm_err_set(err, MPM_EINPUT,
+                     "NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2)"
+                     " = %.4g > 1 with dt = %g s, n_sub = %d; needs n_sub >= %.0f", r, dt,
+                     n_sub, need);
+}
+
+const mpm_material_type mpm_material_ngf = {
+  .name = "ngf",
+  .description = "trans-phase nonlocal granular fluidity: Jaumann elastic, flow rule gdot_p = g mu, "
+                 "explicit diffusion and semi-implicit local update of g [DK-silo]",
+  .check = ngf_check,
+  .update = ngf_update,
+  .nonlocal = 1,
+};

@@ -1,0 +1,205 @@
+/* fluidity.c: element-averaged granular fluidity and its 5-point Laplacian
+ * with ghost rules (MODEL.md section 5 steps 1-2; [DK-silo] §5.2 (i)-(ii),
+ * eq. 5.1; boundary conditions on g from [DK-silo] §4 and §6).
+ *
+ *   g_e   = sum_{p in e, dense} m_p g_p / sum_{p in e, dense} m_p
+ *   lap_e = (g_E - 2 g_e + g_W)/dx^2 + (g_N - 2 g_e + g_S)/dy^2
+ * Ghosts: Neumann g_ghost = g_e (empty neighbour, free edge, frictionless or
+ * symmetry wall), Dirichlet g_ghost = -g_e (no-slip wall: g = 0 on the face,
+ * midway between the centres), periodic wrap. */
+#include "nonlocal/nonlocal.h"
+
+#include <stdlib.h>
+
+#include "core/config.h"
+
+int mpm_nonlocal_ghost_of_bc(int bc_kind)
+{
+  switch (bc_kind) {
+  case MPM_BC_FREE:
+  case MPM_BC_FRICTIONLESS:
+  case MPM_BC_SYMMETRY:
+    return MPM_GHOST_NEUMANN;
+  case MPM_BC_NOSLIP:
+    return MPM_GHOST_DIRICHLET;
+  case MPM_BC_PERIODIC:
+    return MPM_GHOST_PERIODIC;
+  default:
+    return -1;
+  }
+}
+
+void mpm_nonlocal_free(mpm_nonlocal *ws)
+{
+  if (!ws)
+    return;
+  free(ws->sm);
+  free(ws->smg);
+  free(ws->ge);
+  free(ws->lap);
+  free(ws->unit);
+  free(ws->dense);
+  free(ws);
+}
+
+int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
+{
+  if (cap <= ws->pcap)
+    return MPM_OK;
+  int *u = malloc(cap * sizeof *u);
+  unsigned char *d = calloc(cap, 1);
+  if (!u || !d) {
+    free(u);
+    free(d);
+    return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu points", cap);
+  }
+  free(ws->unit);
+  free(ws->dense);
+  ws->unit = u;
+  ws->dense = d;
+  ws->pcap = cap;
+  return MPM_OK;
+}
+
+static const char *const edge_names[4] = {"left", "right", "bottom", "top"};
+
+/* Ghost rules of the four edges; periodic pairs must match the mesh. */
+static int set_ghosts(mpm_nonlocal *ws, const mpm_mesh *m, const int edge[4], mpm_err *err)
+{
+  for (int k = 0; k < 4; k++) {
+    ws->ghost[k] = mpm_nonlocal_ghost_of_bc(edge[k]);
+    if (ws->ghost[k] < 0)
+      return mpm_err_set(err, MPM_EINVAL, "nonlocal: %s edge has unknown kind %d",
+                         edge_names[k], edge[k]);
+  }
+  int px = ws->ghost[0] == MPM_GHOST_PERIODIC, px2 = ws->ghost[1] == MPM_GHOST_PERIODIC;
+  int py = ws->ghost[2] == MPM_GHOST_PERIODIC, py2 = ws->ghost[3] == MPM_GHOST_PERIODIC;
+  if (px != px2 || px != (m->periodic_x != 0))
+    return mpm_err_set(err, MPM_EINVAL,
+                       "nonlocal: left/right periodic edges must match each other and the mesh");
+  if (py != py2 || py != (m->periodic_y != 0))
+    return mpm_err_set(err, MPM_EINVAL,
+                       "nonlocal: bottom/top periodic edges must match each other and the mesh");
+  return MPM_OK;
+}
+
+int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4], int rule,
+                       size_t cap, mpm_err *err)
+{
+  *out = NULL;
+  if (rule != MPM_NONLOCAL_CENTRE)
+    return mpm_err_set(err, MPM_EINVAL,
+                       "nonlocal: only the point-centre rule is implemented (rule %d)", rule);
+  if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
+    return mpm_err_set(err, MPM_EINVAL, "nonlocal: mesh not set up (%d x %d units)",
+                       m->nx, m->ny);
+  mpm_nonlocal *ws = calloc(1, sizeof *ws);
+  if (!ws)
+    return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for the workspace");
+  int rc = set_ghosts(ws, m, edge, err);
+  if (rc != MPM_OK) {
+    mpm_nonlocal_free(ws);
+    return rc;
+  }
+  size_t nu = (size_t)m->nx * (size_t)m->ny;
+  ws->nx = m->nx;
+  ws->ny = m->ny;
+  ws->idx2 = 1.0 / (m->dx * m->dx);
+  ws->idy2 = 1.0 / (m->dy * m->dy);
+  ws->rule = rule;
+  ws->sm = calloc(nu, sizeof *ws->sm);
+  ws->smg = calloc(nu, sizeof *ws->smg);
+  ws->ge = calloc(nu, sizeof *ws->ge);
+  ws->lap = calloc(nu, sizeof *ws->lap);
+  if (!ws->sm || !ws->smg || !ws->ge || !ws->lap) {
+    mpm_nonlocal_free(ws);
+    return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu units", nu);
+  }
+  rc = mpm_nonlocal_reserve(ws, cap > 0 ? cap : 1, err);
+  if (rc != MPM_OK) {
+    mpm_nonlocal_free(ws);
+    return rc;
+  }
+  *out = ws;
+  return MPM_OK;
+}
+
+int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
+                        const double *y, mpm_err *err)
+{
+  int rc = mpm_nonlocal_reserve(ws, n, err);
+  if (rc != MPM_OK)
+    return rc;
+  for (size_t p = 0; p < n; p++) {
+    int i, j;
+    if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+      return mpm_err_set(err, MPM_EOUTSIDE,
+                         "nonlocal: point index %zu at (%.6g, %.6g) m is outside the mesh",
+                         p, x[p], y[p]);
+    ws->unit[p] = i + ws->nx * j;
+  }
+  return MPM_OK;
+}
+
+void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
+                          const unsigned char *dense)
+{
+  size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  for (size_t e = 0; e < nu; e++) {
+    ws->sm[e] = 0.0;
+    ws->smg[e] = 0.0;
+  }
+  for (size_t p = 0; p < n; p++) {                     /* fixed order: thread-count free */
+    if (!dense[p])
+      continue;
+    int e = ws->unit[p];
+    ws->sm[e] += mass[p];                              /* sum m */
+    ws->smg[e] += mass[p] * g[p];                      /* sum m g */
+  }
+  for (size_t e = 0; e < nu; e++)
+    ws->ge[e] = ws->sm[e] > 0.0 ? ws->smg[e] / ws->sm[e] : 0.0;  /* g_e */
+}
+
+/* Neighbour value of unit (i, j) across the face towards (i + di, j + dj):
+ * the neighbour's g_e if it exists and is filled, else the ghost value. */
+static double neighbour(const mpm_nonlocal *ws, int i, int j, int di, int dj, double ge)
+{
+  int ii = i + di, jj = j + dj, edge = -1;
+  if (ii < 0)
+    edge = 0;
+  else if (ii >= ws->nx)
+    edge = 1;
+  else if (jj < 0)
+    edge = 2;
+  else if (jj >= ws->ny)
+    edge = 3;
+  if (edge >= 0) {
+    if (ws->ghost[edge] == MPM_GHOST_DIRICHLET)
+      return -ge;                                      /* g = 0 on the face */
+    if (ws->ghost[edge] == MPM_GHOST_NEUMANN)
+      return ge;                                       /* d_n g = 0 */
+    ii = (ii + ws->nx) % ws->nx;                       /* periodic wrap */
+    jj = (jj + ws->ny) % ws->ny;
+  }
+  size_t e = (size_t)ii + (size_t)ws->nx * (size_t)jj;
+  return ws->sm[e] > 0.0 ? ws->ge[e] : ge;             /* empty neighbour: Neumann */
+}
+
+void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
+{
+  const int nx = ws->nx, ny = ws->ny;
+#pragma omp parallel for schedule(static) if ((long)nx * ny > 16384)  /* small grids: no fork */
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      size_t e = (size_t)i + (size_t)nx * (size_t)j;
+      if (!(ws->sm[e] > 0.0)) {
+        ws->lap[e] = 0.0;
+        continue;
+      }
+      double g = ws->ge[e];
+      double gw = neighbour(ws, i, j, -1, 0, g), ge = neighbour(ws, i, j, 1, 0, g);
+      double gs = neighbour(ws, i, j, 0, -1, g), gn = neighbour(ws, i, j, 0, 1, g);
+      ws->lap[e] = (ge - 2.0 * g + gw) * ws->idx2     /* d2g/dx2 */
+                 + (gn - 2.0 * g + gs) * ws->idy2;    /* d2g/dy2 */
+    }
+}

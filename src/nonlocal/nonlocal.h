@@ -1,0 +1,106 @@
+/* nonlocal.h: the element (unit) fluidity field and its Laplacian for the
+ * nonlocal granular fluidity model (MODEL.md section 5 steps 1-2, [DK-silo]
+ * §5.2 (i)-(ii), eq. 5.1).
+ *
+ * Per constitutive (sub)step, with point-to-unit membership frozen for the
+ * whole MPM step:
+ *   1. g_e = sum_p m_p g_p / sum_p m_p over the dense points p of unit e
+ *      (a point belongs to the unit containing its centre); units without
+ *      dense mass are empty.
+ *   2. lap_e = (g_E - 2 g_e + g_W)/dx^2 + (g_N - 2 g_e + g_S)/dy^2 on unit
+ *      centres, with ghost values for missing neighbours:
+ *        empty unit, free edge, frictionless or symmetry wall: g_ghost = g_e
+ *          (Neumann, d_n g = 0 at the face);
+ *        no-slip wall: g_ghost = -g_e (Dirichlet, g = 0 at the face);
+ *        periodic edge: the unit on the opposite side (wrap).
+ *      Empty units have lap_e = 0.
+ * A point then reads the Laplacian of its unit (mpm_nonlocal_point_lap).
+ *
+ * Usage per MPM step (the solver):
+ *   mpm_nonlocal_locate(ws, mesh, n, x, y, err);          once, positions x_{n+1}
+ *   for each substep:
+ *     ws->dense[p] = mpm_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
+ *     mpm_nonlocal_average(ws, n, mass, g, ws->dense);
+ *     mpm_nonlocal_laplacian(ws);
+ *     per point: lap = mpm_nonlocal_point_lap(ws, p); constitutive update
+ *
+ * The sums run over points in index order on one thread, so results do not
+ * depend on the number of threads. The Laplacian is independent per unit. */
+#ifndef MPM_NONLOCAL_NONLOCAL_H
+#define MPM_NONLOCAL_NONLOCAL_H
+
+#include <stddef.h>
+
+#include "core/error.h"
+#include "mesh/mesh.h"
+
+/* How a point's g is shared between units. */
+enum mpm_nonlocal_rule {
+  MPM_NONLOCAL_CENTRE = 0,  /* the whole point goes to the unit containing its centre */
+  MPM_NONLOCAL_EXTENT       /* split by the fraction of its extent in each unit
+                               ([DK-silo] §5.2 (i)); not implemented yet: locate()
+                               would store up to four (unit, weight) pairs per point,
+                               average() would add weight m g and weight m, and
+                               point_lap() would return the weighted lap_e */
+};
+
+/* Ghost rule of one mesh edge for g, derived from enum mpm_bc_kind. */
+enum mpm_nonlocal_ghost {
+  MPM_GHOST_NEUMANN = 0,    /* g_ghost = g_e */
+  MPM_GHOST_DIRICHLET,      /* g_ghost = -g_e (g = 0 on the edge) */
+  MPM_GHOST_PERIODIC        /* wrap to the opposite side */
+};
+
+typedef struct mpm_nonlocal {
+  int nx, ny;           /* units */
+  double idx2, idy2;    /* 1/dx^2, 1/dy^2 [1/m^2] */
+  int rule;             /* enum mpm_nonlocal_rule */
+  int ghost[4];         /* left, right, bottom, top: enum mpm_nonlocal_ghost */
+  double *sm;           /* [nx*ny] sum m of dense points [kg/m] */
+  double *smg;          /* [nx*ny] sum m g [kg/(m s)] */
+  double *ge;           /* [nx*ny] element fluidity g_e [1/s] (0 when empty) */
+  double *lap;          /* [nx*ny] lap_e [1/(m^2 s)] (0 when empty) */
+  int *unit;            /* [pcap] frozen unit of each point, i + nx j */
+  unsigned char *dense; /* [pcap] scratch for the caller's dense flags (fill after locate) */
+  size_t pcap;          /* capacity of the per-point arrays */
+} mpm_nonlocal;
+
+/* Workspace for mesh m (set up) with room for cap points. edge[4] holds the
+ * enum mpm_bc_kind of the left, right, bottom and top edges; periodic edges
+ * must come in pairs and agree with m->periodic_x / periodic_y. rule is an
+ * enum mpm_nonlocal_rule (only MPM_NONLOCAL_CENTRE for now). */
+int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4], int rule,
+                       size_t cap, mpm_err *err);
+void mpm_nonlocal_free(mpm_nonlocal *ws);  /* accepts NULL */
+
+/* Grow the per-point arrays to at least cap points (contents not kept). */
+int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err);
+
+/* Ghost rule of an edge kind (enum mpm_bc_kind); -1 if unknown. */
+int mpm_nonlocal_ghost_of_bc(int bc_kind);
+
+/* Freeze the unit of each of the n points at (x, y). Fails with MPM_EOUTSIDE
+ * naming the point index when a point is outside the mesh. */
+int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
+                        const double *y, mpm_err *err);
+
+/* Element g from the dense points (dense[p] != 0): g_e = sum m g / sum m. */
+void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
+                          const unsigned char *dense);
+
+/* lap_e on every non-empty unit from the current g_e (5-point, ghost rules). */
+void mpm_nonlocal_laplacian(mpm_nonlocal *ws);
+
+/* 1 if unit (i, j) holds dense mass. */
+static inline int mpm_nonlocal_filled(const mpm_nonlocal *ws, int i, int j)
+{
+  return ws->sm[i + ws->nx * j] > 0.0;
+}
+
+/* Laplacian seen by point p (its frozen unit's lap_e). */
+static inline double mpm_nonlocal_point_lap(const mpm_nonlocal *ws, size_t p)
+{
+  return ws->lap[ws->unit[p]];
+}
+
+#endif

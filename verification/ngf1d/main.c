@@ -1,0 +1,169 @@
+/* main.c: command line of the steady 1D NGF reference solver (ngf1d.h).
+ *
+ *   ngf1d chute  [options]   inclined chute, prints z,g,gdot,v from the base up
+ *   ngf1d vchute [options]   vertical chute, prints x,g,gdot,v across the width
+ *   ngf1d hstop  [options]   prints Hstop (eq. 3.1) and the discrete threshold
+ * Comment lines (#) give the parameters, Hstop and the solver statistics.
+ * Exit status 0, 1 on a solver failure, 2 on a usage error. */
+#define _DEFAULT_SOURCE /* M_PI, getopt_long */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ngf1d.h"
+
+static void usage(FILE *f)
+{
+  fputs("usage: ngf1d chute|vchute|hstop [options]\n"
+        "  --n N           grid intervals (400)\n"
+        "  --form F        dk ([DK-silo], default) or hs21 (linearised [HS21])\n"
+        "  --A --d --mu_s --mu_2 --I0 --rho_s   material (m, kg/m^3)\n"
+        "  --rho --grav    bulk density [kg/m^3] (1500), gravity [m/s^2] (9.81)\n"
+        "chute:  --theta DEG (27)  --H M | --H-rel R (H = R Hstop; default 3)\n"
+        "        --p-top PA  surcharge on the surface (0: free surface)\n"
+        "        defaults: [DK-silo] Fig. 2: A 0.25, d 5 mm, mu_s 0.3819, mu_2 1.5, I0 0.279\n"
+        "vchute: --L M (1)  --p PA (900)  --wall dirichlet|neumann (dirichlet)\n"
+        "        defaults: [D-thesis] Table 4.1: A 0.48, d 0.05 m, mu_2 0.6435, form hs21\n", f);
+}
+
+static int parse_double(const char *s, double *out)
+{
+  char *end;
+  double v = strtod(s, &end);
+  if (end == s || *end != '\0' || !isfinite(v))
+    return -1;
+  *out = v;
+  return 0;
+}
+
+enum { O_N = 1, O_FORM, O_A, O_D, O_MUS, O_MU2, O_I0, O_RHOS, O_RHO, O_GRAV, O_THETA, O_H,
+       O_HREL, O_L, O_P, O_WALL, O_PTOP, O_HELP };
+
+static const struct option options[] = {
+  {"n", required_argument, NULL, O_N},       {"form", required_argument, NULL, O_FORM},
+  {"A", required_argument, NULL, O_A},       {"d", required_argument, NULL, O_D},
+  {"mu_s", required_argument, NULL, O_MUS},  {"mu_2", required_argument, NULL, O_MU2},
+  {"I0", required_argument, NULL, O_I0},     {"rho_s", required_argument, NULL, O_RHOS},
+  {"rho", required_argument, NULL, O_RHO},   {"grav", required_argument, NULL, O_GRAV},
+  {"theta", required_argument, NULL, O_THETA}, {"H", required_argument, NULL, O_H},
+  {"H-rel", required_argument, NULL, O_HREL}, {"L", required_argument, NULL, O_L},
+  {"p", required_argument, NULL, O_P},       {"wall", required_argument, NULL, O_WALL},
+  {"p-top", required_argument, NULL, O_PTOP},
+  {"help", no_argument, NULL, O_HELP},       {NULL, 0, NULL, 0}};
+
+/* Option c with argument s into pb; *hrel collects --H-rel. 0 or -1. */
+static int apply(ngf1d_problem *pb, int c, const char *s, double *hrel)
+{
+  double v;
+  if (c == O_FORM) {
+    if (strcmp(s, "dk") && strcmp(s, "hs21"))
+      return -1;
+    pb->form = strcmp(s, "dk") ? NGF1D_HS21 : NGF1D_DK;
+    return 0;
+  }
+  if (c == O_WALL) {
+    if (strcmp(s, "dirichlet") && strcmp(s, "neumann"))
+      return -1;
+    pb->wall_neumann = strcmp(s, "neumann") == 0;
+    return 0;
+  }
+  if (parse_double(s, &v))
+    return -1;
+  double *const fields[] = {[O_A] = &pb->A, [O_D] = &pb->d, [O_MUS] = &pb->mu_s,
+                            [O_MU2] = &pb->mu_2, [O_I0] = &pb->I0, [O_RHOS] = &pb->rho_s,
+                            [O_RHO] = &pb->rho, [O_GRAV] = &pb->grav, [O_H] = &pb->H,
+                            [O_L] = &pb->L, [O_P] = &pb->p, [O_HREL] = hrel,
+                            [O_PTOP] = &pb->p_top};
+  if (c == O_N) {
+    if (v != floor(v) || v < 4 || v > 1e8)
+      return -1;
+    pb->n = (int)v;
+  } else if (c == O_THETA) {
+    pb->theta = v * M_PI / 180.0;
+  } else if (c < (int)(sizeof fields / sizeof fields[0]) && fields[c]) {
+    *fields[c] = v;
+  } else {
+    return -1;
+  }
+  return 0;
+}
+
+static void print_header(const ngf1d_problem *pb)
+{
+  printf("# ngf1d %s, form %s: A %g d %g mu_s %g mu_2 %g I0 %g rho_s %g rho %g grav %g n %d\n",
+         pb->geometry == NGF1D_CHUTE ? "chute" : "vchute", pb->form == NGF1D_DK ? "dk" : "hs21",
+         pb->A, pb->d, pb->mu_s, pb->mu_2, pb->I0, pb->rho_s, pb->rho, pb->grav, pb->n);
+  if (pb->geometry == NGF1D_CHUTE)
+    printf("# theta %g deg, H %.9g m, Hstop %.9g m (eq. 3.1), H/Hstop %.6g, p_top %g Pa\n",
+           pb->theta * 180.0 / M_PI, pb->H, ngf1d_hstop(pb), pb->H / ngf1d_hstop(pb), pb->p_top);
+  else
+    printf("# L %g m, p %g Pa, wall stress ratio %.6g, walls %s\n", pb->L, pb->p,
+           pb->rho * pb->grav * 0.5 * pb->L / pb->p, pb->wall_neumann ? "g' = 0" : "g = 0");
+}
+
+/* Profile: chute from the base up (node n to 0); vchute from -L/2 to L/2. */
+static void print_profile(const ngf1d_problem *pb, const ngf1d_result *r)
+{
+  printf("# iterations %d, relative residual %.3g%s\n", r->iters, r->residual,
+         r->trivial ? ", trivial solution g = 0 (no flow)" : "");
+  if (pb->geometry == NGF1D_CHUTE) {
+    printf("z,g,gdot,v\n");
+    for (int i = r->n; i >= 0; i--)
+      printf("%.12g,%.12g,%.12g,%.12g\n", r->pos[i], r->g[i], r->gdot[i], r->v[i]);
+    return;
+  }
+  printf("x,g,gdot,v\n");
+  for (int i = r->n; i > 0; i--)
+    printf("%.12g,%.12g,%.12g,%.12g\n", -r->pos[i], r->g[i], r->gdot[i], r->v[i]);
+  for (int i = 0; i <= r->n; i++)
+    printf("%.12g,%.12g,%.12g,%.12g\n", r->pos[i], r->g[i], r->gdot[i], r->v[i]);
+}
+
+int main(int argc, char **argv)
+{
+  if (argc < 2 || (strcmp(argv[1], "chute") && strcmp(argv[1], "vchute") &&
+                   strcmp(argv[1], "hstop"))) {
+    usage(stderr);
+    return 2;
+  }
+  int geom = strcmp(argv[1], "vchute") ? NGF1D_CHUTE : NGF1D_VCHUTE;
+  ngf1d_problem pb;
+  ngf1d_defaults(&pb, geom);
+  double hrel = 0.0;
+  int c;
+  while ((c = getopt_long(argc - 1, argv + 1, "", options, NULL)) != -1) {
+    if (c == O_HELP) {
+      usage(stdout);
+      return 0;
+    }
+    if (c == '?' || apply(&pb, c, optarg, &hrel)) {
+      fprintf(stderr, "ngf1d: bad option or value%s%s\n", c == '?' ? "" : ": ",
+              c == '?' ? "" : optarg);
+      return 2;
+    }
+  }
+  if (optind < argc - 1) {
+    fprintf(stderr, "ngf1d: unexpected argument '%s'\n", argv[optind + 1]);
+    return 2;
+  }
+  if (geom == NGF1D_CHUTE && hrel > 0.0)
+    pb.H = hrel * ngf1d_hstop(&pb);
+  if (strcmp(argv[1], "hstop") == 0) {
+    printf("Hstop %.12g m, discrete (n = %d) %.12g m, Hstop/d %.9g\n", ngf1d_hstop(&pb), pb.n,
+           ngf1d_hstop_discrete(&pb), ngf1d_hstop(&pb) / pb.d);
+    return 0;
+  }
+  char msg[256];
+  ngf1d_result r;
+  int rc = ngf1d_solve(&pb, NULL, &r, msg, sizeof msg);
+  if (rc)
+    fprintf(stderr, "ngf1d: %s\n", msg);
+  else {
+    print_header(&pb);
+    print_profile(&pb, &r);
+  }
+  ngf1d_result_free(&r);
+  return rc ? 1 : 0;
+}

@@ -1,0 +1,524 @@
+/* ngf1d.c: steady 1D nonlocal granular fluidity by finite volumes and
+ * pseudo-transient Newton (see ngf1d.h for the equations).
+ *
+ * Discretisation: l^2 (flux_{i+1/2} - flux_{i-1/2}) = int_cell (local part),
+ * flux_{i+1/2} = kap_{i+1/2} (g_{i+1} - g_i), vertex-centred cells, half cells
+ * at the ends, zero flux at a Neumann end, g = 0 at a Dirichlet end.
+ *   chute: with s = H xi^2 (depth), l^2 g_ss = R becomes
+ *            l^2 d/dxi (g_xi / xi) = 4 H^2 xi R,
+ *          and xi R = P xi g + Q g^2 xi / sqrt(p) (p = p_top + kappa H xi^2,
+ *          kappa = rho grav cos(theta)) is smooth in xi although g_ss ~ s^-1/2
+ *          when p_top = 0: kap_{i+1/2} = 2/(xi_{i+1}^2 - xi_i^2) (exact for
+ *          g = a + b xi^2), local part 4 H^2 (P g int xi + Q g^2 int xi/sqrt(p))
+ *          over the cell, the integrals exact
+ *          (int xi/sqrt(p) dxi = sqrt(p)/(kappa H)).
+ *   vchute: uniform x, kap = 1/h, local part |cell| (P g + Q g^2/sqrt(p)).
+ * Residual F_i = l^2 (kap_{i+1/2}(g_{i+1}-g_i) - kap_{i-1/2}(g_i-g_{i-1}))
+ *              - c1_i g_i - c2_i g_i^2; Jacobian J symmetric tridiagonal.
+ * Pseudo time: M dg/dtau = F(g), implicit Euler linearised once per step,
+ *   (M/dtau - J) delta = F, g <- max(g + delta, 0),
+ * with dtau kept small enough that M/dtau - J is positive definite (the step
+ * is then a stable implicit step, which cannot flip a growing mode's sign and
+ * so cannot fall onto g = 0 when g = 0 is unstable), and grown geometrically
+ * (switched evolution relaxation) so that it ends in Newton's method. */
+#define _DEFAULT_SOURCE /* M_PI */
+#include "ngf1d.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_vector.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* Discrete problem. */
+typedef struct grid {
+  int n, nu;        /* intervals, unknowns (g_0 .. g_{nu-1}) */
+  double l2;        /* (A d)^2 [m^2] */
+  double *kap;      /* [n] face i+1/2 */
+  double *c1, *c2;  /* [n+1] local part c1 g + c2 g^2 */
+  double *mass;     /* [n+1] pseudo-time mass */
+  double *pos, *mu; /* [n+1] */
+  double *vw;       /* [n+1] velocity: dv = gdot vw d(index) (trapezoid weights) */
+} grid;
+
+static void grid_free(grid *G)
+{
+  free(G->kap);
+  free(G->c1);
+  free(G->c2);
+  free(G->mass);
+  free(G->pos);
+  free(G->mu);
+  free(G->vw);
+}
+
+static int grid_alloc(grid *G, int n)
+{
+  G->n = n;
+  size_t m = (size_t)n + 1;
+  G->kap = calloc(m, sizeof(double));
+  G->c1 = calloc(m, sizeof(double));
+  G->c2 = calloc(m, sizeof(double));
+  G->mass = calloc(m, sizeof(double));
+  G->pos = calloc(m, sizeof(double));
+  G->mu = calloc(m, sizeof(double));
+  G->vw = calloc(m, sizeof(double));
+  if (!G->kap || !G->c1 || !G->c2 || !G->mass || !G->pos || !G->mu || !G->vw) {
+    grid_free(G);
+    return -1;
+  }
+  return 0;
+}
+
+/* ---------------------------------------------------------------- model */
+
+static double coef_P(const ngf1d_problem *pb, double mu)
+{
+  if (pb->form == NGF1D_HS21)
+    return pb->mu_s - mu;                                        /* mu_s - mu */
+  return (pb->mu_2 - pb->mu_s) * (pb->mu_s - mu) / (pb->mu_2 - mu);  /* dmu (mu_s-mu)/(mu_2-mu) */
+}
+
+static double coef_Q(const ngf1d_problem *pb, double mu)
+{
+  double b = (pb->mu_2 - pb->mu_s) / pb->I0;                     /* b = dmu / I0 */
+  return b * sqrt(pb->rho_s) * pb->d * mu;                       /* b sqrt(rho_s d^2) mu */
+}
+
+/* Local inertial number at mu (A = 0): I0 (mu-mu_s)/(mu_2-mu) or (mu-mu_s)/b. */
+static double local_I(const ngf1d_problem *pb, double mu)
+{
+  if (mu <= pb->mu_s)
+    return 0.0;
+  if (pb->form == NGF1D_HS21)
+    return (mu - pb->mu_s) * pb->I0 / (pb->mu_2 - pb->mu_s);
+  return pb->I0 * (mu - pb->mu_s) / (pb->mu_2 - mu);
+}
+
+void ngf1d_defaults(ngf1d_problem *pb, int geometry)
+{
+  *pb = (ngf1d_problem){.geometry = geometry, .form = NGF1D_DK, .A = 0.25, .d = 0.005,
+                        .mu_s = 0.3819, .mu_2 = 1.5, .I0 = 0.279, .rho_s = 2450.0,
+                        .rho = 1500.0, .grav = 9.81, .theta = 27.0 * M_PI / 180.0,
+                        .H = 0.0, .L = 1.0, .p = 900.0, .n = 400};
+  if (geometry == NGF1D_CHUTE) {
+    pb->H = 3.0 * ngf1d_hstop(pb);
+  } else {   /* [D-thesis] Table 4.1 and its linearised law mu = mu_s + b I, b = 0.9377 */
+    pb->form = NGF1D_HS21;
+    pb->A = 0.48;
+    pb->d = 0.05;
+    pb->mu_2 = 0.6435;
+  }
+}
+
+int ngf1d_validate(const ngf1d_problem *pb, char *msg, size_t len)
+{
+  const char *bad = NULL;
+  if (!(pb->A > 0.0 && pb->d > 0.0 && pb->rho_s > 0.0 && pb->I0 > 0.0))
+    bad = "A, d, rho_s and I0 must be > 0";
+  else if (!(pb->mu_s >= 0.0 && pb->mu_2 > pb->mu_s))
+    bad = "need 0 <= mu_s < mu_2";
+  else if (!(pb->rho > 0.0 && pb->grav > 0.0) || pb->n < 4)
+    bad = "rho and grav must be > 0 and n >= 4";
+  else if (pb->geometry == NGF1D_CHUTE && !(pb->H > 0.0 && pb->theta > 0.0 &&
+                                            pb->theta < M_PI / 2 && pb->p_top >= 0.0))
+    bad = "chute: need H > 0, 0 < theta < 90 degrees and p_top >= 0";
+  else if (pb->geometry == NGF1D_CHUTE && pb->form == NGF1D_DK && tan(pb->theta) >= pb->mu_2)
+    bad = "chute, dk form: tan(theta) must be < mu_2 (no steady flow above)";
+  else if (pb->geometry == NGF1D_VCHUTE && !(pb->L > 0.0 && pb->p > 0.0))
+    bad = "vchute: need L > 0 and p > 0";
+  else if (pb->geometry == NGF1D_VCHUTE && pb->form == NGF1D_DK &&
+           pb->rho * pb->grav * 0.5 * pb->L / pb->p >= pb->mu_2)
+    bad = "vchute, dk form: the wall stress ratio rho grav L/(2p) must be < mu_2";
+  if (!bad)
+    return 0;
+  snprintf(msg, len, "%s", bad);
+  return -1;
+}
+
+/* ---------------------------------------------------------------- grids */
+
+/* Chute on xi = i/n (see banner). */
+static void build_chute(const ngf1d_problem *pb, grid *G)
+{
+  const int n = G->n;
+  const double h = 1.0 / n, mu = tan(pb->theta), H = pb->H;
+  const double kH = pb->rho * pb->grav * cos(pb->theta) * H;      /* kappa H */
+  const double P = coef_P(pb, mu), Q = coef_Q(pb, mu);
+  for (int i = 0; i < n; i++)
+    G->kap[i] = 2.0 / (h * h * (2.0 * i + 1.0));                  /* 2/(xi_{i+1}^2 - xi_i^2) */
+  for (int i = 0; i <= n; i++) {
+    double xi = i * h, lo = i == 0 ? 0.0 : xi - 0.5 * h, hi = i == n ? 1.0 : xi + 0.5 * h;
+    double m = 0.5 * (hi * hi - lo * lo);                         /* int xi over the cell */
+    double sq = (hi * hi - lo * lo) /                             /* (sqrt(p_hi) - sqrt(p_lo))/kH */
+                (sqrt(pb->p_top + kH * hi * hi) + sqrt(pb->p_top + kH * lo * lo));
+    G->c1[i] = 4.0 * H * H * P * m;
+    G->c2[i] = 4.0 * H * H * Q * sq;                              /* int xi/sqrt(p) */
+    G->mass[i] = 4.0 * H * H * m;
+    G->pos[i] = H * (1.0 - xi * xi);                              /* z */
+    G->mu[i] = mu;
+    G->vw[i] = 2.0 * H * xi * h;                                  /* dz = 2 H xi dxi */
+  }
+  G->nu = n;                                                      /* g_n = 0 at the base */
+}
+
+/* Vertical chute on x = (L/2) i/n. */
+static void build_vchute(const ngf1d_problem *pb, grid *G)
+{
+  const int n = G->n;
+  const double h = 0.5 * pb->L / n, isp = 1.0 / sqrt(pb->p);
+  for (int i = 0; i < n; i++)
+    G->kap[i] = 1.0 / h;
+  for (int i = 0; i <= n; i++) {
+    double x = i * h, mu = pb->rho * pb->grav * x / pb->p;        /* mu = rho grav x / p */
+    double w = (i == 0 || i == n) ? 0.5 * h : h;
+    G->c1[i] = coef_P(pb, mu) * w;
+    G->c2[i] = coef_Q(pb, mu) * w * isp;
+    G->mass[i] = w;
+    G->pos[i] = x;
+    G->mu[i] = mu;
+    G->vw[i] = h;
+  }
+  G->nu = pb->wall_neumann ? n + 1 : n;
+}
+
+static int build(const ngf1d_problem *pb, grid *G)
+{
+  if (grid_alloc(G, pb->n))
+    return -1;
+  G->l2 = pb->A * pb->A * pb->d * pb->d;                          /* l^2 = (A d)^2 */
+  if (pb->geometry == NGF1D_CHUTE)
+    build_chute(pb, G);
+  else
+    build_vchute(pb, G);
+  return 0;
+}
+
+/* ------------------------------------------------------- residual, Jacobian */
+
+/* F (length nu) at g (n+1 entries, g[nu..n] = 0); returns max_i |F_i| / S_i,
+ * S_i the sum of the magnitudes of the terms of F_i (0 where S_i = 0). */
+static double residual(const grid *G, const double *g, double *F)
+{
+  double rmax = 0.0;
+  for (int i = 0; i < G->nu; i++) {
+    double kl = i > 0 ? G->kap[i - 1] : 0.0, kr = i < G->n ? G->kap[i] : 0.0;
+    double gl = i > 0 ? g[i - 1] : 0.0, gr = i < G->n ? g[i + 1] : 0.0;
+    double flux = G->l2 * (kr * (gr - g[i]) - kl * (g[i] - gl));  /* l^2 (q+ - q-) */
+    F[i] = flux - G->c1[i] * g[i] - G->c2[i] * g[i] * g[i];
+    double s = G->l2 * (kr * (fabs(gr) + fabs(g[i])) + kl * (fabs(g[i]) + fabs(gl)))
+             + fabs(G->c1[i] * g[i]) + fabs(G->c2[i]) * g[i] * g[i];
+    double r = s > 0.0 ? fabs(F[i]) / s : 0.0;
+    rmax = rmax > r ? rmax : r;
+  }
+  return rmax;
+}
+
+/* The tridiagonal (diag, off) of M/dtau - J, idtau = 1/dtau. */
+
+static void system_matrix(const grid *G, const double *g, double idtau, double *diag,
+                          double *off)
+{
+  for (int i = 0; i < G->nu; i++) {
+    double kl = i > 0 ? G->kap[i - 1] : 0.0, kr = i < G->n ? G->kap[i] : 0.0;
+    diag[i] = G->mass[i] * idtau + G->l2 * (kl + kr)              /* M/dtau - dF/dg_i */
+            + G->c1[i] + 2.0 * G->c2[i] * g[i];
+    if (i + 1 < G->nu)
+      off[i] = -G->l2 * kr;
+  }
+}
+
+/* 1 if the symmetric tridiagonal matrix is positive definite (LDL^T pivots). */
+static int positive_definite(const double *diag, const double *off, int n)
+{
+  double piv = diag[0];
+  if (!(piv > 0.0))
+    return 0;
+  for (int i = 1; i < n; i++) {
+    piv = diag[i] - off[i - 1] * off[i - 1] / piv;
+    if (!(piv > 0.0))
+      return 0;
+  }
+  return 1;
+}
+
+/* ------------------------------------------------------------ the solver */
+
+typedef struct work {
+  double *F, *diag, *off, *delta, *gnew;
+} work;
+
+static void work_free(work *w)
+{
+  free(w->F);
+  free(w->diag);
+  free(w->off);
+  free(w->delta);
+  free(w->gnew);
+}
+
+static int work_alloc(work *w, int n)
+{
+  size_t m = (size_t)n + 1;
+  w->F = calloc(m, sizeof(double));
+  w->diag = calloc(m, sizeof(double));
+  w->off = calloc(m, sizeof(double));
+  w->delta = calloc(m, sizeof(double));
+  w->gnew = calloc(m, sizeof(double));
+  if (!w->F || !w->diag || !w->off || !w->delta || !w->gnew) {
+    work_free(w);
+    return -1;
+  }
+  return 0;
+}
+
+/* Solve the SPD tridiagonal system (diag, off) delta = F with GSL. */
+static int solve_tridiag(work *w, int nu)
+{
+  gsl_vector_view d = gsl_vector_view_array(w->diag, (size_t)nu);
+  gsl_vector_view e = gsl_vector_view_array(w->off, (size_t)nu - 1);
+  gsl_vector_view b = gsl_vector_view_array(w->F, (size_t)nu);
+  gsl_vector_view x = gsl_vector_view_array(w->delta, (size_t)nu);
+  return gsl_linalg_solve_symm_tridiag(&d.vector, &e.vector, &b.vector, &x.vector);
+}
+
+static double max_of(const double *g, int n)
+{
+  double m = 0.0;
+  for (int i = 0; i < n; i++)
+    m = g[i] > m ? g[i] : m;
+  return m;
+}
+
+/* One pseudo-time step from g into w->gnew; dtau is reduced until M/dtau - J
+ * is positive definite. Returns 0, or -1 if no step size works. */
+static int pseudo_step(const grid *G, const double *g, double *dtau, work *w)
+{
+  for (int tries = 0; tries < 200; tries++, *dtau *= 0.25) {
+    system_matrix(G, g, 1.0 / *dtau, w->diag, w->off);
+    if (!positive_definite(w->diag, w->off, G->nu))
+      continue;
+    residual(G, g, w->F);
+    if (solve_tridiag(w, G->nu) != GSL_SUCCESS)
+      continue;
+    for (int i = 0; i <= G->n; i++) {
+      double v = i < G->nu ? g[i] + w->delta[i] : 0.0;
+      w->gnew[i] = v > 0.0 ? v : 0.0;                              /* g >= 0 */
+    }
+    return 0;
+  }
+  return -1;
+}
+
+/* Initial pseudo-time step: a thousandth of the smallest explicit scale. */
+static double first_dtau(const grid *G)
+{
+  double t = INFINITY;
+  for (int i = 0; i < G->nu; i++) {
+    double kl = i > 0 ? G->kap[i - 1] : 0.0, kr = i < G->n ? G->kap[i] : 0.0;
+    double rate = (G->l2 * (kl + kr) + fabs(G->c1[i])) / G->mass[i];
+    t = fmin(t, 1.0 / rate);
+  }
+  return 1e-3 * t;
+}
+
+/* Local solution g_loc = -P sqrt(p)/Q where mu > mu_s, as a starting guess. */
+static void local_guess(const grid *G, double *g)
+{
+  for (int i = 0; i <= G->n; i++)
+    g[i] = i < G->nu && G->c1[i] < 0.0 && G->c2[i] > 0.0 ? -G->c1[i] / G->c2[i] : 0.0;
+  if (max_of(g, G->n + 1) == 0.0)
+    for (int i = 0; i < G->nu; i++)
+      g[i] = 1.0;                        /* nothing flows locally: any positive start */
+}
+
+/* Pseudo-transient continuation until the relative residual is below tol or
+ * g vanishes. */
+static int iterate(const grid *G, double *g, ngf1d_result *res, char *msg, size_t len)
+{
+  work w;
+  if (work_alloc(&w, G->n)) {
+    snprintf(msg, len, "out of memory");
+    return -1;
+  }
+  const double tol = 1e-13, g0 = max_of(g, G->n + 1);
+  double dtau = first_dtau(G), r_old = INFINITY;
+  int rc = -1;
+  for (int it = 0; it < 20000; it++) {
+    res->iters = it;
+    res->residual = residual(G, g, w.F);
+    if (max_of(g, G->n + 1) <= 1e-200 * g0) {                      /* decayed to g = 0 */
+      for (int i = 0; i <= G->n; i++)
+        g[i] = 0.0;
+      res->trivial = 1;
+      res->residual = 0.0;
+      rc = 0;
+      break;
+    }
+    if (res->residual <= tol) {
+      rc = 0;
+      break;
+    }
+    if (pseudo_step(G, g, &dtau, &w)) {
+      snprintf(msg, len, "pseudo-transient step failed at iteration %d", it);
+      break;
+    }
+    for (int i = 0; i <= G->n; i++)
+      g[i] = w.gnew[i];
+    double growth = isfinite(r_old) ? r_old / fmax(res->residual, 1e-300) : 1.0;
+    dtau *= fmin(10.0, fmax(1.25, growth));                       /* SER, at least x1.25 */
+    r_old = res->residual;
+  }
+  if (rc && !msg[0])
+    snprintf(msg, len, "no convergence: residual %.3g after %d iterations", res->residual,
+             res->iters);
+  work_free(&w);
+  return rc;
+}
+
+/* gdot = g mu and v by the trapezoid rule from the no-slip end (node n). */
+static void finish(const grid *G, ngf1d_result *res)
+{
+  for (int i = 0; i <= G->n; i++) {
+    res->pos[i] = G->pos[i];
+    res->gdot[i] = res->g[i] * G->mu[i];
+  }
+  res->v[G->n] = 0.0;
+  for (int i = G->n - 1; i >= 0; i--)
+    res->v[i] = res->v[i + 1] + 0.5 * (res->gdot[i] * G->vw[i] + res->gdot[i + 1] * G->vw[i + 1]);
+}
+
+static int result_alloc(ngf1d_result *res, int n)
+{
+  size_t m = (size_t)n + 1;
+  *res = (ngf1d_result){.n = n};
+  res->pos = calloc(m, sizeof(double));
+  res->g = calloc(m, sizeof(double));
+  res->gdot = calloc(m, sizeof(double));
+  res->v = calloc(m, sizeof(double));
+  if (!res->pos || !res->g || !res->gdot || !res->v) {
+    ngf1d_result_free(res);
+    return -1;
+  }
+  return 0;
+}
+
+void ngf1d_result_free(ngf1d_result *res)
+{
+  free(res->pos);
+  free(res->g);
+  free(res->gdot);
+  free(res->v);
+  res->pos = res->g = res->gdot = res->v = NULL;
+}
+
+int ngf1d_solve(const ngf1d_problem *pb, const double *guess, ngf1d_result *res, char *msg,
+                size_t len)
+{
+  msg[0] = '\0';
+  *res = (ngf1d_result){0};
+  if (ngf1d_validate(pb, msg, len))
+    return -1;
+  grid G;
+  if (build(pb, &G) || result_alloc(res, pb->n)) {
+    snprintf(msg, len, "out of memory");
+    return -1;
+  }
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  if (guess)
+    for (int i = 0; i <= G.n; i++)
+      res->g[i] = i < G.nu && guess[i] > 0.0 ? guess[i] : 0.0;
+  else
+    local_guess(&G, res->g);
+  int rc = iterate(&G, res->g, res, msg, len);
+  gsl_set_error_handler(old);
+  finish(&G, res);
+  grid_free(&G);
+  return rc;
+}
+
+/* ------------------------------------------------------------ references */
+
+double ngf1d_hstop(const ngf1d_problem *pb)
+{
+  double alpha = -coef_P(pb, tan(pb->theta));                    /* -P(tan theta) */
+  if (pb->form == NGF1D_DK && tan(pb->theta) >= pb->mu_2)
+    return 0.0;
+  if (!(alpha > 0.0))
+    return INFINITY;
+  return 0.5 * M_PI * pb->A * pb->d / sqrt(alpha);               /* (pi A d/2)/sqrt(alpha) */
+}
+
+/* Lowest eigenvalue lam of T phi = lam m phi, T the flux matrix of the chute
+ * grid in xi (H-free), m = int xi over the cells, by inverse iteration. */
+static double chute_eigenvalue(int n)
+{
+  ngf1d_problem unit;
+  ngf1d_defaults(&unit, NGF1D_CHUTE);
+  unit.H = 1.0;
+  unit.n = n;
+  grid G;
+  work w;
+  if (build(&unit, &G))
+    return NAN;
+  if (work_alloc(&w, n)) {
+    grid_free(&G);
+    return NAN;
+  }
+  double *x = w.gnew, lam = NAN;
+  for (int i = 0; i < n; i++)
+    x[i] = 1.0;
+  for (int it = 0; it < 200; it++) {
+    G.l2 = 1.0;
+    system_matrix(&G, x, 0.0, w.diag, w.off);                     /* T + diag(c1 + 2 c2 x) */
+    for (int i = 0; i < n; i++)
+      w.diag[i] -= G.c1[i] + 2.0 * G.c2[i] * x[i];                 /* T alone */
+    for (int i = 0; i < n; i++)
+      w.F[i] = G.mass[i] * x[i];                                   /* m x (times 4 H^2 = 4) */
+    if (solve_tridiag(&w, n) != GSL_SUCCESS)
+      break;
+    double num = 0.0, den = 0.0;
+    for (int i = 0; i < n; i++) {
+      num += w.delta[i] * G.mass[i] * x[i];                        /* y^T M x */
+      den += w.delta[i] * G.mass[i] * w.delta[i];                  /* y^T M y */
+    }
+    double lam_new = num / den, nrm = sqrt(den);
+    for (int i = 0; i < n; i++)
+      x[i] = w.delta[i] / nrm;
+    if (fabs(lam_new - lam) <= 1e-15 * lam_new)
+      break;
+    lam = lam_new;
+  }
+  work_free(&w);
+  grid_free(&G);
+  return lam;                                                      /* of T phi = lam (4 m) phi */
+}
+
+double ngf1d_hstop_discrete(const ngf1d_problem *pb)
+{
+  double alpha = -coef_P(pb, tan(pb->theta));
+  if (!(alpha > 0.0))
+    return INFINITY;
+  /* mass = 4 H^2 m with H = 1: lam = l^2-free rate, threshold alpha = l^2 lam / H^2 */
+  return pb->A * pb->d * sqrt(chute_eigenvalue(pb->n) / alpha);
+}
+
+double ngf1d_local_v(const ngf1d_problem *pb, double pos)
+{
+  double c = 1.0 / (pb->d * sqrt(pb->rho_s));                      /* gdot = I sqrt(p) c */
+  if (pb->geometry == NGF1D_CHUTE) {
+    double kap = pb->rho * pb->grav * cos(pb->theta), H = pb->H, s = H - pos;  /* depth */
+    double pb0 = pb->p_top + kap * H, pz = pb->p_top + kap * (s > 0.0 ? s : 0.0);
+    return local_I(pb, tan(pb->theta)) * c * (2.0 / 3.0) *        /* int sqrt(p) dz */
+           (pow(pb0, 1.5) - pow(pz, 1.5)) / kap;
+  }
+  double k = pb->rho * pb->grav / pb->p, a = fmax(fabs(pos), pb->mu_s / k), e = 0.5 * pb->L;
+  if (a >= e)
+    return 0.0;
+  double dmu = pb->mu_2 - pb->mu_s, C = c * sqrt(pb->p);
+  if (pb->form == NGF1D_HS21)                                      /* int (k x - mu_s)/b */
+    return C * pb->I0 / dmu * (0.5 * k * (e * e - a * a) - pb->mu_s * (e - a));
+  /* int I0 (k x - mu_s)/(mu_2 - k x) dx = I0 [-x - (dmu/k) ln(mu_2 - k x)] */
+  return C * pb->I0 * (-(e - a) - dmu / k * log((pb->mu_2 - k * e) / (pb->mu_2 - k * a)));
+}

@@ -1,0 +1,79 @@
+/* ngf1d.h: an independent steady 1D solver of the nonlocal granular fluidity
+ * equation, the reference for the NGF verification cases (MODEL.md sections 5
+ * and 8). It shares no code with libgranmpm.
+ *
+ * Steady form of the MODEL.md section 5 PDE (dg/dt = 0), with l = A d:
+ *   l^2 g'' = P(mu) g + Q(mu) g^2 / sqrt(p),   Q = b sqrt(rho_s) d mu,
+ *   P = Delta_mu (mu_s - mu)/(mu_2 - mu)  ("dk", [DK-silo] eq. 2.1), or
+ *   P = mu_s - mu                         ("hs21", [HS21] eq. 6, linearised),
+ * flow rule gdot = g mu.
+ * Geometries:
+ *   chute:  inclined layer of depth H at tilt theta; mu = tan(theta),
+ *           p = p_top + rho grav cos(theta) (H - z) (p_top = 0: free surface);
+ *           g(0) = 0 at the base, g'(H) = 0 at the top; v(z) = int_0^z gdot.
+ *   vchute: vertical chute between rough walls at x = -L/2, L/2; uniform p,
+ *           mu = rho grav |x| / p (the wall shear carries the weight); g = 0 at
+ *           the walls (or g' = 0), symmetric about x = 0; v(+-L/2) = 0,
+ *           v the downward speed. */
+#ifndef NGF1D_H
+#define NGF1D_H
+
+#include <stddef.h>
+
+enum ngf1d_form { NGF1D_DK = 0, NGF1D_HS21 };
+enum ngf1d_geometry { NGF1D_CHUTE = 0, NGF1D_VCHUTE };
+
+typedef struct ngf1d_problem {
+  int geometry, form;
+  double A, d, mu_s, mu_2, I0, rho_s;  /* material: -, m, -, -, -, kg/m^3 */
+  double rho, grav;                    /* bulk density [kg/m^3], gravity [m/s^2] */
+  double theta, H;                     /* chute: tilt [rad], depth [m] */
+  double p_top;                        /* chute: surcharge on the surface [Pa] (0) */
+  double L, p;                         /* vchute: width [m], pressure [Pa] */
+  int wall_neumann;                    /* vchute walls: 0 g = 0, 1 g' = 0 */
+  int n;                               /* grid intervals */
+} ngf1d_problem;
+
+/* Solution on the nodes i = 0..n of the computational grid:
+ *   chute:  xi_i = i/n, depth below the surface s = H xi^2 (nodes cluster at
+ *           the surface, where g'' ~ s^-1/2), z = H - s: i = 0 is the free
+ *           surface, i = n the base;
+ *   vchute: x_i = (L/2) i/n, i = 0 the centre, i = n the wall. */
+typedef struct ngf1d_result {
+  int n;
+  double *pos;       /* z (chute) or x (vchute) [m] */
+  double *g, *gdot;  /* fluidity, shear rate [1/s] */
+  double *v;         /* velocity [m/s] */
+  int iters;         /* pseudo-transient Newton iterations */
+  double residual;   /* final residual relative to the size of its terms */
+  int trivial;       /* 1 when the solution found is g = 0 */
+} ngf1d_result;
+
+/* [DK-silo] Fig. 2(b-c) values (chute) or [D-thesis] Table 4.1 (vchute). */
+void ngf1d_defaults(ngf1d_problem *pb, int geometry);
+
+/* 0 if the problem is well posed, else -1 with a message. */
+int ngf1d_validate(const ngf1d_problem *pb, char *msg, size_t len);
+
+/* Steady solution by pseudo-transient continuation (implicit Euler in a
+ * pseudo time with growing steps, each step one Newton linearisation) from
+ * guess[0..n] (NULL: the local solution), which ends in Newton's method on
+ * the stable branch. Returns 0, or -1 with a message. */
+int ngf1d_solve(const ngf1d_problem *pb, const double *guess, ngf1d_result *res, char *msg,
+                size_t len);
+void ngf1d_result_free(ngf1d_result *res);
+
+/* Chute threshold Hstop: (pi A d/2) / sqrt(-P(tan theta)), i.e. [DK-silo]
+ * eq. 3.1 for "dk"; 0 when tan theta >= mu_2 ("dk"), infinity when
+ * tan theta <= mu_s. */
+double ngf1d_hstop(const ngf1d_problem *pb);
+
+/* The same threshold of the discrete linear operator on pb->n intervals (its
+ * lowest eigenvalue in place of (pi/2H)^2). */
+double ngf1d_hstop_discrete(const ngf1d_problem *pb);
+
+/* Local (A = 0) velocities: chute v(z) (Bagnold, [DK15] eq. 4.6 for "dk"),
+ * vchute v(x) (plug for |x| < mu_s p/(rho grav)). */
+double ngf1d_local_v(const ngf1d_problem *pb, double pos);
+
+#endif
