@@ -25,7 +25,8 @@
 #define DIR_MAX 256
 
 static const char *const all_fields[] = {"x", "y", "vx", "vy", "sxx", "syy", "szz", "sxy",
-                                         "p", "mass", "volume", "state", "gdot_p", "g", "id"};
+                                         "p", "mass", "volume", "state", "gdot_p", "g", "id",
+                                         "r1x", "r1y", "r2x", "r2y"};
 #define NALL ((int)(sizeof all_fields / sizeof all_fields[0]))
 
 /* ---- the run written by every test --------------------------------------- */
@@ -62,7 +63,7 @@ static mpm_points *frame_points(int f)
     size_t i;
     ck_assert_int_eq(mpm_points_push(pts, &i), MPM_OK);
     double *r[] = {pts->x, pts->y, pts->vx, pts->vy, pts->sxx, pts->syy, pts->szz, pts->sxy,
-                   pts->mass, pts->vol, pts->gdp, pts->g};
+                   pts->mass, pts->vol, pts->gdp, pts->g, pts->r1x, pts->r1y, pts->r2x, pts->r2y};
     for (int c = 0; c < (int)(sizeof r / sizeof r[0]); c++)
       r[c][i] = value(f, i, c);
     pts->state[i] = (int)((i + (size_t)f) % 2);
@@ -217,7 +218,8 @@ static int field_index(const char *name)
 static void check_cell(const char *cell, const mpm_points *pts, const char *name, size_t i)
 {
   const double *real[] = {pts->x, pts->y, pts->vx, pts->vy, pts->sxx, pts->syy, pts->szz,
-                          pts->sxy, NULL, pts->mass, pts->vol, NULL, pts->gdp, pts->g, NULL};
+                          pts->sxy, NULL, pts->mass, pts->vol, NULL, pts->gdp, pts->g, NULL,
+                          pts->r1x, pts->r1y, pts->r2x, pts->r2y};
   int k = field_index(name);
   char want[64];
   if (strcmp(name, "state") == 0 || strcmp(name, "id") == 0) {
@@ -265,11 +267,59 @@ START_TEST(t_extract_frame1_all)
   free(t.buf);
   t.buf = NULL;
   ck_assert_int_eq(extract(dir, 1, "  ", &t, &err), MPM_OK); /* blank: all fields */
-  ck_assert_int_eq(strncmp(t.buf, "x,y,vx,vy,sxx,syy,szz,sxy,p,mass,volume,state,gdot_p,g,id\n",
-                           58),
+  ck_assert_int_eq(strncmp(t.buf, "x,y,vx,vy,sxx,syy,szz,sxy,p,mass,volume,state,gdot_p,g,id,"
+                                  "r1x,r1y,r2x,r2y\n", 74),
                    0);
   free(t.buf);
   remove_tree(dir);
+}
+END_TEST
+
+/* Frames read back into a point store: every field bit for bit, the time,
+ * the mesh attributes, the default shape name (the input text written here
+ * has no mesh section) and the frame range. */
+START_TEST(t_run_frame_roundtrip)
+{
+  char dir[DIR_MAX], shape[16];
+  mpm_err err = {0};
+  mpm_run *r = NULL;
+  mpm_mesh m, want;
+  double t = -1.0;
+  write_run(dir);
+  ck_assert_msg(mpm_run_open(&r, dir, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_int_eq(mpm_run_nframes(r), NFRAMES);
+  ck_assert_msg(mpm_run_mesh(r, &m, shape, sizeof shape, &err) == MPM_OK, "%s", err.msg);
+  fill_mesh(&want);
+  ck_assert(m.nx == want.nx && m.ny == want.ny && m.x0 == want.x0 && m.dx == want.dx &&
+            m.dy == want.dy && m.topology == want.topology && m.diagonal == want.diagonal &&
+            m.nnodes == want.nnodes);
+  ck_assert_str_eq(shape, "ugimp");
+  mpm_points *pts = mpm_points_alloc(0);
+  for (int f = -1; f < NFRAMES; f++) {
+    int ff = f < 0 ? NFRAMES - 1 : f;
+    mpm_points *w = frame_points(ff);
+    ck_assert_msg(mpm_run_frame(r, f, pts, &t, &err) == MPM_OK, "%s", err.msg);
+    ck_assert(t == frame_time(ff));
+    ck_assert_uint_eq(pts->n, w->n);
+    for (size_t i = 0; i < w->n; i++) {
+      const double *a[] = {pts->x, pts->y, pts->vx, pts->vy, pts->sxx, pts->syy, pts->szz,
+                           pts->sxy, pts->mass, pts->vol, pts->gdp, pts->g, pts->r1x,
+                           pts->r1y, pts->r2x, pts->r2y};
+      const double *b[] = {w->x, w->y, w->vx, w->vy, w->sxx, w->syy, w->szz, w->sxy, w->mass,
+                           w->vol, w->gdp, w->g, w->r1x, w->r1y, w->r2x, w->r2y};
+      for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
+        ck_assert_msg(memcmp(&a[k][i], &b[k][i], sizeof(double)) == 0, "field %zu point %zu", k, i);
+      ck_assert_int_eq(pts->state[i], w->state[i]);
+      ck_assert_int_eq(pts->id[i], w->id[i]);
+    }
+    mpm_points_free(w);
+  }
+  ck_assert_int_eq(mpm_run_frame(r, NFRAMES, pts, &t, &err), MPM_EINPUT);
+  mpm_points_free(pts);
+  mpm_run_close(r);
+  remove_tree(dir);
+  ck_assert_int_eq(mpm_run_open(&r, dir, &err), MPM_EIO);
+  ck_assert_ptr_null(r);
 }
 END_TEST
 
@@ -315,7 +365,7 @@ START_TEST(t_extract_unknown_field)
   ck_assert_int_eq(err.code, MPM_EINPUT);
   ck_assert_msg(strstr(err.msg, "unknown field 'foo'") != NULL, "%s", err.msg);
   ck_assert_msg(strstr(err.msg, "(available: x, y, vx, vy, sxx, syy, szz, sxy, p, mass, "
-                                "volume, state, gdot_p, g, id)") != NULL,
+                                "volume, state, gdot_p, g, id, r1x, r1y, r2x, r2y)") != NULL,
                 "%s", err.msg);
   free(t.buf);
   t.buf = NULL;
@@ -707,6 +757,7 @@ int main(int argc, char **argv)
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, t_extract_frame1_all);
   tcase_add_test(tc, t_extract_last);
+  tcase_add_test(tc, t_run_frame_roundtrip);
   tcase_add_test(tc, t_extract_selection);
   tcase_add_test(tc, t_extract_unknown_field);
   tcase_add_test(tc, t_extract_frame_range);

@@ -1,3 +1,4 @@
 bin_PROGRAMS += src/app/granmpm
-src_app_granmpm_SOURCES = src/app/main.c src/app/constitutive.c src/app/constitutive.h
+src_app_granmpm_SOURCES = src/app/main.c src/app/constitutive.c src/app/constitutive.h \
+	src/app/analyse.c src/app/analyse.h
 src_app_granmpm_LDADD = libgranmpm.la $(DEP_LIBS)

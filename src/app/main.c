@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "app/analyse.h"
 #include "app/constitutive.h"
 #include "diag/diag.h"
 #include "io/io.h"
@@ -28,6 +29,13 @@ static const char usage_text[] =
   "        validate FILE and print the fully resolved input\n"
   "  extract RUNDIR [--frame N|last] [--fields a,b,c]\n"
   "        print one output frame as CSV with a header row\n"
+  "  extract RUNDIR --profile N [--frame N|last] [--range YMIN:YMAX]\n"
+  "  extract RUNDIR --surface [--frame N|last] [--width W]\n"
+  "  extract RUNDIR --smooth [--frame N|last]\n"
+  "  extract RUNDIR --series [--gdot-min G] [--front-cell H] [--front-min K]\n"
+  "                 [--slope XA:XB|auto] [--width W]\n"
+  "        measurements: velocity profile, free surface, smoothed pressure,\n"
+  "        per-frame speed, acceleration, mu, front, slope (docs/diagnostics.md)\n"
   "  constitutive [ARGS]\n"
   "        drive one material point through a velocity-gradient history\n"
   "        (granmpm constitutive --help)\n"
@@ -207,6 +215,8 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
 
 static int cmd_extract(int argc, char **argv)
 {
+  if (mpm_app_is_analysis(argc, argv))
+    return mpm_app_analyse(argc, argv);
   const char *dir = NULL, *fields = NULL;
   int frame = -1;
   for (int i = 1; i < argc; i++) {

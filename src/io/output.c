@@ -62,6 +62,10 @@ static const field_spec output_fields[] = {
   {"gdot_p", "1/s", "equivalent plastic shear rate", FIELD_REAL, offsetof(mpm_points, gdp)},
   {"g", "1/s", "granular fluidity", FIELD_REAL, offsetof(mpm_points, g)},
   {"id", "-", "persistent point id", FIELD_INT, offsetof(mpm_points, id)},
+  {"r1x", "m", "extent half-vector r1, x", FIELD_REAL, offsetof(mpm_points, r1x)},
+  {"r1y", "m", "extent half-vector r1, y", FIELD_REAL, offsetof(mpm_points, r1y)},
+  {"r2x", "m", "extent half-vector r2, x", FIELD_REAL, offsetof(mpm_points, r2x)},
+  {"r2y", "m", "extent half-vector r2, y", FIELD_REAL, offsetof(mpm_points, r2y)},
 };
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define NFIELDS COUNT(output_fields)

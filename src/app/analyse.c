@@ -1,0 +1,332 @@
+/* analyse.c: `granmpm extract` measurements of a run directory
+ * (docs/diagnostics.md): a frame's velocity profile across the depth, its
+ * free surface, its points with nodally smoothed pressure ([DK15] eqs.
+ * 4.1-4.3), and a per-frame series of depth-averaged speed and acceleration,
+ * mean mu of the flowing layer, front position and heap slope. Frames are
+ * read back with io/frame.c; the numbers come from diag/flow.c. */
+#define _POSIX_C_SOURCE 200809L
+#include "app/analyse.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diag/flow.h"
+#include "io/io.h"
+#include "shape/shape.h"
+
+enum { EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
+enum mode { MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES };
+
+typedef struct opts {
+  const char *dir;
+  int mode;
+  int frame;            /* < 0: last */
+  int nbins;            /* --profile N */
+  double ymin, ymax;    /* --range A:B (ymax <= ymin: 0 to the top point) */
+  double width;         /* column width [m]; 0: mesh dx */
+  double gdot_min;      /* flowing-layer threshold [1/s] */
+  double front_cell;    /* 0: mesh dx */
+  int front_min;        /* 1: no filtering */
+  int slope;            /* 0 none, 1 range, 2 auto */
+  double xa, xb;
+} opts;
+
+static int usage(const char *what, const char *arg)
+{
+  fprintf(stderr, "granmpm: extract: %s '%s' (see 'granmpm --help')\n", what, arg);
+  return EXIT_USAGE;
+}
+
+static int num(const char *s, double *v)
+{
+  char *end;
+  *v = strtod(s, &end);
+  return *s != '\0' && *end == '\0' && isfinite(*v);
+}
+
+/* "A:B" with finite A < B. */
+static int pair(const char *s, double *a, double *b)
+{
+  char buf[128];
+  const char *c = strchr(s, ':');
+  if (!c || (size_t)(c - s) >= sizeof buf)
+    return 0;
+  memcpy(buf, s, (size_t)(c - s));
+  buf[c - s] = '\0';
+  return num(buf, a) && num(c + 1, b) && *a < *b;
+}
+
+static int parse(int argc, char **argv, opts *o)
+{
+  memset(o, 0, sizeof *o);
+  o->frame = -1;
+  o->front_min = 1;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    double d;
+    if (strcmp(a, "--profile") == 0 && v) {
+      if (!num(v, &d) || d < 1 || d > 100000 || d != floor(d))
+        return usage("--profile expects a number of bins 1..100000, got", v);
+      o->mode = MODE_PROFILE;
+      o->nbins = (int)d;
+      i++;
+    } else if (strcmp(a, "--surface") == 0) {
+      o->mode = MODE_SURFACE;
+    } else if (strcmp(a, "--smooth") == 0) {
+      o->mode = MODE_SMOOTH;
+    } else if (strcmp(a, "--series") == 0) {
+      o->mode = MODE_SERIES;
+    } else if (strcmp(a, "--frame") == 0 && v) {
+      if (strcmp(v, "last") == 0)
+        o->frame = -1;
+      else if (!num(v, &d) || d < 0 || d > 1e9 || d != floor(d))
+        return usage("--frame expects a frame number >= 0 or 'last', got", v);
+      else
+        o->frame = (int)d;
+      i++;
+    } else if (strcmp(a, "--range") == 0 && v) {
+      if (!pair(v, &o->ymin, &o->ymax))
+        return usage("--range expects YMIN:YMAX with YMIN < YMAX, got", v);
+      i++;
+    } else if (strcmp(a, "--width") == 0 && v) {
+      if (!num(v, &o->width) || !(o->width > 0))
+        return usage("--width expects a column width > 0 [m], got", v);
+      i++;
+    } else if (strcmp(a, "--gdot-min") == 0 && v) {
+      if (!num(v, &o->gdot_min) || o->gdot_min < 0)
+        return usage("--gdot-min expects a shear rate >= 0 [1/s], got", v);
+      i++;
+    } else if (strcmp(a, "--front-cell") == 0 && v) {
+      if (!num(v, &o->front_cell) || !(o->front_cell > 0))
+        return usage("--front-cell expects a cell size > 0 [m], got", v);
+      i++;
+    } else if (strcmp(a, "--front-min") == 0 && v) {
+      if (!num(v, &d) || d < 1 || d > 1000 || d != floor(d))
+        return usage("--front-min expects a point count 1..1000, got", v);
+      o->front_min = (int)d;
+      i++;
+    } else if (strcmp(a, "--slope") == 0 && v) {
+      if (strcmp(v, "auto") == 0)
+        o->slope = 2;
+      else if (pair(v, &o->xa, &o->xb))
+        o->slope = 1;
+      else
+        return usage("--slope expects XA:XB with XA < XB or 'auto', got", v);
+      i++;
+    } else if (a[0] == '-') {
+      return usage("unknown or incomplete option", a);
+    } else if (!o->dir) {
+      o->dir = a;
+    } else {
+      return usage("unexpected argument", a);
+    }
+  }
+  if (!o->dir)
+    return usage("a run directory is required", "");
+  return 0;
+}
+
+int mpm_app_is_analysis(int argc, char **argv)
+{
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "--profile") || !strcmp(argv[i], "--surface") ||
+        !strcmp(argv[i], "--smooth") || !strcmp(argv[i], "--series"))
+      return 1;
+  return 0;
+}
+
+/* ---- the measurements --------------------------------------------------------- */
+
+static int do_profile(const opts *o, const mpm_points *pts, const mpm_mesh *m, mpm_err *err)
+{
+  double ymin = o->ymin, ymax = o->ymax;
+  if (!(ymax > ymin)) {                   /* default: mesh bottom to the top point */
+    mpm_flow f;
+    mpm_diag_flow(pts, 0.0, &f);
+    ymin = m->y0;
+    ymax = f.ymax;
+  }
+  mpm_profile_bin *b = malloc((size_t)o->nbins * sizeof *b);
+  if (!b)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  int rc = mpm_diag_profile(pts, ymin, ymax, o->nbins, b, err);
+  if (rc == MPM_OK) {
+    printf("y,vx,vy,mass,n\n");
+    for (int k = 0; k < o->nbins; k++)
+      printf("%.10g,%.10g,%.10g,%.10g,%zu\n", b[k].y, b[k].vx, b[k].vy, b[k].mass, b[k].n);
+  }
+  free(b);
+  return rc;
+}
+
+static int do_surface(const opts *o, const mpm_points *pts, const mpm_mesh *m, mpm_err *err)
+{
+  double w = o->width > 0 ? o->width : m->dx;
+  int n = (int)ceil(m->lx / w);
+  double *top = malloc((size_t)n * sizeof *top);
+  if (!top)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  int rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
+  if (rc == MPM_OK) {
+    printf("x,top\n");
+    for (int k = 0; k < n; k++)
+      if (!isnan(top[k]))
+        printf("%.10g,%.10g\n", m->x0 + (k + 0.5) * w, top[k]);
+  }
+  free(top);
+  return rc;
+}
+
+static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape, double t,
+                     mpm_err *err)
+{
+  const mpm_shape_type *type = mpm_shape_lookup(shape);
+  if (!type)
+    return mpm_err_set(err, MPM_EINPUT, "run uses unknown shape functions '%s'", shape);
+  mpm_stencil *st = mpm_stencil_alloc(pts->n);
+  size_t n = pts->n, nn = (size_t)m->nnodes;
+  double *p = malloc((n + 1) * sizeof *p), *ps = malloc((n + 1) * sizeof *ps);
+  double *nm = malloc(nn * sizeof *nm), *nmf = malloc(nn * sizeof *nmf);
+  int rc = (!st || !p || !ps || !nm || !nmf) ? mpm_err_set(err, MPM_ENOMEM, "out of memory")
+                                             : MPM_OK;
+  for (size_t i = 0; rc == MPM_OK && i < n; i++)
+    p[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+  if (rc == MPM_OK)
+    rc = mpm_stencil_compute(st, type, m, pts, t, err);
+  if (rc == MPM_OK)
+    rc = mpm_diag_smooth(st, n, pts->mass, p, m->nnodes, nm, nmf, ps, err);
+  if (rc == MPM_OK) {
+    printf("x,y,p,p_smooth,gdot_p,state\n");
+    for (size_t i = 0; i < n; i++)
+      printf("%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", pts->x[i], pts->y[i], p[i], ps[i],
+             pts->gdp[i], pts->state[i]);
+  }
+  mpm_stencil_free(st);
+  free(p);
+  free(ps);
+  free(nm);
+  free(nmf);
+  return rc;
+}
+
+/* Heap slope range "auto": from the first column (left to right) whose top
+ * is below 90% of the highest top to the last one above 10% of it. */
+static int auto_range(const mpm_points *pts, const mpm_mesh *m, double w, double *xa,
+                      double *xb, mpm_err *err)
+{
+  int n = (int)ceil(m->lx / w), ka = -1, kb = -1;
+  double *top = malloc((size_t)n * sizeof *top), hmax = -INFINITY, y0 = m->y0;
+  if (!top)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  int rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
+  for (int k = 0; rc == MPM_OK && k < n; k++)
+    if (!isnan(top[k]) && top[k] > hmax)
+      hmax = top[k];
+  for (int k = 0; rc == MPM_OK && k < n; k++) {
+    if (isnan(top[k]))
+      continue;
+    if (ka < 0 && top[k] - y0 < 0.9 * (hmax - y0))
+      ka = k;
+    if (top[k] - y0 > 0.1 * (hmax - y0))
+      kb = k;
+  }
+  free(top);
+  if (rc == MPM_OK && (ka < 0 || kb < ka + 1))
+    rc = mpm_err_set(err, MPM_EINVAL, "slope auto: no sloping part of the surface found");
+  if (rc == MPM_OK) {
+    *xa = m->x0 + ka * w;
+    *xb = m->x0 + (kb + 1) * w;
+  }
+  return rc;
+}
+
+static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
+{
+  int nf = mpm_run_nframes(r);
+  double w = o->width > 0 ? o->width : m->dx, h = o->front_cell > 0 ? o->front_cell : m->dx;
+  double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
+  double *a = calloc((size_t)nf + 1, sizeof *a);
+  mpm_flow *f = calloc((size_t)nf + 1, sizeof *f);
+  double *front = calloc((size_t)nf + 1, sizeof *front), *sl = calloc((size_t)nf + 1, sizeof *sl);
+  double *xa = calloc((size_t)nf + 1, sizeof *xa), *xb = calloc((size_t)nf + 1, sizeof *xb);
+  mpm_points *pts = mpm_points_alloc(0);
+  int rc = (!t || !v || !a || !f || !front || !sl || !xa || !xb || !pts)
+             ? mpm_err_set(err, MPM_ENOMEM, "out of memory") : MPM_OK;
+  for (int k = 0; rc == MPM_OK && k < nf; k++) {
+    rc = mpm_run_frame(r, k, pts, &t[k], err);
+    if (rc != MPM_OK)
+      break;
+    mpm_diag_flow(pts, o->gdot_min, &f[k]);
+    v[k] = f[k].vx;
+    rc = mpm_diag_front(pts, h, o->front_min, &front[k], err);
+    sl[k] = NAN;
+    if (rc == MPM_OK && o->slope) {
+      xa[k] = o->xa;
+      xb[k] = o->xb;
+      int src = o->slope == 2 ? auto_range(pts, m, w, &xa[k], &xb[k], err) : MPM_OK;
+      if (src == MPM_OK && mpm_diag_heap_slope(pts, xa[k], xb[k], w, &sl[k], err) != MPM_OK)
+        sl[k] = NAN;                       /* no surface in range in this frame */
+      if (src != MPM_OK)
+        sl[k] = xa[k] = xb[k] = NAN;
+    }
+  }
+  if (rc == MPM_OK && nf >= 2)
+    rc = mpm_diag_derivative((size_t)nf, t, v, a, err);
+  if (rc == MPM_OK) {
+    printf("t,vx,speed,ax,mu,flow_mass,front%s\n", o->slope ? ",slope,slope_deg,xa,xb" : "");
+    for (int k = 0; k < nf; k++) {
+      printf("%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", t[k], v[k], f[k].speed, a[k],
+             f[k].mu, f[k].flow_mass, front[k]);
+      if (o->slope)
+        printf(",%.10g,%.10g,%.10g,%.10g", sl[k], atan(fabs(sl[k])) * 180.0 / acos(-1.0),
+               xa[k], xb[k]);
+      printf("\n");
+    }
+  }
+  mpm_points_free(pts);
+  free(t);
+  free(v);
+  free(a);
+  free(f);
+  free(front);
+  free(sl);
+  free(xa);
+  free(xb);
+  return rc;
+}
+
+int mpm_app_analyse(int argc, char **argv)
+{
+  opts o;
+  int st = parse(argc, argv, &o);
+  if (st != 0)
+    return st;
+  mpm_err err = {0};
+  mpm_run *r = NULL;
+  mpm_mesh m;
+  char shape[64];
+  double t = 0.0;
+  mpm_points *pts = mpm_points_alloc(0);
+  int rc = pts ? mpm_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
+  if (rc == MPM_OK)
+    rc = mpm_run_mesh(r, &m, shape, sizeof shape, &err);
+  if (rc == MPM_OK && o.mode != MODE_SERIES)
+    rc = mpm_run_frame(r, o.frame, pts, &t, &err);
+  if (rc == MPM_OK) {
+    switch (o.mode) {
+    case MODE_PROFILE: rc = do_profile(&o, pts, &m, &err); break;
+    case MODE_SURFACE: rc = do_surface(&o, pts, &m, &err); break;
+    case MODE_SMOOTH: rc = do_smooth(pts, &m, shape, t, &err); break;
+    default: rc = do_series(&o, r, &m, &err); break;
+    }
+  }
+  mpm_run_close(r);
+  mpm_points_free(pts);
+  if (rc != MPM_OK) {
+    fprintf(stderr, "granmpm: %s\n", err.msg);
+    return rc == MPM_EINPUT || rc == MPM_EIO ? EXIT_USAGE : EXIT_RUNTIME;
+  }
+  return fflush(stdout) == 0 ? 0 : EXIT_RUNTIME;
+}

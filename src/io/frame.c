@@ -1,0 +1,227 @@
+/* frame.c: read frames of a run directory back into a point store, and the
+ * run's mesh, for post-processing (granmpm extract --profile, --series, ...).
+ *
+ * Reads DIR/run.h5 as written by output.c: /mesh attributes, the resolved
+ * input (attribute "input", for the shape-function name) and frame groups
+ * /frames/NNNNNN with attribute "time" and one dataset per point field.
+ * Extents (r1x, r1y, r2x, r2y) are read when the frame has them. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <hdf5.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/io.h"
+
+struct mpm_run {
+  char path[MPM_PATH_MAX + 16];
+  hid_t file;
+  int nframes;
+  H5E_auto2_t efunc;
+  void *edata;
+};
+
+static int fail(mpm_run *r, mpm_err *err, const char *what)
+{
+  return mpm_err_set(err, MPM_EIO, "%s in '%s'", what, r->path);
+}
+
+int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
+{
+  mpm_run *r = calloc(1, sizeof *r);
+  *out = NULL;
+  if (!r)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory opening run '%s'", dir);
+  if (snprintf(r->path, sizeof r->path, "%s/run.h5", dir) >= (int)sizeof r->path) {
+    free(r);
+    return mpm_err_set(err, MPM_EINPUT, "run directory name too long: '%s'", dir);
+  }
+  H5Eget_auto2(H5E_DEFAULT, &r->efunc, &r->edata);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);            /* errors become return codes */
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+#if H5_VERSION_GE(1, 10, 7)
+  H5Pset_file_locking(fapl, 0, 1);                  /* a running job may still write */
+#endif
+  r->file = H5Fopen(r->path, H5F_ACC_RDONLY, fapl);
+  H5Pclose(fapl);
+  if (r->file < 0) {
+    int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?)", r->path);
+    mpm_run_close(r);
+    return rc;
+  }
+  H5G_info_t info;
+  hid_t g = H5Gopen2(r->file, "frames", H5P_DEFAULT);
+  if (g < 0 || H5Gget_info(g, &info) < 0) {
+    if (g >= 0)
+      H5Gclose(g);
+    int rc = fail(r, err, "no frames group");
+    mpm_run_close(r);
+    return rc;
+  }
+  H5Gclose(g);
+  r->nframes = (int)info.nlinks;
+  *out = r;
+  return MPM_OK;
+}
+
+void mpm_run_close(mpm_run *r)
+{
+  if (!r)
+    return;
+  if (r->file >= 0)
+    H5Fclose(r->file);
+  H5Eset_auto2(H5E_DEFAULT, r->efunc, r->edata);
+  free(r);
+}
+
+int mpm_run_nframes(const mpm_run *r)
+{
+  return r->nframes;
+}
+
+static int read_attr(hid_t obj, const char *name, hid_t type, void *v)
+{
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  herr_t rc = a < 0 ? -1 : H5Aread(a, type, v);
+  if (a >= 0)
+    H5Aclose(a);
+  return rc < 0 ? -1 : 0;
+}
+
+/* The value of `shape = "..."` inside the "mesh {" section of the resolved
+ * input text (written by mpm_input_write, one key per line). */
+static void shape_from_input(const char *text, char *shape, size_t len)
+{
+  const char *m = strstr(text, "\nmesh {");
+  const char *end = m ? strstr(m, "\n}") : NULL;
+  const char *k = m ? strstr(m, "\n  shape = \"") : NULL;
+  snprintf(shape, len, "%s", "ugimp");
+  if (k && (!end || k < end)) {
+    k += strlen("\n  shape = \"");
+    const char *q = strchr(k, '"');
+    if (q && (size_t)(q - k) < len)
+      snprintf(shape, len, "%.*s", (int)(q - k), k);
+  }
+}
+
+int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err *err)
+{
+  hid_t g = H5Gopen2(r->file, "mesh", H5P_DEFAULT);
+  char topo[16] = "", diag[16] = "";
+  int rc = g < 0 ? -1 : 0;
+  memset(m, 0, sizeof *m);
+  if (rc == 0)
+    rc = read_attr(g, "nx", H5T_NATIVE_INT, &m->nx) | read_attr(g, "ny", H5T_NATIVE_INT, &m->ny) |
+         read_attr(g, "x0", H5T_NATIVE_DOUBLE, &m->x0) |
+         read_attr(g, "y0", H5T_NATIVE_DOUBLE, &m->y0) |
+         read_attr(g, "dx", H5T_NATIVE_DOUBLE, &m->dx) |
+         read_attr(g, "dy", H5T_NATIVE_DOUBLE, &m->dy) |
+         read_attr(g, "mirror_x", H5T_NATIVE_DOUBLE, &m->mirror_x) |
+         read_attr(g, "periodic_x", H5T_NATIVE_INT, &m->periodic_x) |
+         read_attr(g, "periodic_y", H5T_NATIVE_INT, &m->periodic_y);
+  for (int k = 0; rc == 0 && k < 2; k++) {
+    hid_t a = H5Aopen(g, k ? "diagonal" : "topology", H5P_DEFAULT);
+    hid_t t = a < 0 ? -1 : H5Aget_type(a);
+    char *dst = k ? diag : topo;
+    if (t < 0 || H5Tget_size(t) >= sizeof topo || H5Aread(a, t, dst) < 0)
+      rc = -1;
+    if (t >= 0)
+      H5Tclose(t);
+    if (a >= 0)
+      H5Aclose(a);
+  }
+  if (g >= 0)
+    H5Gclose(g);
+  if (rc != 0)
+    return fail((mpm_run *)r, err, "cannot read the mesh attributes");
+  m->topology = mpm_mesh_topology_from_name(topo);
+  m->diagonal = mpm_mesh_diagonal_from_name(diag);
+  if (m->topology < 0 || m->diagonal < 0)
+    return fail((mpm_run *)r, err, "unknown mesh topology or diagonal");
+  if (shape && len) {
+    hid_t a = H5Aopen(r->file, "input", H5P_DEFAULT);
+    hid_t t = a < 0 ? -1 : H5Aget_type(a);
+    size_t n = t < 0 ? 0 : H5Tget_size(t);
+    char *text = n ? malloc(n + 1) : NULL;
+    snprintf(shape, len, "%s", "ugimp");
+    if (text && H5Aread(a, t, text) >= 0) {
+      text[n] = '\0';
+      shape_from_input(text, shape, len);
+    }
+    free(text);
+    if (t >= 0)
+      H5Tclose(t);
+    if (a >= 0)
+      H5Aclose(a);
+  }
+  return mpm_mesh_setup(m, err);
+}
+
+/* One 1-D dataset of n values into dst (double or int); -1 if missing. */
+static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *dst)
+{
+  if (H5Lexists(g, name, H5P_DEFAULT) <= 0)
+    return -1;
+  hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+  hid_t s = d < 0 ? -1 : H5Dget_space(d);
+  hsize_t dims[1] = {0};
+  int ok = s >= 0 && H5Sget_simple_extent_ndims(s) == 1 &&
+           H5Sget_simple_extent_dims(s, dims, NULL) == 1 && dims[0] == n;
+  if (ok && n > 0)
+    ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, dst) >= 0;
+  if (s >= 0)
+    H5Sclose(s);
+  if (d >= 0)
+    H5Dclose(d);
+  return ok ? 0 : -1;
+}
+
+int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_err *err)
+{
+  char name[48];
+  unsigned long long n = 0;
+  if (frame < 0)
+    frame = r->nframes - 1;
+  if (frame < 0 || frame >= r->nframes)
+    return mpm_err_set(err, MPM_EINPUT, "frame %d not in '%s' (frames 0..%d)", frame, r->path,
+                       r->nframes - 1);
+  snprintf(name, sizeof name, "frames/%06d", frame);
+  hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
+  if (g < 0 || read_attr(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
+      read_attr(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
+    if (g >= 0)
+      H5Gclose(g);
+    return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s'", frame, r->path);
+  }
+  pts->n = 0;
+  if (mpm_points_reserve(pts, (size_t)n) != MPM_OK) {
+    H5Gclose(g);
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory reading frame %d of '%s'", frame, r->path);
+  }
+  pts->n = (size_t)n;
+  const struct { const char *name; double *dst; } real[] = {
+    {"x", pts->x}, {"y", pts->y}, {"vx", pts->vx}, {"vy", pts->vy}, {"sxx", pts->sxx},
+    {"syy", pts->syy}, {"szz", pts->szz}, {"sxy", pts->sxy}, {"mass", pts->mass},
+    {"volume", pts->vol}, {"gdot_p", pts->gdp}, {"g", pts->g},
+  };
+  int rc = MPM_OK;
+  for (size_t k = 0; rc == MPM_OK && k < sizeof real / sizeof real[0]; k++)
+    if (read_field(g, real[k].name, H5T_NATIVE_DOUBLE, n, real[k].dst) < 0)
+      rc = mpm_err_set(err, MPM_EIO, "cannot read field '%s' of frame %d in '%s'",
+                       real[k].name, frame, r->path);
+  if (rc == MPM_OK && (read_field(g, "state", H5T_NATIVE_INT, n, pts->state) < 0 ||
+                       read_field(g, "id", H5T_NATIVE_INT, n, pts->id) < 0))
+    rc = mpm_err_set(err, MPM_EIO, "cannot read state or id of frame %d in '%s'", frame,
+                     r->path);
+  /* extents: absent in runs written before they were output */
+  double *ext[] = {pts->r1x, pts->r1y, pts->r2x, pts->r2y};
+  const char *en[] = {"r1x", "r1y", "r2x", "r2y"};
+  for (int k = 0; rc == MPM_OK && k < 4; k++)
+    if (read_field(g, en[k], H5T_NATIVE_DOUBLE, n, ext[k]) < 0)
+      memset(ext[k], 0, (size_t)n * sizeof(double));
+  H5Gclose(g);
+  if (rc != MPM_OK)
+    pts->n = 0;
+  return rc;
+}

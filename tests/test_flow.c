@@ -1,0 +1,322 @@
+/* test_flow.c: flow diagnostics (diag/flow.h) against values computed by
+ * hand or in closed form: Bagnold-shaped profile bins, layer means and mu,
+ * front with an isolated point, heap slope, derivative of a quadratic, and
+ * the nodal smoothing of [DK15] eqs. 4.1-4.3 on a hand-made stencil and on the
+ * real uGIMP stencil. */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/points.h"
+#include "diag/flow.h"
+#include "mesh/mesh.h"
+#include "shape/shape.h"
+
+/* Round-off of a handful of operations on O(1) numbers. */
+#define RTOL 1e-13
+
+static void ck_close(double got, double want)
+{
+  double tol = RTOL * (fabs(want) > 1.0 ? fabs(want) : 1.0);
+  ck_assert_msg(fabs(got - want) <= tol, "got %.17g, want %.17g", got, want);
+}
+
+static size_t push(mpm_points *pts, double x, double y, double vx, double vy, double m)
+{
+  size_t i;
+  ck_assert_int_eq(mpm_points_push(pts, &i), MPM_OK);
+  pts->x[i] = x;
+  pts->y[i] = y;
+  pts->vx[i] = vx;
+  pts->vy[i] = vy;
+  pts->mass[i] = m;
+  pts->vol[i] = m / 1500.0;
+  pts->state[i] = MPM_STATE_DENSE;
+  return i;
+}
+
+/* Points at y = (j + 0.5)/N of a unit layer with vx = 1 - (1 - y)^1.5 (the
+ * Bagnold shape), two per height with masses 1 and 3. With 4 bins and N = 40,
+ * bin k holds heights j = 10k ... 10k + 9 and its mean is the plain mean of
+ * those ten vx values (equal masses per height). */
+START_TEST(t_profile_bagnold_bins)
+{
+  enum { N = 40, NB = 4 };
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_err err = {0};
+  mpm_profile_bin b[NB];
+  for (int j = 0; j < N; j++) {
+    double y = (j + 0.5) / N, v = 1.0 - pow(1.0 - y, 1.5);
+    push(pts, 0.1, y, v, -2.0 * v, 1.0);
+    push(pts, 0.3, y, v, -2.0 * v, 3.0);
+  }
+  push(pts, 0.2, 1.5, 99.0, 0.0, 1.0);      /* above ymax: left out */
+  ck_assert_int_eq(mpm_diag_profile(pts, 0.0, 1.0, NB, b, &err), MPM_OK);
+  for (int k = 0; k < NB; k++) {
+    double s = 0.0;
+    for (int j = 10 * k; j < 10 * k + 10; j++)
+      s += 1.0 - pow(1.0 - (j + 0.5) / N, 1.5);
+    ck_close(b[k].y, 0.125 + 0.25 * k);
+    ck_close(b[k].vx, s / 10.0);
+    ck_close(b[k].vy, -2.0 * s / 10.0);
+    ck_close(b[k].mass, 40.0);
+    ck_assert_uint_eq(b[k].n, 20);
+  }
+  ck_assert_int_eq(mpm_diag_profile(pts, 1.0, 1.0, NB, b, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_profile(pts, 0.0, 1.0, 0, b, &err), MPM_EINVAL);
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* Two dense points in simple shear, sigma = -p I + tau (e_x e_y + e_y e_x):
+ * tau_invariant = |sxy|. Point 0: m 1, p 100, sxy 30, gdot_p 2;
+ * point 1: m 3, p 200, sxy -60, gdot_p 0; point 2: disconnected, m 4.
+ * All: mu = (1*30 + 3*60)/(1*100 + 3*200) = 0.3;
+ * gdot_min = 1: only point 0, mu = 0.3 too; make point 1 differ: sxy -100
+ * -> mu(all) = (30 + 300)/700, mu(flowing) = 0.3.
+ * vx = (1*2 + 3*3 + 4*(-1))/8 = 7/8; speed = (1*2 + 3*5 + 4*1)/8 with
+ * |v| = 2, 5 (3,4), 1. */
+START_TEST(t_flow_means)
+{
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_flow f;
+  size_t i = push(pts, 0, 0.5, 2.0, 0.0, 1.0);
+  pts->sxx[i] = pts->syy[i] = pts->szz[i] = -100.0;
+  pts->sxy[i] = 30.0;
+  pts->gdp[i] = 2.0;
+  i = push(pts, 0, 0.25, 3.0, 4.0, 3.0);
+  pts->sxx[i] = pts->syy[i] = pts->szz[i] = -200.0;
+  pts->sxy[i] = -100.0;
+  i = push(pts, 0, 0.75, -1.0, 0.0, 4.0);
+  pts->state[i] = MPM_STATE_DISCONNECTED;
+  mpm_diag_flow(pts, 0.0, &f);
+  ck_close(f.mass, 8.0);
+  ck_close(f.vx, 7.0 / 8.0);
+  ck_close(f.speed, 21.0 / 8.0);
+  ck_close(f.mu, 330.0 / 700.0);
+  ck_close(f.flow_mass, 4.0);
+  ck_close(f.ymax, 0.75);
+  mpm_diag_flow(pts, 1.0, &f);
+  ck_close(f.mu, 0.3);
+  ck_close(f.flow_mass, 1.0);
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* Deviatoric normal stresses count in tau: sxx = -p + s, syy = -p - s,
+ * szz = -p gives tau = sqrt((s^2 + s^2)/2) = |s|. */
+START_TEST(t_flow_mu_normal_deviator)
+{
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_flow f;
+  size_t i = push(pts, 0, 0, 0, 0, 1.0);
+  pts->sxx[i] = -50.0 + 20.0;
+  pts->syy[i] = -50.0 - 20.0;
+  pts->szz[i] = -50.0;
+  mpm_diag_flow(pts, 0.0, &f);
+  ck_close(f.mu, 0.4);
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* A 10 x 10 block of points with spacing 0.01 from (0.005, 0.005) and one
+ * point alone at x = 1: plain front 1; with 0.02 m cells and at least 2
+ * points the lone one is isolated and the front is the block's 0.095. */
+START_TEST(t_front_isolated)
+{
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_err err = {0};
+  double xf = 0.0;
+  for (int j = 0; j < 10; j++)
+    for (int k = 0; k < 10; k++)
+      push(pts, 0.005 + 0.01 * k, 0.005 + 0.01 * j, 0, 0, 1);
+  push(pts, 1.0, 0.005, 0, 0, 1);
+  ck_assert_int_eq(mpm_diag_front(pts, 0.02, 1, &xf, &err), MPM_OK);
+  ck_close(xf, 1.0);
+  ck_assert_int_eq(mpm_diag_front(pts, 0.02, 2, &xf, &err), MPM_OK);
+  ck_close(xf, 0.095);
+  /* two lone points side by side count as a pair */
+  push(pts, 1.005, 0.005, 0, 0, 1);
+  ck_assert_int_eq(mpm_diag_front(pts, 0.02, 2, &xf, &err), MPM_OK);
+  ck_close(xf, 1.005);
+  ck_assert_int_eq(mpm_diag_front(pts, 0.02, 3, &xf, &err), MPM_OK);
+  ck_close(xf, 0.095);
+  ck_assert_int_eq(mpm_diag_front(pts, 0.0, 3, &xf, &err), MPM_EINVAL);
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* Heap y <= 0.3 - tan(20 deg) x sampled with columns of width 0.01: the top
+ * point of each column lies on the surface at the column centre, points
+ * below it fill the column. The fitted slope is -tan(20 deg) to round-off,
+ * on any sub-range. */
+START_TEST(t_heap_slope)
+{
+  const double s = tan(20.0 * acos(-1.0) / 180.0), w = 0.01;
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_err err = {0};
+  double slope = 0.0, top[80];
+  for (int k = 0; k < 90; k++) {
+    double x = (k + 0.5) * w, h = 0.3 - s * x;
+    if (h <= 0.0)
+      break;
+    for (double y = h; y > 0.0; y -= 0.007)
+      push(pts, x, y, 0, 0, 1);
+  }
+  ck_assert_int_eq(mpm_diag_heap_slope(pts, 0.0, 0.6, w, &slope, &err), MPM_OK);
+  ck_close(slope, -s);
+  ck_assert_int_eq(mpm_diag_heap_slope(pts, 0.2, 0.5, w, &slope, &err), MPM_OK);
+  ck_close(slope, -s);
+  ck_assert_int_eq(mpm_diag_surface(pts, 0.0, w, 80, top, &err), MPM_OK);
+  ck_close(top[3], 0.3 - s * 0.035);
+  /* beyond the toe (x > 0.3/s = 0.824) columns are empty (NaN) and skipped */
+  ck_assert_int_eq(mpm_diag_surface(pts, 0.8, w, 4, top, &err), MPM_OK);
+  ck_close(top[0], 0.3 - s * 0.805);
+  ck_assert(isnan(top[2]) && isnan(top[3]));
+  ck_assert_int_eq(mpm_diag_heap_slope(pts, 0.7, 0.9, w, &slope, &err), MPM_OK);
+  ck_close(slope, -s);
+  ck_assert_int_eq(mpm_diag_heap_slope(pts, 0.5, 0.4, w, &slope, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_heap_slope(pts, 0.9, 1.2, w, &slope, &err), MPM_EINVAL);
+  mpm_points_free(pts);
+}
+END_TEST
+
+START_TEST(t_line_fit)
+{
+  const double x[] = {1.0, 2.0, 4.0, 7.0, 3.0};
+  double y[5], a = 0, b = 0;
+  mpm_err err = {0};
+  for (int i = 0; i < 5; i++)
+    y[i] = 2.5 - 0.75 * x[i];
+  y[3] = NAN;                                /* skipped */
+  ck_assert_int_eq(mpm_diag_line_fit(5, x, y, &a, &b, &err), MPM_OK);
+  ck_close(a, 2.5);
+  ck_close(b, -0.75);
+  /* y = 0, 1, 0 at x = 0, 1, 2: b = 0, a = 1/3 */
+  const double x3[] = {0, 1, 2}, y3[] = {0, 1, 0};
+  ck_assert_int_eq(mpm_diag_line_fit(3, x3, y3, &a, &b, &err), MPM_OK);
+  ck_close(a, 1.0 / 3.0);
+  ck_close(b, 0.0);
+  ck_assert_int_eq(mpm_diag_line_fit(1, x, y, &a, &b, &err), MPM_EINVAL);
+}
+END_TEST
+
+/* v = 3 t^2 - 2 t + 1 on uneven times: inside, v' = 6 t - 2 exactly; at the
+ * ends the one-sided difference is the chord slope 3 (t0 + t1) - 2. */
+START_TEST(t_derivative_quadratic)
+{
+  const double t[] = {0.0, 0.1, 0.35, 0.4, 1.0};
+  double v[5], d[5];
+  mpm_err err = {0};
+  for (int i = 0; i < 5; i++)
+    v[i] = 3.0 * t[i] * t[i] - 2.0 * t[i] + 1.0;
+  ck_assert_int_eq(mpm_diag_derivative(5, t, v, d, &err), MPM_OK);
+  for (int i = 1; i < 4; i++)
+    ck_close(d[i], 6.0 * t[i] - 2.0);
+  ck_close(d[0], 3.0 * (0.0 + 0.1) - 2.0);
+  ck_close(d[4], 3.0 * (0.4 + 1.0) - 2.0);
+  const double tb[] = {0.0, 0.0};
+  ck_assert_int_eq(mpm_diag_derivative(2, tb, v, d, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_derivative(1, t, v, d, &err), MPM_EINVAL);
+}
+END_TEST
+
+/* Hand-made stencil: 3 nodes, 2 points.
+ *   point 0: m 1, f 10, S = (0.5, 0.5, 0)
+ *   point 1: m 3, f 2,  S = (0, 0.25, 0.75)
+ * m = (0.5, 1.25, 2.25), (m f) = (5, 5 + 1.5, 4.5) -> f_i = (10, 5.2, 2);
+ * out_0 = 0.5*10 + 0.5*5.2 = 7.6, out_1 = 0.25*5.2 + 0.75*2 = 2.8. */
+START_TEST(t_smooth_hand)
+{
+  mpm_stencil *st = mpm_stencil_alloc(2);
+  mpm_err err = {0};
+  const double mass[] = {1.0, 3.0}, f[] = {10.0, 2.0};
+  double nm[3], nmf[3], out[2];
+  ck_assert_ptr_nonnull(st);
+  st->count[0] = 2;
+  st->node[0] = 0;
+  st->node[1] = 1;
+  st->S[0] = 0.5;
+  st->S[1] = 0.5;
+  st->count[1] = 2;
+  st->node[MPM_STENCIL_W + 0] = 1;
+  st->node[MPM_STENCIL_W + 1] = 2;
+  st->S[MPM_STENCIL_W + 0] = 0.25;
+  st->S[MPM_STENCIL_W + 1] = 0.75;
+  ck_assert_int_eq(mpm_diag_smooth(st, 2, mass, f, 3, nm, nmf, out, &err), MPM_OK);
+  ck_close(nm[1], 1.25);
+  ck_close(nmf[1], 5.2);
+  ck_close(out[0], 7.6);
+  ck_close(out[1], 2.8);
+  st->node[1] = 7;                          /* node outside 0..2 */
+  ck_assert_int_eq(mpm_diag_smooth(st, 2, mass, f, 3, nm, nmf, out, &err), MPM_EINVAL);
+  mpm_stencil_free(st);
+}
+END_TEST
+
+/* With the run's own uGIMP stencil (partition of unity) a constant field is
+ * reproduced exactly and the mass-weighted total of a linear field is kept:
+ * sum_p m_p out_p = sum_i m_i f_i = sum_p m_p f_p. */
+START_TEST(t_smooth_ugimp)
+{
+  mpm_mesh m = {.nx = 6, .ny = 5, .dx = 0.1, .dy = 0.1};
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
+  mpm_points *pts = mpm_points_alloc(0);
+  for (int j = 0; j < 8; j++)
+    for (int k = 0; k < 10; k++) {
+      size_t i = push(pts, 0.1 + 0.025 * (k + 0.5) + 0.01 * j, 0.1 + 0.025 * (j + 0.5),
+                      0, 0, 1.0 + 0.1 * k);
+      pts->r1x[i] = pts->r2y[i] = 0.0125;
+    }
+  mpm_stencil *st = mpm_stencil_alloc(pts->n);
+  ck_assert_int_eq(mpm_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.0, &err), MPM_OK);
+  double *f = malloc(pts->n * sizeof *f), *out = malloc(pts->n * sizeof *out);
+  double *nm = malloc((size_t)m.nnodes * sizeof *nm), *nmf = malloc((size_t)m.nnodes * sizeof *nmf);
+  for (size_t i = 0; i < pts->n; i++)
+    f[i] = 7.0;
+  ck_assert_int_eq(mpm_diag_smooth(st, pts->n, pts->mass, f, m.nnodes, nm, nmf, out, &err),
+                   MPM_OK);
+  for (size_t i = 0; i < pts->n; i++)
+    ck_close(out[i], 7.0);
+  double s0 = 0.0, s1 = 0.0;
+  for (size_t i = 0; i < pts->n; i++)
+    f[i] = 3.0 + 2.0 * pts->x[i] - pts->y[i];
+  ck_assert_int_eq(mpm_diag_smooth(st, pts->n, pts->mass, f, m.nnodes, nm, nmf, out, &err),
+                   MPM_OK);
+  for (size_t i = 0; i < pts->n; i++) {
+    s0 += pts->mass[i] * f[i];
+    s1 += pts->mass[i] * out[i];
+  }
+  ck_close(s1, s0);
+  free(f);
+  free(out);
+  free(nm);
+  free(nmf);
+  mpm_stencil_free(st);
+  mpm_points_free(pts);
+}
+END_TEST
+
+int main(void)
+{
+  Suite *s = suite_create("flow");
+  TCase *tc = tcase_create("flow");
+  tcase_add_test(tc, t_profile_bagnold_bins);
+  tcase_add_test(tc, t_flow_means);
+  tcase_add_test(tc, t_flow_mu_normal_deviator);
+  tcase_add_test(tc, t_front_isolated);
+  tcase_add_test(tc, t_heap_slope);
+  tcase_add_test(tc, t_line_fit);
+  tcase_add_test(tc, t_derivative_quadratic);
+  tcase_add_test(tc, t_smooth_hand);
+  tcase_add_test(tc, t_smooth_ugimp);
+  suite_add_tcase(s, tc);
+  SRunner *sr = srunner_create(s);
+  srunner_run_all(sr, CK_NORMAL);
+  int nf = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return nf ? EXIT_FAILURE : EXIT_SUCCESS;
+}
