@@ -64,6 +64,8 @@ START_TEST(t_three_points)
   ck_close(d.t, 0.125);
   ck_close(d.kinetic, 15.125);
   ck_close(d.kinetic_per_mass, 3.78125);
+  ck_assert(mpm_diag_kinetic_per_mass(pts) == d.kinetic_per_mass);  /* same sums, same order */
+  ck_assert_int_eq(d.stop, MPM_STOP_NONE);
   ck_close(d.px, 0.0);
   ck_close(d.py, 0.5);
   ck_close(d.mass, 4.0);
@@ -129,7 +131,7 @@ START_TEST(t_csv_header)
 {
   const char *h = mpm_diag_csv_header();
   ck_assert_str_eq(h, "t,kinetic,kinetic_per_mass,px,py,mass,volume,xcm,ycm,pmean,"
-                      "npoints,ndisconnected\n");
+                      "npoints,ndisconnected,stop\n");
 }
 END_TEST
 
@@ -142,10 +144,14 @@ START_TEST(t_csv_row)
   unsigned long np, nd;
   mpm_diag_compute(pts, 0.125, &d);
   ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
-  ck_assert_str_eq(buf, "0.125,15.125,3.78125,0,0.5,4,1,0.75,1.5,3.25,3,1\n");
-  int got = sscanf(buf, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lu,%lu", &v[0], &v[1],
-                   &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &np, &nd);
-  ck_assert_int_eq(got, 12);
+  ck_assert_str_eq(buf, "0.125,15.125,3.78125,0,0.5,4,1,0.75,1.5,3.25,3,1,0\n");
+  d.stop = MPM_STOP_KE;
+  ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
+  int stop = -1;
+  int got = sscanf(buf, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lu,%lu,%d", &v[0], &v[1],
+                   &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &np, &nd, &stop);
+  ck_assert_int_eq(got, 13);
+  ck_assert_int_eq(stop, 2);
   ck_assert_uint_eq(np, 3);
   ck_assert_uint_eq(nd, 1);
   /* %.10g: ten significant digits */

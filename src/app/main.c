@@ -129,6 +129,7 @@ static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
   run_ctx *c = vctx;
   mpm_diag d;
   mpm_diag_compute(s->pts, s->t, &d);
+  d.stop = s->stop;
   c->frames++;
   return mpm_output_frame(c->out, s->pts, &d, err);
 }
@@ -203,7 +204,12 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   }
   if (st != MPM_OK) {
     fprintf(stderr, "granmpm: %s\n", err.msg);
-  } else if (!o.quiet) {
+  } else if (sim->stop == MPM_STOP_KE) {  /* said even with --quiet: the run ended early */
+    fprintf(stderr, "granmpm: stopped at t = %.6g s (before t_end = %.6g s): kinetic energy "
+            "per unit mass %.3g J/kg < stop.ke = %.3g J/kg\n", sim->t, cfg.time.t_end,
+            sim->stop_value, cfg.stop.ke);
+  }
+  if (st == MPM_OK && !o.quiet) {
     fprintf(stderr, "granmpm: %ld steps of %.4g s, %ld frames, %zu points -> %s/run.h5\n",
             sim->step, sim->dt, ctx.frames, sim->pts->n, cfg.output.dir);
   }

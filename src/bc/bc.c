@@ -89,3 +89,18 @@ void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay)
     if (f & MPM_FIX_Y) ay[i] = 0.0;
   }
 }
+
+/* 1 if an edge of this kind is a wall that material cannot cross. */
+static int is_wall(int kind)
+{
+  return kind == MPM_BC_NOSLIP || kind == MPM_BC_FRICTIONLESS || kind == MPM_BC_SYMMETRY;
+}
+
+void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y)
+{
+  double xhi = m->x0 + m->lx, yhi = m->y0 + m->ly;
+  if (*x < m->x0 && is_wall(bc->edge[MPM_EDGE_LEFT])) *x = m->x0;
+  if (*x > xhi && is_wall(bc->edge[MPM_EDGE_RIGHT])) *x = xhi;
+  if (*y < m->y0 && is_wall(bc->edge[MPM_EDGE_BOTTOM])) *y = m->y0;
+  if (*y > yhi && is_wall(bc->edge[MPM_EDGE_TOP])) *y = yhi;
+}

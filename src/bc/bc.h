@@ -33,4 +33,10 @@ void mpm_bc_clear(mpm_bc *bc);  /* frees the mask; safe on a zeroed struct */
 /* Zero constrained components of nodal vectors ax, ay (momentum or force). */
 void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
 
+/* Move a point that crossed a wall edge (no-slip, frictionless, symmetry)
+ * back onto it. Positions are advanced with interpolated grid velocity, which
+ * near a wall can carry a point a fraction of a step past it; free edges are
+ * left alone (leaving through them is an error for the caller). */
+void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y);
+
 #endif

@@ -54,10 +54,16 @@ typedef struct mpm_config {
     double cfl;                /* dt = cfl * min(dx,dy) / c_p when dt = 0 */
     double t_end;              /* end time [s] */
     double frame_dt;           /* output interval [s] */
+    double flip;               /* FLIP share of the point velocity update (1: pure
+                                  FLIP, [DK15]; 0: PIC) */
   } time;
 
   struct {
-    double gx, gy;             /* final gravity vector [m/s^2] */
+    double gx, gy;             /* final gravity vector [m/s^2] (from angle and g when
+                                  use_angle) */
+    double angle;              /* incline angle [deg]: gx = g sin, gy = -g cos */
+    double g;                  /* magnitude for angle [m/s^2] */
+    int use_angle;             /* 1: gravity was given as angle and g */
     double t_ramp;             /* linear ramp from 0 over t_ramp [s]; 0 = none */
   } gravity;
 
@@ -75,6 +81,12 @@ typedef struct mpm_config {
 
   int nfill;
   mpm_fill_config fill[MPM_MAX_FILLS];
+
+  struct {
+    double ke;                 /* end the run when kinetic energy per unit mass
+                                  falls below this [J/kg]; 0: never */
+    double t_min;              /* ... but not before this time [s] */
+  } stop;
 
   struct {
     char dir[MPM_PATH_MAX];    /* run directory */

@@ -64,10 +64,21 @@ void mpm_diag_compute(const mpm_points *pts, double t, mpm_diag *d)
   }
 }
 
+double mpm_diag_kinetic_per_mass(const mpm_points *pts)
+{
+  double m = 0.0, ke = 0.0;
+  for (size_t i = 0; i < pts->n; i++) {
+    double vx = pts->vx[i], vy = pts->vy[i];
+    m += pts->mass[i];
+    ke += 0.5 * pts->mass[i] * (vx * vx + vy * vy);
+  }
+  return m > 0.0 ? ke / m : 0.0;
+}
+
 const char *mpm_diag_csv_header(void)
 {
   return "t,kinetic,kinetic_per_mass,px,py,mass,volume,xcm,ycm,pmean,"
-         "npoints,ndisconnected\n";
+         "npoints,ndisconnected,stop\n";
 }
 
 int mpm_diag_csv_row(const mpm_diag *d, char *buf, size_t len)
@@ -76,9 +87,9 @@ int mpm_diag_csv_row(const mpm_diag *d, char *buf, size_t len)
     return MPM_EINVAL;
   int w = snprintf(buf, len,
                    "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,"
-                   "%zu,%zu\n",
+                   "%zu,%zu,%d\n",
                    d->t, d->kinetic, d->kinetic_per_mass, d->px, d->py, d->mass,
-                   d->volume, d->xcm, d->ycm, d->pmean, d->npoints, d->ndisconnected);
+                   d->volume, d->xcm, d->ycm, d->pmean, d->npoints, d->ndisconnected, d->stop);
   if (w < 0 || (size_t)w >= len) {
     buf[0] = '\0';
     return MPM_EINVAL;

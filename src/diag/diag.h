@@ -6,6 +6,13 @@
 
 #include "core/points.h"
 
+/* Why a run ended, recorded in the row of its last frame (0 on other rows). */
+enum mpm_stop_reason {
+  MPM_STOP_NONE = 0,   /* still running */
+  MPM_STOP_T_END,      /* reached time.t_end */
+  MPM_STOP_KE          /* kinetic energy per unit mass fell below stop.ke */
+};
+
 typedef struct mpm_diag {
   double t;                    /* time [s] */
   double kinetic;              /* sum m |v|^2 / 2 [J/m] */
@@ -17,9 +24,15 @@ typedef struct mpm_diag {
   double pmean;                /* mass-weighted mean pressure [Pa] */
   size_t npoints;
   size_t ndisconnected;
+  int stop;                    /* enum mpm_stop_reason; set by the caller */
 } mpm_diag;
 
+/* Every field but stop (left 0). */
 void mpm_diag_compute(const mpm_points *pts, double t, mpm_diag *d);
+
+/* sum m |v|^2 / 2 / sum m [J/kg] (0 for no mass), in point order: the same
+ * value as mpm_diag_compute's kinetic_per_mass, for per-step stop tests. */
+double mpm_diag_kinetic_per_mass(const mpm_points *pts);
 
 /* CSV header line and one row (no trailing newline handling needed: both end in '\n'). */
 const char *mpm_diag_csv_header(void);

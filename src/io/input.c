@@ -44,10 +44,12 @@
 
 /* ------------------------------------------------------------ the key table */
 
-enum section { S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_OUTPUT, NSEC };
+enum section {
+  S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_STOP, S_OUTPUT, NSEC
+};
 
 static const char *const sec_names[NSEC] = {
-  "mesh", "time", "gravity", "material", "boundary", "fill", "output"
+  "mesh", "time", "gravity", "material", "boundary", "fill", "stop", "output"
 };
 
 enum key_type {
@@ -108,9 +110,12 @@ static const key_def keys[] = {
   NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 0, 1, KF_LO_OPEN, "-"),
   NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 0, 1e9, KF_REQUIRED | KF_LO_OPEN, "s"),
   NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 0, 1e9, KF_LO_OPEN, "s"),
+  NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
 
   NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
   NUM(S_GRAVITY, KT_REAL, "gy", C_(gravity.gy), -9.8, -1e5, 1e5, 0, "m/s^2"),
+  NUM(S_GRAVITY, KT_REAL, "angle", C_(gravity.angle), 0, -90, 90, 0, "deg"),
+  NUM(S_GRAVITY, KT_REAL, "g", C_(gravity.g), 9.8, 0, 1e5, 0, "m/s^2"),
   NUM(S_GRAVITY, KT_REAL, "t_ramp", C_(gravity.t_ramp), 0.1, 0, 1e9, 0, "s"),
 
   NAMED(S_MATERIAL, KT_NAME, "model", C_(material.model), NK_MODEL, "mu_i"),
@@ -145,6 +150,9 @@ static const key_def keys[] = {
   NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
   NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
   NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
+
+  NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),
+  NUM(S_STOP, KT_REAL, "t_min", C_(stop.t_min), 0, 0, 1e9, 0, "s"),
 
   NAMED(S_OUTPUT, KT_PATH, "dir", C_(output.dir), NK_NONE, "run"),
 };
@@ -1349,6 +1357,37 @@ static int check_time(in_ctx *c, const mpm_config *cfg)
   return MPM_OK;
 }
 
+/* Gravity is either the vector (gx, gy) or an incline angle with a magnitude
+ * g: gx = g sin(angle), gy = -g cos(angle), so material flows towards +x on a
+ * base along x. The two ways cannot be mixed. */
+static int check_gravity(in_ctx *c, mpm_config *cfg)
+{
+  const int ka = key_index(S_GRAVITY, "angle"), kg = key_index(S_GRAVITY, "g");
+  const int kx = key_index(S_GRAVITY, "gx"), ky = key_index(S_GRAVITY, "gy");
+  const int polar = is_set(c, ka, -1) ? ka : is_set(c, kg, -1) ? kg : -1;
+  const int cart = is_set(c, kx, -1) ? kx : is_set(c, ky, -1) ? ky : -1;
+  cfg->gravity.use_angle = polar >= 0;
+  if (polar < 0)
+    return MPM_OK;
+  if (cart >= 0) {
+    where w = blame(c, cfg, -1, polar, cart);
+    return fail_key(c, &w, "gravity given both as gx, gy and as angle, g "
+                    "(allowed: one of the two)");
+  }
+  const double a = cfg->gravity.angle * (3.14159265358979323846 / 180.0);  /* deg -> rad */
+  cfg->gravity.gx = cfg->gravity.g * sin(a);
+  cfg->gravity.gy = -cfg->gravity.g * cos(a);
+  return MPM_OK;
+}
+
+/* The kinetic-energy stop test starts after the gravity ramp unless told
+ * otherwise: material loaded from rest has no kinetic energy at first. */
+static void resolve_stop(in_ctx *c, mpm_config *cfg)
+{
+  if (!is_set(c, key_index(S_STOP, "t_min"), -1))
+    cfg->stop.t_min = cfg->gravity.t_ramp;
+}
+
 static int check_material(in_ctx *c, const mpm_config *cfg)
 {
   if (cfg->material.rho_c > cfg->material.rho_s) {
@@ -1501,6 +1540,16 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
     return fail_key(c, &w, "density = %s > material.rho_s = %s (allowed: density <= rho_s)",
                     num(f->density).s, num(cfg->material.rho_s).s);
   }
+  /* The pre-stress is the weight under the full gravity, which a ramp only
+   * reaches at t_ramp: at t = 0 nothing would hold it, and the fill would
+   * spring apart into tension and disconnect. */
+  int kl = key_index(S_FILL, "lithostatic");
+  if (f->lithostatic && cfg->gravity.t_ramp > 0.0) {
+    where w = {.at = c->at[i][kl], .sec = S_FILL, .key = kl, .fill = i, .title = f->name};
+    return fail_key(c, &w, "lithostatic = true with gravity.t_ramp = %s s: the pre-stress "
+                    "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
+                    "lithostatic = false)", num(cfg->gravity.t_ramp).s);
+  }
   return MPM_OK;
 }
 
@@ -1543,9 +1592,10 @@ static int validate(in_ctx *c, mpm_config *cfg)
     return fail_at(c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')",
                    MPM_MAX_FILLS);
   }
-  if (check_mesh(c, cfg) || check_time(c, cfg) || check_material(c, cfg) ||
-      check_boundary(c, cfg))
+  if (check_mesh(c, cfg) || check_time(c, cfg) || check_gravity(c, cfg) ||
+      check_material(c, cfg) || check_boundary(c, cfg))
     return MPM_EINPUT;
+  resolve_stop(c, cfg);
   for (int i = 0; i < cfg->nfill; i++)
     if (check_fill(c, cfg, i) != MPM_OK)
       return MPM_EINPUT;
@@ -1647,11 +1697,22 @@ static void write_path(FILE *f, const char *s)
   fputc('"', f);
 }
 
+/* 1 for the gravity keys that the resolved input leaves out: gx, gy when
+ * gravity came as angle and g (they are derived), angle and g otherwise. */
+static int derived_key(const mpm_config *cfg, const key_def *kd)
+{
+  if (kd->sec != S_GRAVITY)
+    return 0;
+  const int polar = strcmp(kd->name, "angle") == 0 || strcmp(kd->name, "g") == 0;
+  const int cart = strcmp(kd->name, "gx") == 0 || strcmp(kd->name, "gy") == 0;
+  return cfg->gravity.use_angle ? cart : polar;
+}
+
 static void write_section(FILE *f, const mpm_config *cfg, int s)
 {
   fprintf(f, "%s {\n", sec_names[s]);
   for (int k = 0; k < NKEYS; k++) {
-    if (keys[k].sec != s)
+    if (keys[k].sec != s || derived_key(cfg, &keys[k]))
       continue;
     if (keys[k].type == KT_PATH) {
       fprintf(f, "  %s = ", keys[k].name);

@@ -14,6 +14,7 @@
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
+#include "diag/diag.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
 #include "shape/shape.h"
@@ -36,6 +37,9 @@ typedef struct mpm_sim {
   double t, dt;                   /* current time, time step [s] */
   long step;
   double mass0;                   /* initial mass, for bookkeeping */
+  int stop;                       /* enum mpm_stop_reason (diag/diag.h): why the run
+                                   * ended, MPM_STOP_NONE while it runs */
+  double stop_value;              /* the measured value that fired the stop test */
   double mtiny;                   /* nodes lighter than this are skipped */
 } mpm_sim;
 
@@ -56,7 +60,9 @@ typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);
  * rate, for the progress line. */
 typedef void (*mpm_progress_fn)(void *ctx, const mpm_sim *s, double steps_per_s);
 
-/* Step until cfg.time.t_end, emitting frames. */
+/* Step until cfg.time.t_end or until a stop condition of cfg.stop holds,
+ * emitting frames; s->stop says which ended the run (set before the last
+ * frame is emitted, so the frame callback can record it). */
 int mpm_sim_run(mpm_sim *s, mpm_frame_fn frame, mpm_progress_fn progress, void *ctx,
                 mpm_err *err);
 

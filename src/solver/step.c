@@ -244,19 +244,35 @@ static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double 
 }
 
 /* Step 3 on nodes [lo, hi): boundary conditions, (mv)_i += dt f_i,
- * a_i = f_i/m_i, v_i = (mv)_i/m_i. */
+ * v_i = (mv)_i/m_i. A wall zeroes the constrained components of (mv)_i and
+ * of f_i ([DK15] section 4: momentum fixed, its update suppressed). The
+ * acceleration the points receive is the change of nodal velocity over the
+ * step, a_i = f_i/m_i + (v_i^bc - v_i^n)/dt, where v_i^n = (mv)_i/m_i as
+ * mapped and v_i^bc the same after the wall acted: f_i/m_i on free
+ * components (the jump is exactly 0 there) and -v_i^n/dt on constrained
+ * ones. With a_i = f_i/m_i = 0 there instead, a point stopped by a wall would
+ * keep its velocity for ever (FLIP only adds increments): its position
+ * follows the grid and stays put, but it reports kinetic energy it does not
+ * have, and a kinetic-energy stop test never fires. */
 static void grid_update(mpm_sim *s, int lo, int hi)
 {
+  const double dt = s->dt, idt = 1.0 / s->dt, mt = s->mtiny;
+  for (int i = lo; i < hi; i++) {                       /* v_i^n, before the wall */
+    double m = s->nm[i];
+    s->nvx[i] = m > mt ? s->nmvx[i] / m : 0.0;
+    s->nvy[i] = m > mt ? s->nmvy[i] / m : 0.0;
+  }
   bc_apply_range(&s->bc, lo, hi, s->nmvx, s->nmvy);
   bc_apply_range(&s->bc, lo, hi, s->nfx, s->nfy);
-  const double dt = s->dt, mt = s->mtiny;
   for (int i = lo; i < hi; i++) {
     double m = s->nm[i];
     if (m > mt) {
+      const double jx = (s->nmvx[i] / m - s->nvx[i]) * idt;  /* wall's velocity jump / dt */
+      const double jy = (s->nmvy[i] / m - s->nvy[i]) * idt;
       s->nmvx[i] += dt * s->nfx[i];
       s->nmvy[i] += dt * s->nfy[i];
-      s->nax[i] = s->nfx[i] / m;
-      s->nay[i] = s->nfy[i] / m;
+      s->nax[i] = s->nfx[i] / m + jx;
+      s->nay[i] = s->nfy[i] / m + jy;
       s->nvx[i] = s->nmvx[i] / m;
       s->nvy[i] = s->nmvy[i] / m;
     } else {
@@ -282,7 +298,8 @@ static void grid_phase(mpm_sim *s, double bx, double by)
   }
 }
 
-/* Steps 4-5 for point p: v_p += dt sum S a_i; x_p += dt sum S v_i;
+/* Steps 4-5 for point p: v_p += dt sum S a_i (FLIP; blended with the PIC
+ * velocity sum S v_i when time.flip < 1); x_p += dt sum S v_i;
  * L_p = sum v_i (x) gradS (its in-plane part; L is zero otherwise);
  * V_p *= exp(dt tr L_p). */
 static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
@@ -305,8 +322,9 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
     lyx += s->nvy[i] * gx[k];
     lyy += s->nvy[i] * gy[k];
   }
-  P->vx[p] += dt * ax;
-  P->vy[p] += dt * ay;
+  const double fl = s->cfg.time.flip;                     /* FLIP share (1: [DK15]) */
+  P->vx[p] = fl * (P->vx[p] + dt * ax) + (1.0 - fl) * vx;  /* v_p = fl v_FLIP + (1-fl) v_PIC */
+  P->vy[p] = fl * (P->vy[p] + dt * ay) + (1.0 - fl) * vy;
   P->x[p] += dt * vx;
   P->y[p] += dt * vy;
   P->vol[p] *= exp(dt * (lxx + lyy));                     /* V *= exp(dt tr L) */
@@ -351,8 +369,9 @@ static long point_phase(mpm_sim *s)
     grid_to_point(s, p, &L);
     if (!constitutive(s, p, &L))
       bad = (long)p > bad ? (long)p : bad;
+    mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p]);     /* step 7: walls hold */
     if (periodic)
-      mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);           /* step 7 */
+      mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
   }
   return bad;
 }
