@@ -5,4 +5,5 @@ include verification/V0-kernels/local.mk
 include verification/V1-elastic-waves/local.mk
 include verification/V2-constitutive/local.mk
 include verification/V3-incline/local.mk
+include verification/V4-collapse/local.mk
 include verification/ngf1d/local.mk
