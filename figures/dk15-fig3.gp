@@ -34,7 +34,7 @@ sh(x) = x < 2.0 ? 2.5 * x : 3.25 * x**0.71
 f1(x) = x <= 2.83 ? c1 * x**e1 : 1/0
 f2(x) = x >= 2.0 ? c2 * x**e2 : 1/0
 plot dk(x) w l lw 2 dt 2 lc rgb "#1f77b4" t "[DK15] Table 3: 2.28 a, 3.24 a^{0.66}", \
-     sh(x) w l lw 1 dt 3 lc rgb "#7f7f7f" t "Staron & Hinch (2005): 2.5 a, 3.25 a^{0.71}", \
+     sh(x) w l lw 1 dt 3 lc rgb "#7f7f7f" t "Staron \\& Hinch (2005): 2.5 a, 3.25 a^{0.71}", \
      f1(x) w l lw 2 lc rgb "#d62728" t sprintf("ours, a <= 2: %.2f a^{%.2f}", c1, e1), \
      f2(x) w l lw 2 lc rgb "#ff7f0e" t sprintf("ours, a >= 4: %.2f a^{%.2f}", c2, e2), \
      results u 1:6 every ::1 w p pt 7 ps 1.6 lc rgb "#d62728" t "MPM runs"

@@ -16,7 +16,7 @@
 #   out     PNG written
 
 if (!exists("dir"))    dir = 'sweep-incline'
-if (!exists("angles")) angles = '19 20 21 22 23 24 25 26 27 28 29 30 32 34'
+if (!exists("angles")) angles = '19 20 21 22 23 24 25 26 27 28 29 30 34'
 if (!exists("mu_2"))   mu_2 = 0.6435
 if (!exists("out"))    out = 'dk15-fig9.png'
 file(a) = sprintf("%s/a%s/series.csv", dir, a)
