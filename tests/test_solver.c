@@ -227,6 +227,35 @@ START_TEST(t_ngf_thread_count)
 }
 END_TEST
 
+/* Substeps: n_sub as given, or the fewest with dt / n_sub <= dt_sub. */
+START_TEST(t_time_plan_substeps)
+{
+  mpm_config c;
+  base_config(&c, 2, 2, 0.0, 0.0);                    /* time.dt = 1e-4 s */
+  double dt;
+  int n;
+  c.material.n_sub = 4;
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_double_eq(dt, 1e-4);
+  ck_assert_int_eq(n, 4);
+  c.material.n_sub = 1;
+  c.material.dt_sub = 4e-5;                           /* 1e-4 / 4e-5 = 2.5 -> 3 */
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_int_eq(n, 3);
+  c.material.dt_sub = 1e-4 / 3.0;                     /* exactly 3 (up to round-off) */
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_int_eq(n, 3);
+  c.material.dt_sub = 1.0;                            /* longer than dt: one substep */
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_int_eq(n, 1);
+  c.time.dt = 0.0;                                    /* from cfl: 0.5 * 0.1 / c_p */
+  c.material.dt_sub = 0.0;
+  mpm_sim_time_plan(&c, &dt, &n);
+  const double E = 1e6, nu = 0.3, cp = sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / 1500.0);
+  ck_assert_double_eq_tol(dt, 0.5 * 0.1 / cp, 1e-12 * dt);
+}
+END_TEST
+
 int main(void)
 {
   Suite *su = suite_create("solver");
@@ -236,6 +265,7 @@ int main(void)
   tcase_add_test(tc, t_stop_runs_to_end);
   tcase_add_test(tc, t_ngf_a0_is_mu_i);
   tcase_add_test(tc, t_ngf_thread_count);
+  tcase_add_test(tc, t_time_plan_substeps);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);
