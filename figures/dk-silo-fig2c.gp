@@ -27,9 +27,6 @@ set grid lc rgb "#dddddd"
 set key bottom right box opaque spacing 1.1
 set xrange [0:1.1]
 set yrange [0:1]
-set parametric
-set trange [0:1]
-
 file(h) = sprintf("%s/H%s-profile.csv", dir, h)
 colours = "#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd"
 
@@ -39,6 +36,9 @@ do for [i = 1:words(Hs)] {
   stats file(word(Hs, i)) u 3 nooutput
   vtop[i] = STATS_max
 }
+
+set parametric
+set trange [0:1]
 
 plot 1 - cos(pi * t / 2), t w l lw 2 dt 2 lc rgb "black" t "1 - cos(pi z / 2H)", \
      1 - (1 - t)**1.5, t w l lw 2 dt 3 lc rgb "black" t "Bagnold 1 - (1 - z/H)^{3/2}", \
