@@ -233,6 +233,7 @@ START_TEST(t_every_key)
   ck_assert_double_eq(c.time.cfl, 0.25);
   ck_assert_double_eq(c.time.t_end, 2);
   ck_assert_double_eq(c.time.frame_dt, 0.05);
+  ck_assert_double_eq(c.time.flip, 0.99);
   ck_assert_double_eq(c.gravity.gx, 1.5);
   ck_assert_double_eq(c.gravity.gy, -9.81);
   ck_assert_double_eq(c.gravity.t_ramp, 0);

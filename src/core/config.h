@@ -54,6 +54,8 @@ typedef struct mpm_config {
     double cfl;                /* dt = cfl * min(dx,dy) / c_p when dt = 0 */
     double t_end;              /* end time [s] */
     double frame_dt;           /* output interval [s] */
+    double flip;               /* FLIP share of the point velocity update (1: pure
+                                  FLIP, [DK15]; 0: PIC) */
   } time;
 
   struct {

@@ -113,6 +113,7 @@ static const key_def keys[] = {
   NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 0, 1, KF_LO_OPEN, "-"),
   NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 0, 1e9, KF_REQUIRED | KF_LO_OPEN, "s"),
   NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 0, 1e9, KF_LO_OPEN, "s"),
+  NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
 
   NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
   NUM(S_GRAVITY, KT_REAL, "gy", C_(gravity.gy), -9.8, -1e5, 1e5, 0, "m/s^2"),

@@ -344,7 +344,8 @@ static void grid_phase(mpm_sim *s, double bx, double by)
   }
 }
 
-/* Steps 4-5 for point p: v_p += dt sum S a_i; x_p += dt sum S v_i;
+/* Steps 4-5 for point p: v_p += dt sum S a_i (FLIP; blended with the PIC
+ * velocity sum S v_i when time.flip < 1); x_p += dt sum S v_i;
  * L_p = sum v_i (x) gradS (its in-plane part; L is zero otherwise);
  * V_p *= exp(dt tr L_p). */
 static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
@@ -367,8 +368,9 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
     lyx += s->nvy[i] * gx[k];
     lyy += s->nvy[i] * gy[k];
   }
-  P->vx[p] += dt * ax;
-  P->vy[p] += dt * ay;
+  const double fl = s->cfg.time.flip;                     /* FLIP share (1: [DK15]) */
+  P->vx[p] = fl * (P->vx[p] + dt * ax) + (1.0 - fl) * vx;  /* v_p = fl v_FLIP + (1-fl) v_PIC */
+  P->vy[p] = fl * (P->vy[p] + dt * ay) + (1.0 - fl) * vy;
   P->x[p] += dt * vx;
   P->y[p] += dt * vy;
   P->vol[p] *= exp(dt * (lxx + lyy));                     /* V *= exp(dt tr L) */
