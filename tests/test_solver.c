@@ -296,6 +296,28 @@ START_TEST(t_time_plan_substeps)
 }
 END_TEST
 
+/* A nonlocal run whose point leaves the mesh while the units are frozen is an
+ * error naming the point, where it went and when: one stress-free point at
+ * 2000 m/s crosses the free top edge (0.1 m above it) within the first step. */
+START_TEST(t_ngf_point_leaves_mesh)
+{
+  mpm_config c;
+  base_config(&c, 2, 1, 0.0, 2000.0);
+  c.bc.left = c.bc.bottom = MPM_BC_FREE;
+  strcpy(c.material.model, "ngf");
+  c.fill[0].xmin = c.fill[0].ymin = 0.1;
+  c.fill[0].xmax = c.fill[0].ymax = 0.2;                /* one point at (0.15, 0.15) */
+  c.gravity.gy = 0.0;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  ck_assert_uint_eq(s->pts->n, 1);
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_EOUTSIDE);
+  ck_assert_msg(strstr(err.msg, "point 0 left the mesh at (0.15, 0.35) m, t = 0.0001 s"), "%s", err.msg);
+  mpm_sim_free(s);
+}
+END_TEST
+
 int main(void)
 {
   Suite *su = suite_create("solver");
@@ -307,6 +329,7 @@ int main(void)
   tcase_add_test(tc, t_ngf_a0_is_mu_i);
   tcase_add_test(tc, t_ngf_thread_count);
   tcase_add_test(tc, t_time_plan_substeps);
+  tcase_add_test(tc, t_ngf_point_leaves_mesh);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);
