@@ -87,6 +87,23 @@ check_bad set-form "granmpm: --set 'mesh.nx': expected section.key=value" "$good
 check_bad set-cross "granmpm: --set 'time.t_end=0.001': key 'time.t_end': frame_dt = 0.01 > t_end = 0.001 (allowed: frame_dt <= t_end)" \
   "$good" --set time.t_end=0.001
 
+# NGF with an unstable explicit diffusion of g: a warning, not an error (exit
+# 0, the resolved input on stdout, one line on stderr naming the smallest n_sub);
+# with that n_sub, silence. dt = 2e-4 s: 2e-4 * 0.25^2 * 0.005^2 / 1e-3 * 4e6 = 1.25.
+chute="$srcdir/inputs/ngf-chute.conf"
+count=$((count + 1))
+"$GRANMPM" check "$chute" --set time.dt=2e-4 >"$tmp/out" 2>"$tmp/err"
+st=$?
+want="granmpm: warning: $chute: NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) = 1.25 > 1 with dt = 0.0002 s, n_sub = 1; needs n_sub >= 2 (key 'material.n_sub')"
+if [ "$st" -ne 0 ] || [ ! -s "$tmp/out" ] || [ "$(cat "$tmp/err")" != "$want" ]; then
+  fail "ngf diffusion warning: exit $st, stderr '$(cat "$tmp/err")'"
+  echo "  want: $want"
+fi
+count=$((count + 1))
+"$GRANMPM" check "$chute" --set time.dt=2e-4 --set material.n_sub=2 >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ "$st" -eq 0 ] && [ ! -s "$tmp/err" ] || fail "ngf diffusion with n_sub = 2: exit $st, stderr '$(cat "$tmp/err")'"
+
 # Good inputs: exit 0, and the printed input reads back to the same.
 for f in "$srcdir"/tests/inputs/good/*.conf "$srcdir"/inputs/*.conf; do
   [ -f "$f" ] || continue

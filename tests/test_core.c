@@ -69,6 +69,36 @@ START_TEST(t_spin_objective)
 }
 END_TEST
 
+/* The closed form equals W s - s W multiplied out in full, for random skew W
+ * and symmetric s (all six components non-zero). */
+START_TEST(t_spin_definition)
+{
+  unsigned long long state = 12345;
+  for (int trial = 0; trial < 200; trial++) {
+    double v[9];
+    for (int k = 0; k < 9; k++) {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      v[k] = (double)(state >> 11) / 9007199254740992.0 * 2.0 - 1.0;  /* [-1, 1) */
+    }
+    mpm_sym3 s = {v[0], v[1], v[2], v[3], v[4], v[5]};
+    mpm_mat3 W = {{{0.0, v[6], -v[8]}, {-v[6], 0.0, v[7]}, {v[8], -v[7], 0.0}}};
+    mpm_mat3 S = mpm_sym3_full(s), R;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        R.m[i][j] = 0.0;
+        for (int k = 0; k < 3; k++)
+          R.m[i][j] += W.m[i][k] * S.m[k][j] - S.m[i][k] * W.m[k][j];
+      }
+    mpm_sym3 r = mpm_sym3_spin(&W, s);
+    const double want[6] = {R.m[0][0], R.m[1][1], R.m[2][2], R.m[0][1], R.m[1][2], R.m[2][0]};
+    const double got[6] = {r.xx, r.yy, r.zz, r.xy, r.yz, r.zx};
+    for (int k = 0; k < 6; k++)
+      ck_assert_double_eq_tol(got[k], want[k], 1e-15 * 8);  /* |entries| <= 1: a few ulps of 4 */
+    ck_assert_double_eq_tol(R.m[1][0], R.m[0][1], 1e-15);   /* the full product is symmetric */
+  }
+}
+END_TEST
+
 START_TEST(t_elastic_operator)
 {
   double G = 3.0, K = 5.0;
@@ -154,6 +184,7 @@ int main(void)
   tcase_add_test(tc, t_invariants);
   tcase_add_test(tc, t_sym_skw);
   tcase_add_test(tc, t_spin_objective);
+  tcase_add_test(tc, t_spin_definition);
   tcase_add_test(tc, t_elastic_operator);
   tcase_add_test(tc, t_elastic_update);
   tcase_add_test(tc, t_points_store);

@@ -726,6 +726,14 @@ static void check_doc_default(const doc_row *r, const char *text, const char *po
   if (isalpha((unsigned char)want[0]) && strchr(want, '.') &&
       written_key(text, want, other, sizeof other))
     want = other;
+  char *end;
+  double factor = strtod(want, &end);                  /* "10 material.t0": a multiple */
+  if (end != want && *end == ' ' && written_key(text, end + 1, other, sizeof other)) {
+    double got = strtod(value, NULL), base = strtod(other, NULL);
+    ck_assert_msg(fabs(got - factor * base) <= 1e-12 * fabs(factor * base),
+                  "%s: the reference says default %s, the reader gives %s", r->key, r->def, value);
+    return;
+  }
   ck_assert_msg(!strcmp(value, want), "%s: the reference says default %s, the reader gives %s",
                 r->key, r->def, value);
 }

@@ -15,6 +15,10 @@
 #include "diag/diag.h"
 #include "solver/solver.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 /* One unit of size h, walls as given, one fill of the whole unit with
  * ppu x ppu points of stress-free elastic material at velocity (vx, vy). */
 static void base_config(mpm_config *c, int nx, int ppu, double vx, double vy)
@@ -152,6 +156,168 @@ START_TEST(t_stop_runs_to_end)
 }
 END_TEST
 
+/* A periodic chute: nx = 2 columns of 1 mm units, a layer of h units on a
+ * no-slip base at `angle` degrees, 2 x 2 points per unit; E = 1e5 Pa keeps
+ * the time step long (5e-5 s), the flow being rigid-plastic. */
+static void chute_config(mpm_config *c, const char *model, int h, double angle, double A)
+{
+  base_config(c, 2, 2, 0.0, 0.0);
+  c->mesh.ny = h + 2;
+  c->mesh.dx = c->mesh.dy = 1e-3;
+  strcpy(c->mesh.shape, "ugimp");
+  c->time.dt = 0.0;
+  c->time.cfl = 0.5;
+  c->time.t_end = 1.0;
+  c->time.frame_dt = 1.0;
+  const double a = angle * 3.14159265358979323846 / 180.0;
+  c->gravity.gx = 9.81 * sin(a);
+  c->gravity.gy = -9.81 * cos(a);
+  c->gravity.t_ramp = 0.1;
+  strcpy(c->material.model, model);
+  c->material.E = 1e5;
+  c->material.mu_2 = 1.5;
+  c->material.A = A;
+  c->material.t_seed = 10.0 * c->material.t0;
+  c->material.n_sub = 1;
+  c->bc.left = c->bc.right = MPM_BC_PERIODIC;
+  c->bc.bottom = MPM_BC_NOSLIP;
+  c->bc.top = MPM_BC_FREE;
+  c->fill[0].xmax = 2e-3;
+  c->fill[0].ymax = h * 1e-3;
+}
+
+static mpm_sim *run_to_end(const mpm_config *c)
+{
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, c, &err), MPM_OK);
+  ck_assert_msg(mpm_sim_run(s, NULL, NULL, NULL, &err) == MPM_OK, "%s", err.msg);
+  return s;
+}
+
+/* With A = 0 the NGF equation has no diffusion and its steady homogeneous
+ * solution is mu(I) (MODEL.md section 5): a chute at 30 deg that flows under
+ * the local mu(I) model must reach the same steady state under NGF (seeded
+ * from mu(I) at 10 t0, then relaxing on t0 = 1 ms), point by point. Both
+ * discrete steady states solve the same equations: the stresses agree to
+ * 1e-8 (measured 1.1e-8 of the largest shear stress; the same at 0.6 s and
+ * 1 s, so it is not a transient still decaying). Point velocities agree to
+ * 1.6e-6 of the surface speed: FLIP keeps the part of each run's (different)
+ * start-up that the grid does not see. A = 0.25 instead changes the shear
+ * stress by 15 %. */
+START_TEST(t_ngf_a0_is_mu_i)
+{
+#ifdef _OPENMP
+  omp_set_num_threads(1);                             /* 23000 short steps: no fork cost */
+#endif
+  mpm_config c;
+  chute_config(&c, "mu_i", 6, 30.0, 0.0);
+  mpm_sim *loc = run_to_end(&c);
+  chute_config(&c, "ngf", 6, 30.0, 0.0);
+  mpm_sim *ngf = run_to_end(&c);
+  ck_assert_uint_eq(loc->pts->n, ngf->pts->n);
+  double vmax = 0.0, dv = 0.0, ds = 0.0, smax = 0.0;
+  for (size_t p = 0; p < loc->pts->n; p++) {
+    vmax = fmax(vmax, fabs(loc->pts->vx[p]));
+    dv = fmax(dv, fabs(loc->pts->vx[p] - ngf->pts->vx[p]) + fabs(loc->pts->vy[p] - ngf->pts->vy[p]));
+    smax = fmax(smax, fabs(loc->pts->sxy[p]));
+    ds = fmax(ds, fabs(loc->pts->sxy[p] - ngf->pts->sxy[p]));
+  }
+  ck_assert_double_gt(vmax, 1e-3);                    /* it does flow */
+  ck_assert_msg(ds <= 1e-7 * smax, "shear stress differs by %g of %g", ds, smax);
+  ck_assert_msg(dv <= 1e-5 * vmax, "velocity differs by %g of %g", dv, vmax);
+  mpm_sim_free(loc);
+  mpm_sim_free(ngf);
+}
+END_TEST
+
+/* The same NGF chute (A = 0.25, two substeps, past seeding) stepped with one
+ * thread and with three: every point field must be bitwise equal (the element
+ * sums of g run in point order, point-to-grid in node ranges). */
+START_TEST(t_ngf_thread_count)
+{
+#ifdef _OPENMP
+  mpm_config c;
+  chute_config(&c, "ngf", 8, 27.0, 0.25);
+  c.material.n_sub = 2;
+  mpm_sim *s[2];
+  const int threads[2] = {1, 3};
+  for (int r = 0; r < 2; r++) {
+    mpm_err err = {0};
+    omp_set_num_threads(threads[r]);
+    ck_assert_int_eq(mpm_sim_create(&s[r], &c, &err), MPM_OK);
+    for (int k = 0; k < 300; k++)                      /* 0.016 s: seeded at 0.01 s */
+      ck_assert_msg(mpm_sim_step(s[r], &err) == MPM_OK, "%s", err.msg);
+  }
+  ck_assert(s[0]->seeded && s[1]->seeded);
+  const mpm_points *a = s[0]->pts, *b = s[1]->pts;
+  ck_assert_uint_eq(a->n, b->n);
+  const size_t len = a->n * sizeof(double);
+  const double *fa[] = {a->x, a->y, a->vx, a->vy, a->vol, a->sxx, a->syy, a->szz, a->sxy, a->g, a->gdp};
+  const double *fb[] = {b->x, b->y, b->vx, b->vy, b->vol, b->sxx, b->syy, b->szz, b->sxy, b->g, b->gdp};
+  for (size_t f = 0; f < sizeof fa / sizeof fa[0]; f++)
+    ck_assert_msg(memcmp(fa[f], fb[f], len) == 0, "field %zu differs between 1 and 3 threads", f);
+  double gmax = 0.0;
+  for (size_t p = 0; p < a->n; p++)
+    gmax = fmax(gmax, a->g[p]);
+  ck_assert_double_gt(gmax, 0.0);                     /* the nonlocal update did run */
+  mpm_sim_free(s[0]);
+  mpm_sim_free(s[1]);
+#endif
+}
+END_TEST
+
+/* Substeps: n_sub as given, or the fewest with dt / n_sub <= dt_sub. */
+START_TEST(t_time_plan_substeps)
+{
+  mpm_config c;
+  base_config(&c, 2, 2, 0.0, 0.0);                    /* time.dt = 1e-4 s */
+  double dt;
+  int n;
+  c.material.n_sub = 4;
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_double_eq(dt, 1e-4);
+  ck_assert_int_eq(n, 4);
+  c.material.n_sub = 1;
+  c.material.dt_sub = 4e-5;                           /* 1e-4 / 4e-5 = 2.5 -> 3 */
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_int_eq(n, 3);
+  c.material.dt_sub = 1e-4 / 3.0;                     /* exactly 3 (up to round-off) */
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_int_eq(n, 3);
+  c.material.dt_sub = 1.0;                            /* longer than dt: one substep */
+  mpm_sim_time_plan(&c, &dt, &n);
+  ck_assert_int_eq(n, 1);
+  c.time.dt = 0.0;                                    /* from cfl: 0.5 * 0.1 / c_p */
+  c.material.dt_sub = 0.0;
+  mpm_sim_time_plan(&c, &dt, &n);
+  const double E = 1e6, nu = 0.3, cp = sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / 1500.0);
+  ck_assert_double_eq_tol(dt, 0.5 * 0.1 / cp, 1e-12 * dt);
+}
+END_TEST
+
+/* A nonlocal run whose point leaves the mesh while the units are frozen is an
+ * error naming the point, where it went and when: one stress-free point at
+ * 2000 m/s crosses the free top edge (0.1 m above it) within the first step. */
+START_TEST(t_ngf_point_leaves_mesh)
+{
+  mpm_config c;
+  base_config(&c, 2, 1, 0.0, 2000.0);
+  c.bc.left = c.bc.bottom = MPM_BC_FREE;
+  strcpy(c.material.model, "ngf");
+  c.fill[0].xmin = c.fill[0].ymin = 0.1;
+  c.fill[0].xmax = c.fill[0].ymax = 0.2;                /* one point at (0.15, 0.15) */
+  c.gravity.gy = 0.0;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  ck_assert_uint_eq(s->pts->n, 1);
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_EOUTSIDE);
+  ck_assert_msg(strstr(err.msg, "point 0 left the mesh at (0.15, 0.35) m, t = 0.0001 s"), "%s", err.msg);
+  mpm_sim_free(s);
+}
+END_TEST
+
 int main(void)
 {
   Suite *su = suite_create("solver");
@@ -160,6 +326,10 @@ int main(void)
   tcase_add_test(tc, t_pic_velocity_is_displacement_rate);
   tcase_add_test(tc, t_stop_at_rest);
   tcase_add_test(tc, t_stop_runs_to_end);
+  tcase_add_test(tc, t_ngf_a0_is_mu_i);
+  tcase_add_test(tc, t_ngf_thread_count);
+  tcase_add_test(tc, t_time_plan_substeps);
+  tcase_add_test(tc, t_ngf_point_leaves_mesh);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

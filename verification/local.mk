@@ -7,3 +7,4 @@ include verification/V2-constitutive/local.mk
 include verification/V3-incline/local.mk
 include verification/V4-collapse/local.mk
 include verification/ngf1d/local.mk
+include verification/V7-ngf-chute/local.mk

@@ -104,6 +104,22 @@ static int load_input(const run_opts *o, mpm_config *cfg)
   return 0;
 }
 
+/* A nonlocal model whose explicit diffusion of g is unstable at the planned
+ * time step and substeps: a warning on stderr, not an error (MODEL.md section 5). */
+static void warn_diffusion(const char *file, const mpm_config *cfg)
+{
+  const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
+  if (!t || !t->nonlocal)
+    return;
+  double dt;
+  int n_sub;
+  mpm_sim_time_plan(cfg, &dt, &n_sub);
+  mpm_material_params par = {.A = cfg->material.A, .d = cfg->material.d, .t0 = cfg->material.t0};
+  mpm_err err = {0};
+  if (mpm_ngf_check_diffusion(&par, dt, n_sub, cfg->mesh.dx, cfg->mesh.dy, &err) != MPM_OK)
+    fprintf(stderr, "granmpm: warning: %s: %s (key 'material.n_sub')\n", file, err.msg);
+}
+
 static int cmd_check(int argc, char **argv)
 {
   run_opts o;
@@ -111,8 +127,10 @@ static int cmd_check(int argc, char **argv)
   int rc = parse_run_opts(argc, argv, 0, &o);
   if (rc == 0)
     rc = load_input(&o, &cfg);
-  if (rc == 0)
+  if (rc == 0) {
     mpm_input_write(stdout, &cfg);
+    warn_diffusion(o.file, &cfg);
+  }
   return rc;
 }
 
@@ -182,6 +200,7 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   if (rc != 0)
     return rc;
 
+  warn_diffusion(o.file, &cfg);
   mpm_err err = {0};
   mpm_sim *sim = NULL;
   if (mpm_sim_create(&sim, &cfg, &err) != MPM_OK) {

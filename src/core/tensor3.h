@@ -91,21 +91,19 @@ static inline mpm_mat3 mpm_sym3_full(mpm_sym3 s)
   return (mpm_mat3){{{s.xx, s.xy, s.zx}, {s.xy, s.yy, s.yz}, {s.zx, s.yz, s.zz}}};
 }
 
-/* Jaumann spin term W s - s W (symmetric for skew W and symmetric s). */
+/* Jaumann spin term W s - s W for skew W and symmetric s. Since W^T = -W,
+ * W s - s W = P + P^T with P = W s; written out in the independent
+ * components a = W_xy, b = W_yz, c = W_zx of W (W_yx = -a, ...), so only
+ * those entries of W are read. Plane strain has b = c = 0. */
 static inline mpm_sym3 mpm_sym3_spin(const mpm_mat3 *W, mpm_sym3 s)
 {
-  mpm_mat3 S = mpm_sym3_full(s), R;
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) {
-      double a = 0.0;
-      for (int k = 0; k < 3; k++)
-        a += W->m[i][k] * S.m[k][j] - S.m[i][k] * W->m[k][j];
-      R.m[i][j] = a;
-    }
-  return (mpm_sym3){R.m[0][0], R.m[1][1], R.m[2][2],
-                    0.5 * (R.m[0][1] + R.m[1][0]),
-                    0.5 * (R.m[1][2] + R.m[2][1]),
-                    0.5 * (R.m[2][0] + R.m[0][2])};
+  const double a = W->m[0][1], b = W->m[1][2], c = W->m[2][0];
+  return (mpm_sym3){2.0 * (a * s.xy - c * s.zx),                 /* 2 P_xx */
+                    2.0 * (b * s.yz - a * s.xy),                 /* 2 P_yy */
+                    2.0 * (c * s.zx - b * s.yz),                 /* 2 P_zz */
+                    a * (s.yy - s.xx) + b * s.zx - c * s.yz,     /* P_xy + P_yx */
+                    b * (s.zz - s.yy) + c * s.xy - a * s.zx,     /* P_yz + P_zy */
+                    c * (s.xx - s.zz) + a * s.yz - b * s.xy};    /* P_zx + P_xz */
 }
 
 /* Isotropic elasticity C:D = 2G D0 + K tr(D) I. */

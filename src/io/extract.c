@@ -16,6 +16,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "io/h5err.h"
 #include "io/io.h"
 
 #define FIELD_NAME_MAX 64 /* longest field name, with the NUL */
@@ -27,66 +28,6 @@ typedef struct field_names {
   int n;
   char name[FIELDS_MAX][FIELD_NAME_MAX];
 } field_names;
-
-/* ---- HDF5 error handling ------------------------------------------------ */
-
-/* HDF5's automatic error printing is replaced, for the duration of
- * mpm_extract, by a handler that keeps the innermost message of the first
- * failing call (clean-up calls clear HDF5's own stack). */
-typedef struct h5_quiet {
-  H5E_auto2_t func;
-  void *data;
-  char reason[200];
-} h5_quiet;
-
-typedef struct reason_buf {
-  char *buf;
-  size_t len;
-} reason_buf;
-
-/* File-driver errors carry the system's own text after this key. */
-static const char system_text_key[] = "error message = '";
-
-/* Keep the innermost entry of the stack, which names the cause. */
-static herr_t reason_first(unsigned n, const H5E_error2_t *e, void *data)
-{
-  const char *key = system_text_key;
-  const size_t klen = sizeof system_text_key - 1;
-  reason_buf *r = data;
-  const char *desc = e->desc ? e->desc : "";
-  const char *p = strstr(desc, key);
-  const char *end = p ? strchr(p + klen, '\'') : NULL;
-  (void)n;
-  if (end)
-    snprintf(r->buf, r->len, "%.*s", (int)(end - p - klen), p + klen);
-  else
-    snprintf(r->buf, r->len, "%s", desc);
-  return 1;
-}
-
-static herr_t h5_capture(hid_t stack, void *data)
-{
-  h5_quiet *q = data;
-  reason_buf r = {q->reason, sizeof q->reason};
-  if (!q->reason[0])
-    H5Ewalk2(stack, H5E_WALK_UPWARD, reason_first, &r);
-  return 0;
-}
-
-static void h5_quiet_begin(h5_quiet *q)
-{
-  q->reason[0] = '\0';
-  if (H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data) < 0) {
-    q->func = NULL;
-    q->data = NULL;
-  }
-  H5Eset_auto2(H5E_DEFAULT, h5_capture, q);
-}
-
-static void h5_quiet_end(const h5_quiet *q)
-{
-  H5Eset_auto2(H5E_DEFAULT, q->func, q->data);
-}
 
 /* ---- state of one extraction ------------------------------------------- */
 
@@ -108,13 +49,12 @@ typedef struct extract_ctx {
   column col[COLUMNS_MAX];
   int ncol;
   hsize_t npoints;
-  h5_quiet quiet;
+  mpm_h5_quiet quiet;
 } extract_ctx;
 
 static int h5_fail(mpm_err *err, const extract_ctx *c, const char *what)
 {
-  const char *why = c->quiet.reason[0] ? c->quiet.reason : "HDF5 error";
-  return mpm_err_set(err, MPM_EIO, "%s '%s': %s", what, c->path, why);
+  return mpm_h5_fail(err, &c->quiet, what, c->path);
 }
 
 /* ---- opening ------------------------------------------------------------- */
@@ -434,7 +374,7 @@ int mpm_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_e
     return mpm_err_set(err, MPM_ENOMEM, "out of memory extracting from '%s'", dir);
   c->dir = dir;
   c->file = c->group = H5I_INVALID_HID;
-  h5_quiet_begin(&c->quiet);
+  mpm_h5_quiet_begin(&c->quiet);
   rc = open_run(c, err);
   if (rc == MPM_OK)
     rc = open_frame(c, frame, err);
@@ -445,7 +385,7 @@ int mpm_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_e
   if (rc == MPM_OK)
     rc = print_frame(c, out, err);
   ctx_close(c);
-  h5_quiet_end(&c->quiet);
+  mpm_h5_quiet_end(&c->quiet);
   ctx_free(c);
   return rc;
 }

@@ -62,13 +62,16 @@ enum key_type {
   KT_LIST   /* double[MPM_MAX_POLY], polygon coordinates */
 };
 
-enum name_kind { NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE };
+enum name_kind {
+  NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM
+};
 
 enum key_flag {
   KF_REQUIRED = 1,  /* no default (fill keys: required by the shapes that use it) */
   KF_LO_OPEN = 2,   /* value > lo rather than >= lo */
   KF_HI_OPEN = 4,   /* value < hi rather than <= hi */
-  KF_RHO_C = 8      /* default: material.rho_c */
+  KF_RHO_C = 8,     /* default: material.rho_c */
+  KF_T0X10 = 16     /* default: 10 material.t0 */
 };
 
 /* Fill shapes that use a key (0: every shape). */
@@ -129,6 +132,10 @@ static const key_def keys[] = {
   NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), 0.005, 0, 1, KF_LO_OPEN, "m"),
   NUM(S_MATERIAL, KT_REAL, "A", C_(material.A), 0.48, 0, 100, 0, "-"),
   NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
+  NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
+  NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
+  NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
+  NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
 
   NAMED(S_BOUNDARY, KT_ENUM, "left", C_(bc.left), NK_BC, "free"),
   NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
@@ -185,6 +192,7 @@ static const char *name_at(int kind, int i)
   case NK_DIAGONAL: return i < 3 ? diagonal_names[i] : NULL;
   case NK_FILL_SHAPE: return i >= 0 && i <= MPM_FILL_POLYGON ? fill_shape_names[i] : NULL;
   case NK_BC: return i >= 0 && i <= MPM_BC_PERIODIC ? mpm_bc_kind_name(i) : NULL;
+  case NK_NGF_FORM: return mpm_ngf_form_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -208,6 +216,7 @@ static int name_value(int kind, const char *s)
   case NK_MODEL: return mpm_material_lookup(s) ? 0 : -1;
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return list_index(fill_shape_names, s);
+  case NK_NGF_FORM: return mpm_ngf_form_from_name(s);
   default: return -1;
   }
 }
@@ -1388,12 +1397,21 @@ static void resolve_stop(in_ctx *c, mpm_config *cfg)
     cfg->stop.t_min = cfg->gravity.t_ramp;
 }
 
-static int check_material(in_ctx *c, const mpm_config *cfg)
+static int check_material(in_ctx *c, mpm_config *cfg)
 {
+  for (int k = 0; k < NKEYS; k++)  /* NGF seeding time: 10 t0 unless given ([DK-silo] 6) */
+    if ((keys[k].flags & KF_T0X10) && !is_set(c, k, -1))
+      *(double *)(void *)((char *)cfg + keys[k].off) = 10.0 * cfg->material.t0;
   if (cfg->material.rho_c > cfg->material.rho_s) {
     where w = blame(c, cfg, -1, key_index(S_MATERIAL, "rho_c"), key_index(S_MATERIAL, "rho_s"));
     return fail_key(c, &w, "rho_c = %s > rho_s = %s (allowed: rho_c <= rho_s)",
                     num(cfg->material.rho_c).s, num(cfg->material.rho_s).s);
+  }
+  const int kn = key_index(S_MATERIAL, "n_sub"), kd = key_index(S_MATERIAL, "dt_sub");
+  if (cfg->material.n_sub > 1 && cfg->material.dt_sub > 0.0) {  /* two ways to say it */
+    where w = blame(c, cfg, -1, kd, kn);
+    return fail_key(c, &w, "n_sub = %d with dt_sub = %s s (allowed: n_sub = 1 or dt_sub = 0)",
+                    cfg->material.n_sub, num(cfg->material.dt_sub).s);
   }
   if (cfg->material.mu_s >= cfg->material.mu_2) {
     where w = blame(c, cfg, -1, key_index(S_MATERIAL, "mu_s"), key_index(S_MATERIAL, "mu_2"));
@@ -1562,7 +1580,8 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
   mpm_material_params par = {
     .E = cfg->material.E, .nu = cfg->material.nu, .rho_s = cfg->material.rho_s,
     .rho_c = cfg->material.rho_c, .mu_s = cfg->material.mu_s, .mu_2 = cfg->material.mu_2,
-    .I0 = cfg->material.I0, .d = cfg->material.d, .A = cfg->material.A, .t0 = cfg->material.t0};
+    .I0 = cfg->material.I0, .d = cfg->material.d, .A = cfg->material.A, .t0 = cfg->material.t0,
+    .form = cfg->material.form, .t_seed = cfg->material.t_seed};
   mpm_material_params_derive(&par);
   mpm_err e = {0};
   if (t->check(&par, &e) == MPM_OK)
@@ -1610,6 +1629,9 @@ void mpm_input_defaults(mpm_config *cfg)
   for (int k = 0; k < NKEYS; k++)
     if (keys[k].sec != S_FILL)
       store_default(cfg, &keys[k]);
+  for (int k = 0; k < NKEYS; k++)  /* defaults that follow another key */
+    if (keys[k].flags & KF_T0X10)
+      *(double *)(void *)((char *)cfg + keys[k].off) = 10.0 * cfg->material.t0;
 }
 
 static int load(in_ctx *c, const char *path, int noverrides, mpm_config *cfg)

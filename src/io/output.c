@@ -31,6 +31,7 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 
+#include "io/h5err.h"
 #include "io/io.h"
 
 /* One output field: name in run.h5, unit, where it comes from. */
@@ -94,77 +95,6 @@ struct mpm_output {
   double *work;      /* per-point scratch for derived fields */
   size_t work_cap;
 };
-
-/* ---- HDF5 error handling ------------------------------------------------ */
-
-/* Inside the public functions HDF5's automatic error printing is replaced
- * by a handler that keeps the innermost message of the first failing call
- * (later clean-up calls clear HDF5's own stack); the previous handler is
- * restored on return and failures become mpm_err messages. */
-typedef struct h5_quiet {
-  H5E_auto2_t func;
-  void *data;
-  char reason[200];
-} h5_quiet;
-
-typedef struct reason_buf {
-  char *buf;
-  size_t len;
-} reason_buf;
-
-/* File-driver errors carry the system's own text after this key. */
-static const char system_text_key[] = "error message = '";
-
-/* Keep the innermost entry of the stack, which names the cause. */
-static herr_t reason_first(unsigned n, const H5E_error2_t *e, void *data)
-{
-  const char *key = system_text_key;
-  const size_t klen = sizeof system_text_key - 1;
-  reason_buf *r = data;
-  const char *desc = e->desc ? e->desc : "";
-  const char *p = strstr(desc, key);
-  const char *end = p ? strchr(p + klen, '\'') : NULL;
-  (void)n;
-  if (end)
-    snprintf(r->buf, r->len, "%.*s", (int)(end - p - klen), p + klen);
-  else
-    snprintf(r->buf, r->len, "%s", desc);
-  return 1;
-}
-
-static herr_t h5_capture(hid_t stack, void *data)
-{
-  h5_quiet *q = data;
-  reason_buf r = {q->reason, sizeof q->reason};
-  if (!q->reason[0])
-    H5Ewalk2(stack, H5E_WALK_UPWARD, reason_first, &r);
-  return 0;
-}
-
-static void h5_quiet_begin(h5_quiet *q)
-{
-  q->reason[0] = '\0';
-  if (H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data) < 0) {
-    q->func = NULL;
-    q->data = NULL;
-  }
-  H5Eset_auto2(H5E_DEFAULT, h5_capture, q);
-}
-
-static void h5_quiet_end(const h5_quiet *q)
-{
-  H5Eset_auto2(H5E_DEFAULT, q->func, q->data);
-}
-
-static const char *h5_reason(const h5_quiet *q)
-{
-  return q->reason[0] ? q->reason : "HDF5 error";
-}
-
-static int h5_fail(mpm_err *err, const h5_quiet *q, const char *what, const char *path)
-{
-  return mpm_err_set(err, MPM_EIO, "%s '%s': %s", what, path, h5_reason(q));
-}
 
 /* ---- small HDF5 writers --------------------------------------------------- */
 
@@ -429,7 +359,7 @@ static herr_t write_header(mpm_output *out, const char *cmdline, const char *inp
 }
 
 static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
-                       const char *input, const mpm_mesh *m, const h5_quiet *q,
+                       const char *input, const mpm_mesh *m, const mpm_h5_quiet *q,
                        mpm_err *err)
 {
   int rc = make_dirs(dir, err);
@@ -445,10 +375,10 @@ static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
   if (rc == MPM_OK) {
     out->file = create_h5(out->h5_path);
     if (out->file < 0)
-      rc = h5_fail(err, q, "cannot create", out->h5_path);
+      rc = mpm_h5_fail(err, q, "cannot create", out->h5_path);
   }
   if (rc == MPM_OK && write_header(out, cmdline, input, m) < 0)
-    rc = h5_fail(err, q, "cannot write header of", out->h5_path);
+    rc = mpm_h5_fail(err, q, "cannot write header of", out->h5_path);
   if (rc != MPM_OK) {
     output_free(out);
     return rc;
@@ -460,16 +390,16 @@ static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
 int mpm_output_open(mpm_output **out, const char *dir, const char *cmdline,
                     const char *input_text, const mpm_mesh *m, mpm_err *err)
 {
-  h5_quiet q;
+  mpm_h5_quiet q;
   int rc;
   if (!out)
     return mpm_err_set(err, MPM_EINVAL, "mpm_output_open: no output handle");
   *out = NULL;
   if (!dir || !dir[0])
     return mpm_err_set(err, MPM_EINVAL, "mpm_output_open: empty output directory");
-  h5_quiet_begin(&q);
+  mpm_h5_quiet_begin(&q);
   rc = output_open(out, dir, cmdline, input_text, m, &q, err);
-  h5_quiet_end(&q);
+  mpm_h5_quiet_end(&q);
   return rc;
 }
 
@@ -501,7 +431,7 @@ static const void *field_values(mpm_output *out, const field_spec *f, const mpm_
 }
 
 static int write_fields(mpm_output *out, hid_t g, const mpm_points *pts,
-                        const h5_quiet *q, mpm_err *err)
+                        const mpm_h5_quiet *q, mpm_err *err)
 {
   for (size_t k = 0; k < NFIELDS; k++) {
     const field_spec *f = &output_fields[k];
@@ -511,13 +441,13 @@ static int write_fields(mpm_output *out, hid_t g, const mpm_points *pts,
                             field_values(out, f, pts), f->unit, f->description);
     if (rc < 0)
       return mpm_err_set(err, MPM_EIO, "cannot write field '%s' of frame %d to '%s': %s",
-                         f->name, out->nframes, out->h5_path, h5_reason(q));
+                         f->name, out->nframes, out->h5_path, mpm_h5_reason(q));
   }
   return MPM_OK;
 }
 
 /* Polyvertex connectivity 0..n-1, written again only when n changes. */
-static int write_vertices(mpm_output *out, size_t n, const h5_quiet *q, mpm_err *err)
+static int write_vertices(mpm_output *out, size_t n, const mpm_h5_quiet *q, mpm_err *err)
 {
   char name[32];
   int *v;
@@ -534,7 +464,7 @@ static int write_vertices(mpm_output *out, size_t n, const h5_quiet *q, mpm_err 
                    "Polyvertex connectivity of run.xdmf");
   free(v);
   if (rc < 0)
-    return h5_fail(err, q, "cannot write connectivity to", out->h5_path);
+    return mpm_h5_fail(err, q, "cannot write connectivity to", out->h5_path);
   out->vertex_n = n;
   out->vertex_frame = out->nframes;
   return MPM_OK;
@@ -577,7 +507,7 @@ static herr_t write_xy_view(hid_t xg, int frame, size_t n)
 }
 
 static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
-                          const h5_quiet *q, mpm_err *err)
+                          const mpm_h5_quiet *q, mpm_err *err)
 {
   char name[32];
   hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
@@ -592,7 +522,7 @@ static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
     H5Pclose(gcpl);
   if (g < 0 || attr_double(g, "time", t) < 0 ||
       attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
-    rc = h5_fail(err, q, "cannot create frame group in", out->h5_path);
+    rc = mpm_h5_fail(err, q, "cannot create frame group in", out->h5_path);
   if (rc == MPM_OK)
     rc = write_fields(out, g, pts, q, err);
   if (g >= 0)
@@ -600,9 +530,9 @@ static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
   if (rc == MPM_OK)
     rc = write_vertices(out, pts->n, q, err);
   if (rc == MPM_OK && pts->n > 0 && write_xy_view(out->xdmf_group, out->nframes, pts->n) < 0)
-    rc = h5_fail(err, q, "cannot write XY view to", out->h5_path);
+    rc = mpm_h5_fail(err, q, "cannot write XY view to", out->h5_path);
   if (rc == MPM_OK && H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
-    rc = h5_fail(err, q, "cannot flush", out->h5_path);
+    rc = mpm_h5_fail(err, q, "cannot flush", out->h5_path);
   return rc;
 }
 
@@ -679,15 +609,15 @@ static int write_xdmf_frame(mpm_output *out, double t, size_t n, mpm_err *err)
 int mpm_output_frame(mpm_output *out, const mpm_points *pts, const mpm_diag *d,
                      mpm_err *err)
 {
-  h5_quiet q;
+  mpm_h5_quiet q;
   int rc;
   if (!out || !pts || !d)
     return mpm_err_set(err, MPM_EINVAL, "mpm_output_frame: missing output, points or diagnostics");
   if (work_reserve(out, pts->n) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory writing frame %d", out->nframes);
-  h5_quiet_begin(&q);
+  mpm_h5_quiet_begin(&q);
   rc = write_frame_h5(out, pts, d->t, &q, err);
-  h5_quiet_end(&q);
+  mpm_h5_quiet_end(&q);
   if (rc == MPM_OK)
     rc = write_csv_row(out, d, err);
   if (rc == MPM_OK)
@@ -707,7 +637,7 @@ static int close_text(FILE **f, const char *path, int rc, mpm_err *err)
   return rc;
 }
 
-static int close_h5(mpm_output *out, const h5_quiet *q, mpm_err *err)
+static int close_h5(mpm_output *out, const mpm_h5_quiet *q, mpm_err *err)
 {
   int bad = 0;
   if (out->xdmf_group >= 0)
@@ -717,18 +647,18 @@ static int close_h5(mpm_output *out, const h5_quiet *q, mpm_err *err)
   if (out->file >= 0)
     bad |= H5Fclose(out->file) < 0;
   out->xdmf_group = out->frames = out->file = H5I_INVALID_HID;
-  return bad ? h5_fail(err, q, "cannot close", out->h5_path) : MPM_OK;
+  return bad ? mpm_h5_fail(err, q, "cannot close", out->h5_path) : MPM_OK;
 }
 
 int mpm_output_close(mpm_output *out, mpm_err *err)
 {
-  h5_quiet q;
+  mpm_h5_quiet q;
   int rc;
   if (!out)
     return MPM_OK;
-  h5_quiet_begin(&q);
+  mpm_h5_quiet_begin(&q);
   rc = close_h5(out, &q, err);
-  h5_quiet_end(&q);
+  mpm_h5_quiet_end(&q);
   rc = close_text(&out->csv, out->csv_path, rc, err);
   rc = close_text(&out->xdmf, out->xdmf_path, rc, err);
   output_free(out);

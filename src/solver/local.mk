@@ -8,3 +8,9 @@ tests_test_solver_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_solver_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
 	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_core.la \
 	$(GSL_LIBS) $(CHECK_LIBS) -lm
+
+check_PROGRAMS += tests/test_threads
+TESTS += tests/test_threads
+tests_test_threads_SOURCES = tests/test_threads.c
+tests_test_threads_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_threads_LDADD = $(tests_test_solver_LDADD)

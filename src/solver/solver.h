@@ -17,6 +17,7 @@
 #include "diag/diag.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
+#include "nonlocal/nonlocal.h"
 #include "shape/shape.h"
 
 typedef struct mpm_sim {
@@ -34,6 +35,13 @@ typedef struct mpm_sim {
   int *nbusy;                     /* [mesh.nnodes + 1] running count of nodes with mass,
                                    * to split point-to-grid between threads */
 
+  /* constitutive substepping and the nonlocal fluidity (MODEL.md section 5) */
+  int n_sub;                      /* constitutive substeps per step, L fixed */
+  mpm_nonlocal *nl;               /* element g and Laplacian; NULL for local models */
+  double *lxx, *lxy, *lyx, *lyy;  /* [pts->cap] L_p of the step, kept over the substeps */
+  size_t lcap;                    /* length of the L arrays */
+  int seeded;                     /* NGF: 1 once g was seeded from the local run */
+
   double t, dt;                   /* current time, time step [s] */
   long step;
   double mass0;                   /* initial mass, for bookkeeping */
@@ -46,6 +54,11 @@ typedef struct mpm_sim {
 /* Build a simulation from a resolved configuration. */
 int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err);
 void mpm_sim_free(mpm_sim *s);  /* accepts NULL */
+
+/* The time step and the number of constitutive substeps cfg resolves to
+ * (time.dt, or cfl min(dx, dy) / (c_p + |v|max) at the densest, fastest fill;
+ * material.n_sub, or ceil(dt / material.dt_sub)), without building a run. */
+void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub);
 
 /* Gravity vector at time t (linear ramp over t_ramp). */
 void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy);

@@ -4,9 +4,15 @@
  * One step: stencil (once) -> point-to-grid (mass, momentum, force) -> grid
  * update with boundary conditions -> grid-to-point (FLIP velocity, position,
  * velocity gradient) -> volume -> constitutive update -> periodic wrap.
+ * The constitutive update runs in n_sub substeps of dt/n_sub with L fixed.
+ * A nonlocal model (NGF, [DK-silo] section 5.2) moves the points first, freezes
+ * their units, and per substep rebuilds the element g and its Laplacian from
+ * the dense points before the point updates (nonlocal_phase); before t_seed
+ * it runs as the local mu(I) model, then g is seeded from it (seeding).
  * Threads: the stencil is parallel over points; point-to-grid and the grid
  * update over ranges of nodes (grid_phase); the rest over points
- * (point_phase). No sum depends on the thread count, so neither do results. */
+ * (point_phase), except the element sums of g, which run in point order on
+ * one thread. No sum depends on the thread count, so neither do results. */
 #include "solver/solver.h"
 
 #include <math.h>
@@ -55,6 +61,8 @@ static void params_from_config(mpm_material_params *par, const mpm_config *cfg)
   par->d = cfg->material.d;
   par->A = cfg->material.A;
   par->t0 = cfg->material.t0;
+  par->form = cfg->material.form;
+  par->t_seed = cfg->material.t_seed;
   mpm_material_params_derive(par);
 }
 
@@ -72,17 +80,48 @@ static int nodal_alloc(mpm_sim *s)
 }
 
 /* dt = cfl min(dx, dy) / (c_p + |v|max) at the densest, fastest fill. */
-static double stable_dt(const mpm_sim *s)
+static double stable_dt(const mpm_config *cfg, const mpm_material_params *par)
 {
   double rho = 0.0, vmax = 0.0;
-  for (int f = 0; f < s->cfg.nfill; f++) {
-    const mpm_fill_config *fc = &s->cfg.fill[f];
+  for (int f = 0; f < cfg->nfill; f++) {
+    const mpm_fill_config *fc = &cfg->fill[f];
     if (fc->density > rho) rho = fc->density;
     double v = hypot(fc->vx, fc->vy);
     if (v > vmax) vmax = v;
   }
-  double h = fmin(s->mesh.dx, s->mesh.dy);
-  return s->cfg.time.cfl * h / (mpm_material_wave_speed(&s->par, rho) + vmax);
+  double h = fmin(cfg->mesh.dx, cfg->mesh.dy);
+  return cfg->time.cfl * h / (mpm_material_wave_speed(par, rho) + vmax);
+}
+
+void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
+{
+  mpm_material_params par;
+  params_from_config(&par, cfg);
+  *dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(cfg, &par);
+  *n_sub = cfg->material.n_sub > 0 ? cfg->material.n_sub : 1;
+  if (cfg->material.dt_sub > 0.0) {
+    double n = ceil(*dt / cfg->material.dt_sub * (1.0 - 1e-12));  /* dt/n_sub <= dt_sub */
+    *n_sub = n < 1.0 ? 1 : n > 1e6 ? 1000000 : (int)n;
+  }
+}
+
+/* Per-point L storage and the nonlocal workspace for models that need them. */
+static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
+{
+  if (!s->mat->nonlocal)
+    return MPM_OK;
+  const mpm_config *cfg = &s->cfg;
+  int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
+  int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, edge, MPM_NONLOCAL_CENTRE, s->pts->cap, err);
+  if (rc != MPM_OK)
+    return rc;
+  size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
+  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
+  for (size_t k = 0; k < 4; k++)
+    if (!(*arrs[k] = calloc(n, sizeof(double))))
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
+  s->lcap = n;
+  return MPM_OK;
 }
 
 int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
@@ -112,11 +151,13 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK ||
                        !(s->st = mpm_stencil_alloc(s->pts->cap))))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
+  if (rc == MPM_OK)
+    rc = nonlocal_alloc(s, err);
   if (rc != MPM_OK) {
     mpm_sim_free(s);
     return rc;
   }
-  s->dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(s);
+  mpm_sim_time_plan(cfg, &s->dt, &s->n_sub);
   for (size_t p = 0; p < s->pts->n; p++)
     s->mass0 += s->pts->mass[p];
   s->mtiny = 1e-12 * s->mass0 / (double)s->pts->n;          /* skip nodes lighter than this */
@@ -132,6 +173,11 @@ void mpm_sim_free(mpm_sim *s)
   mpm_points_free(s->pts);
   mpm_stencil_free(s->st);
   free(s->nbusy);
+  mpm_nonlocal_free(s->nl);
+  free(s->lxx);
+  free(s->lxy);
+  free(s->lyx);
+  free(s->lyy);
   double *arrs[] = {s->nm, s->nmvx, s->nmvy, s->nfx, s->nfy, s->nvx, s->nvy,
                     s->nax, s->nay};
   for (size_t k = 0; k < sizeof arrs / sizeof arrs[0]; k++)
@@ -334,17 +380,20 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
   L->m[1][1] = lyy;
 }
 
-/* Step 6 for point p: constitutive update with L fixed; returns 0 when the
- * stress became non-finite. */
-static int constitutive(mpm_sim *s, size_t p, const mpm_mat3 *L)
+/* Step 6 for point p: n substeps of length h of model mat with L fixed; lap
+ * is the Laplacian of g its unit sees (nonlocal models only). Returns 0 when
+ * the stress became non-finite. */
+static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, const mpm_mat3 *L,
+                        double h, int n, double lap)
 {
   mpm_points *P = s->pts;
   mpm_mpoint mp = {
     .sigma = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0},
     .rho = P->mass[p] / P->vol[p],                         /* rho_{n+1} = m / V_{n+1} */
-    .g = P->g[p], .gdp = P->gdp[p], .state = P->state[p],
+    .g = P->g[p], .lap = lap, .gdp = P->gdp[p], .state = P->state[p],
   };
-  s->mat->update(&s->par, L, s->dt, &mp);
+  for (int k = 0; k < n; k++)
+    mat->update(&s->par, L, h, &mp);
   P->sxx[p] = mp.sigma.xx;
   P->syy[p] = mp.sigma.yy;
   P->szz[p] = mp.sigma.zz;
@@ -355,25 +404,138 @@ static int constitutive(mpm_sim *s, size_t p, const mpm_mat3 *L)
   return isfinite(mp.sigma.xx + mp.sigma.yy + mp.sigma.zz + mp.sigma.xy);
 }
 
-/* Steps 4-7 point by point (once the grid is known the points are
- * independent): grid-to-point, constitutive update, periodic wrap. Returns
- * the largest index of a point whose stress became non-finite, or -1. */
-static long point_phase(mpm_sim *s)
+/* Step 7 for point p: walls hold, periodic wrap. */
+static void bookkeeping(mpm_sim *s, size_t p)
 {
   mpm_points *P = s->pts;
-  const int periodic = s->mesh.periodic_x || s->mesh.periodic_y;
+  mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p]);       /* walls hold */
+  if (s->mesh.periodic_x || s->mesh.periodic_y)
+    mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
+}
+
+/* Steps 4-7 point by point for a local model (once the grid is known the
+ * points are independent): grid-to-point, constitutive update in n_sub
+ * substeps, bookkeeping. Returns the largest index of a point whose stress
+ * became non-finite, or -1. */
+static long point_phase(mpm_sim *s, const mpm_material_type *mat)
+{
+  mpm_points *P = s->pts;
+  const double h = s->dt / s->n_sub;
   long bad = -1;
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = {{{0.0}}};
     grid_to_point(s, p, &L);
-    if (!constitutive(s, p, &L))
+    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0))
       bad = (long)p > bad ? (long)p : bad;
-    mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p]);     /* step 7: walls hold */
-    if (periodic)
-      mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
+    bookkeeping(s, p);
   }
   return bad;
+}
+
+/* L_p as stored for the substeps. */
+static mpm_mat3 stored_L(const mpm_sim *s, size_t p)
+{
+  mpm_mat3 L = {{{0.0}}};
+  L.m[0][0] = s->lxx[p];
+  L.m[0][1] = s->lxy[p];
+  L.m[1][0] = s->lyx[p];
+  L.m[1][1] = s->lyy[p];
+  return L;
+}
+
+/* Grow the per-point L arrays with the point store. */
+static int reserve_L(mpm_sim *s, mpm_err *err)
+{
+  size_t n = s->pts->n;
+  if (n <= s->lcap)
+    return MPM_OK;
+  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
+  for (size_t k = 0; k < 4; k++) {
+    double *a = realloc(*arrs[k], n * sizeof(double));
+    if (!a)
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
+    *arrs[k] = a;
+  }
+  s->lcap = n;
+  return MPM_OK;
+}
+
+/* Point-to-unit membership for the step, from the positions x_{n+1}; a point
+ * outside the mesh is an error naming its id, position and time. */
+static int locate(mpm_sim *s, mpm_err *err)
+{
+  const mpm_points *P = s->pts;
+  if (mpm_nonlocal_locate(s->nl, &s->mesh, P->n, P->x, P->y, NULL) == MPM_OK)
+    return MPM_OK;
+  for (size_t p = 0; p < P->n; p++) {
+    int i, j;
+    if (mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) != MPM_OK)
+      return mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s",
+                         P->id[p], P->x[p], P->y[p], s->t + s->dt);
+  }
+  return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu points", P->n);
+}
+
+/* Steps 4-7 for a nonlocal model ([DK-silo] section 5.2; MODEL.md section 5):
+ * grid-to-point and bookkeeping first (L_p stored), membership frozen, then
+ * per substep: dense flags, element g (summed in point order: no dependence on
+ * the thread count), its Laplacian, and the point updates with lap_e. */
+static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
+{
+  mpm_points *P = s->pts;
+  mpm_nonlocal *nl = s->nl;
+  const double h = s->dt / s->n_sub;
+  const size_t n = P->n;
+  long bad = -1;
+  if ((*rc = reserve_L(s, err)) != MPM_OK)
+    return -1;
+#pragma omp parallel for schedule(static)
+  for (size_t p = 0; p < n; p++) {
+    mpm_mat3 L = {{{0.0}}};
+    grid_to_point(s, p, &L);
+    s->lxx[p] = L.m[0][0];
+    s->lxy[p] = L.m[0][1];
+    s->lyx[p] = L.m[1][0];
+    s->lyy[p] = L.m[1][1];
+    bookkeeping(s, p);
+  }
+  if ((*rc = locate(s, err)) != MPM_OK)
+    return -1;
+  for (int k = 0; k < s->n_sub; k++) {
+#pragma omp parallel for schedule(static)
+    for (size_t p = 0; p < n; p++) {                       /* p_n > 0, rho_{n+1} >= rho_c */
+      mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
+      nl->dense[p] = (unsigned char)mpm_ngf_dense(&s->par, sig, P->mass[p] / P->vol[p]);
+    }
+    mpm_nonlocal_average(nl, n, P->mass, P->g, nl->dense);  /* g_e, point order */
+    mpm_nonlocal_laplacian(nl);                            /* lap_e */
+#pragma omp parallel for schedule(static) reduction(max : bad)
+    for (size_t p = 0; p < n; p++) {
+      mpm_mat3 L = stored_L(s, p);
+      if (!constitutive(s, s->mat, p, &L, h, 1, mpm_nonlocal_point_lap(nl, p)))
+        bad = (long)p > bad ? (long)p : bad;
+    }
+  }
+  return bad;
+}
+
+/* NGF seeding ([DK-silo] section 6): g = 0 is always a solution, so the run
+ * uses the local mu(I) update for t < t_seed and then sets g = gdot_p / mu
+ * from it. Returns the model for this step. */
+static const mpm_material_type *seeding(mpm_sim *s)
+{
+  if (!s->mat->nonlocal || s->seeded)
+    return s->mat;
+  if (s->t < s->par.t_seed - 1e-9 * s->dt)
+    return &mpm_material_mu_i;
+  mpm_points *P = s->pts;
+  for (size_t p = 0; p < P->n; p++) {
+    mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
+    P->g[p] = P->state[p] == MPM_STATE_DENSE ? mpm_ngf_seed(sig, P->gdp[p]) : 0.0;
+  }
+  s->seeded = 1;
+  return s->mat;
 }
 
 int mpm_sim_step(mpm_sim *s, mpm_err *err)
@@ -384,7 +546,15 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
   grid_phase(s, bx, by);
-  long bad = point_phase(s);
+  const mpm_material_type *mat = seeding(s);
+  long bad;
+  if (mat->nonlocal) {
+    bad = nonlocal_phase(s, &rc, err);
+    if (rc != MPM_OK)
+      return rc;
+  } else {
+    bad = point_phase(s, mat);
+  }
   if (bad >= 0)
     return mpm_err_set(err, MPM_ENONFINITE,
                        "point %d: non-finite stress at (%.6g, %.6g) m, t = %.6g s",

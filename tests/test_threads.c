@@ -1,0 +1,125 @@
+/* test_threads.c: a run does not depend on the number of OpenMP threads.
+ *
+ * A small column of mu(I) material collapses against a symmetry line onto a
+ * rough floor (walls, flow, disconnection and uGIMP stencils spanning unit
+ * boundaries all take part). After the same number of steps with one thread
+ * and with three, every point field must be bitwise equal: point-to-grid
+ * sums each node in point order whatever the node ranges of the threads
+ * (solver/step.c), and everything else is per point. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/config.h"
+#include "solver/solver.h"
+
+static void column_config(mpm_config *c, const char *topology)
+{
+  memset(c, 0, sizeof *c);
+  c->mesh.nx = 24;
+  c->mesh.ny = 12;
+  c->mesh.dx = c->mesh.dy = 0.01;
+  strcpy(c->mesh.topology, topology);
+  strcpy(c->mesh.diagonal, "mirror");
+  c->mesh.mirror_x = 0.05;
+  strcpy(c->mesh.shape, "ugimp");
+  c->time.cfl = 0.5;
+  c->time.t_end = 1.0;
+  c->time.frame_dt = 1.0;
+  c->time.flip = 1.0;
+  c->gravity.gy = -9.8;
+  strcpy(c->material.model, "mu_i");
+  c->material.E = 1e6;
+  c->material.nu = 0.3;
+  c->material.rho_s = 2450;
+  c->material.rho_c = 1500;
+  c->material.mu_s = 0.3819;
+  c->material.mu_2 = 0.6435;
+  c->material.I0 = 0.279;
+  c->material.d = 0.005;
+  c->material.t0 = 1e-3;
+  c->bc.left = MPM_BC_SYMMETRY;
+  c->bc.bottom = MPM_BC_NOSLIP;
+  c->bc.right = MPM_BC_FRICTIONLESS;
+  c->bc.top = MPM_BC_FREE;
+  c->nfill = 1;
+  mpm_fill_config *f = &c->fill[0];
+  f->shape = MPM_FILL_RECTANGLE;
+  f->xmax = 0.08;
+  f->ymax = 0.08;
+  f->ppu = 2;
+  f->density = 1500;
+  strcpy(f->name, "column");
+}
+
+/* The point fields after nsteps steps on nthreads threads, as one array. */
+static double *run_fields(const char *topology, int nthreads, int nsteps, size_t *len)
+{
+#ifdef _OPENMP
+  omp_set_num_threads(nthreads);
+#else
+  (void)nthreads;
+#endif
+  mpm_config c;
+  column_config(&c, topology);
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  for (int k = 0; k < nsteps; k++)
+    ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "step %d: %s", k, err.msg);
+  const mpm_points *P = s->pts;
+  double vmax = 0.0;
+  for (size_t p = 0; p < P->n; p++)
+    vmax = fmax(vmax, hypot(P->vx[p], P->vy[p]));
+  ck_assert_msg(vmax > 0.05, "max speed %g m/s: the column should be collapsing", vmax);
+  const double *f[] = {P->x, P->y, P->vx, P->vy, P->sxx, P->syy, P->szz, P->sxy,
+                       P->vol, P->gdp};
+  const size_t nf = sizeof f / sizeof f[0], n = P->n;
+  double *out = malloc(nf * n * sizeof *out);
+  ck_assert_ptr_nonnull(out);
+  for (size_t k = 0; k < nf; k++)
+    memcpy(out + k * n, f[k], n * sizeof *out);
+  *len = nf * n;
+  mpm_sim_free(s);
+  return out;
+}
+
+static void same_on_1_and_3_threads(const char *topology)
+{
+  size_t na, nb;
+  double *a = run_fields(topology, 1, 400, &na);  /* about 0.07 s: the column is failing */
+  double *b = run_fields(topology, 3, 400, &nb);
+  ck_assert_uint_eq(na, nb);
+  ck_assert_msg(memcmp(a, b, na * sizeof *a) == 0, "%s: fields differ between 1 and 3 threads",
+                topology);
+  free(a);
+  free(b);
+}
+
+START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4"); }
+END_TEST
+
+START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3"); }
+END_TEST
+
+int main(void)
+{
+#ifndef _OPENMP
+  return 77;  /* built without OpenMP: one thread only, nothing to compare */
+#endif
+  Suite *su = suite_create("threads");
+  TCase *tc = tcase_create("threads");
+  tcase_add_test(tc, t_q4_thread_count);
+  tcase_add_test(tc, t_t3_thread_count);
+  suite_add_tcase(su, tc);
+  SRunner *sr = srunner_create(su);
+  srunner_run_all(sr, CK_NORMAL);
+  int nf = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return nf == 0 ? 0 : 1;
+}
