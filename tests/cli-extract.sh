@@ -29,6 +29,8 @@ bad "fractional bins" "--profile" "$tmp/run" --profile 2.5
 bad "empty range" "--range" "$tmp/run" --profile 4 --range 1:0
 bad "range not a pair" "--range" "$tmp/run" --profile 4 --range 1
 bad "negative width" "--width" "$tmp/run" --surface --width -1
+bad "width too small" "--width" "$tmp/run" --surface --width 1e-12
+bad "slope width too small" "--width" "$tmp/run" --series --slope auto --width 1e-12
 bad "front-min 0" "--front-min" "$tmp/run" --series --front-min 0
 bad "front-cell 0" "--front-cell" "$tmp/run" --series --front-cell 0
 bad "slope word" "--slope" "$tmp/run" --series --slope steep

@@ -161,14 +161,27 @@ static int do_profile(const opts *o, const mpm_points *pts, const mpm_mesh *m, m
   return rc;
 }
 
+/* Columns of width w across the mesh, at most 1e7 of them. */
+static int column_count(const mpm_mesh *m, double w, int *n, mpm_err *err)
+{
+  double c = ceil(m->lx / w);
+  if (!(c >= 1.0 && c <= 1e7))
+    return mpm_err_set(err, MPM_EINPUT, "--width %g: %g columns across the %g m mesh "
+                       "(allowed: 1 ... 1e7)", w, c, m->lx);
+  *n = (int)c;
+  return MPM_OK;
+}
+
 static int do_surface(const opts *o, const mpm_points *pts, const mpm_mesh *m, mpm_err *err)
 {
   double w = o->width > 0 ? o->width : m->dx;
-  int n = (int)ceil(m->lx / w);
+  int n = 0, rc = column_count(m, w, &n, err);
+  if (rc != MPM_OK)
+    return rc;
   double *top = malloc((size_t)n * sizeof *top);
   if (!top)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  int rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
+  rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
   if (rc == MPM_OK) {
     printf("x,top\n");
     for (int k = 0; k < n; k++)
@@ -216,11 +229,13 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
 static int auto_range(const mpm_points *pts, const mpm_mesh *m, double w, double *xa,
                       double *xb, mpm_err *err)
 {
-  int n = (int)ceil(m->lx / w), ka = -1, kb = -1;
+  int n = 0, ka = -1, kb = -1, rc = column_count(m, w, &n, err);
+  if (rc != MPM_OK)
+    return rc;
   double *top = malloc((size_t)n * sizeof *top), hmax = -INFINITY, y0 = m->y0;
   if (!top)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  int rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
+  rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
   for (int k = 0; rc == MPM_OK && k < n; k++)
     if (!isnan(top[k]) && top[k] > hmax)
       hmax = top[k];
@@ -252,8 +267,11 @@ static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
   double *front = calloc((size_t)nf + 1, sizeof *front), *sl = calloc((size_t)nf + 1, sizeof *sl);
   double *xa = calloc((size_t)nf + 1, sizeof *xa), *xb = calloc((size_t)nf + 1, sizeof *xb);
   mpm_points *pts = mpm_points_alloc(0);
+  int ncol = 0;
   int rc = (!t || !v || !a || !f || !front || !sl || !xa || !xb || !pts)
              ? mpm_err_set(err, MPM_ENOMEM, "out of memory") : MPM_OK;
+  if (rc == MPM_OK && o->slope)
+    rc = column_count(m, w, &ncol, err);   /* a bad --width is an error, not NaN slopes */
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
     rc = mpm_run_frame(r, k, pts, &t[k], err);
     if (rc != MPM_OK)
