@@ -1,5 +1,5 @@
 noinst_LTLIBRARIES += libmpm_diag.la
-libmpm_diag_la_SOURCES = src/diag/diag.c src/diag/diag.h
+libmpm_diag_la_SOURCES = src/diag/diag.c src/diag/diag.h src/diag/region.c src/diag/region.h
 
 check_PROGRAMS += tests/test_diag
 TESTS += tests/test_diag
