@@ -136,7 +136,8 @@ START_TEST(t_outlet_masks)
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 0)], MPM_FIX_X);  /* the symmetry line's own */
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 1, 0)], 0);
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 0)], 0);
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 3, 0)], both);       /* x = to: the orifice edge */
+  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 3, 0)], 0);          /* x = to: ends included */
+  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 4, 0)], both);
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 10, 0)], both);
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 1)], MPM_FIX_X);
   /* leaving below the floor: through the orifice only */

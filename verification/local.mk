@@ -5,3 +5,4 @@ include verification/V0-kernels/local.mk
 include verification/V1-elastic-waves/local.mk
 include verification/V2-constitutive/local.mk
 include verification/ngf1d/local.mk
+include verification/V5-silo/local.mk

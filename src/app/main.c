@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "app/constitutive.h"
+#include "app/state.h"
 #include "diag/diag.h"
 #include "diag/region.h"
 #include "io/io.h"
@@ -29,6 +30,9 @@ static const char usage_text[] =
   "        validate FILE and print the fully resolved input\n"
   "  extract RUNDIR [--frame N|last] [--fields a,b,c]\n"
   "        print one output frame as CSV with a header row\n"
+  "  state INPUT RUNDIR [--frame N|last]\n"
+  "        nodal density projected back to the points of one frame, and the\n"
+  "        state it gives (dense / disconnected), as CSV\n"
   "  constitutive [ARGS]\n"
   "        drive one material point through a velocity-gradient history\n"
   "        (granmpm constitutive --help)\n"
@@ -326,6 +330,8 @@ int main(int argc, char **argv)
     return cmd_check(argc - 1, argv + 1);
   if (strcmp(cmd, "extract") == 0)
     return cmd_extract(argc - 1, argv + 1);
+  if (strcmp(cmd, "state") == 0)
+    return mpm_app_state(argc - 1, argv + 1);
   if (strcmp(cmd, "constitutive") == 0)
     return mpm_app_constitutive(argc - 1, argv + 1);
   return usage_error("unknown command '%s'", cmd);

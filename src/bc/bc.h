@@ -45,10 +45,12 @@ void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
 void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y);
 
 /* Outlet: the nodes of edge e (MPM_EDGE_*) whose coordinate along the edge
- * lies in (from, to) become a wall of kind `closed` (noslip or frictionless)
- * until mpm_bc_open_outlet, and carry no condition afterwards. An end of the
- * extent at a mesh corner includes the corner node (so an orifice can start
- * on a symmetry line). Call after mpm_bc_setup, before mpm_bc_add_polygon. */
+ * lies in [from, to] (ends included) become a wall of kind `closed` (noslip
+ * or frictionless) until mpm_bc_open_outlet, and carry no condition of that
+ * edge afterwards (a perpendicular edge meeting the outlet at a corner, such
+ * as a symmetry line, keeps its own). The orifice size is the distance
+ * between the first and last free node, as in [DK15] section 4.2. Call
+ * after mpm_bc_setup, before mpm_bc_add_polygon. */
 int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
                       int closed, mpm_err *err);
 void mpm_bc_open_outlet(mpm_bc *bc);

@@ -41,18 +41,13 @@ static int on_edge(const mpm_mesh *m, int e, int i, int j)
 }
 
 /* 1 if coordinate s along the edge (x on bottom/top, y on left/right) is in
- * the outlet: strictly inside (from, to), or at an end of it that is a corner
- * of the mesh. */
+ * the outlet [from, to] (ends included, to 1e-9 of a unit): the orifice
+ * size is then the distance between its first and last free node, as in
+ * [DK15] section 4.2. */
 static int in_outlet(const mpm_bc *bc, const mpm_mesh *m, double s)
 {
-  const int vert = edge_is_vertical(bc->out_edge);
-  const double lo = vert ? m->y0 : m->x0, hi = lo + (vert ? m->ly : m->lx);
-  const double tol = 1e-9 * (vert ? m->dy : m->dx);
-  if (s > bc->out_from + tol && s < bc->out_to - tol)
-    return 1;
-  if (fabs(s - bc->out_from) <= tol && fabs(s - lo) <= tol)
-    return 1;
-  return fabs(s - bc->out_to) <= tol && fabs(s - hi) <= tol;
+  const double tol = 1e-9 * (edge_is_vertical(bc->out_edge) ? m->dy : m->dx);
+  return s >= bc->out_from - tol && s <= bc->out_to + tol;
 }
 
 int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
