@@ -21,6 +21,7 @@
 #include "core/config.h"
 #include "diag/diag.h"
 #include "diag/region.h"
+#include "mesh/mesh.h"
 #include "solver/solver.h"
 
 START_TEST(t_flow_rate_exact_line)
@@ -91,28 +92,30 @@ static void unit_mesh(mpm_mesh *m, int nx, int ny, double h)
 START_TEST(t_staircase_triangle)
 {
   mpm_mesh m;
-  unit_mesh(&m, 4, 4, 0.5);
+  unit_mesh(&m, 8, 8, 0.25);
   const int free4[4] = {MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE};
   const double px[3] = {0.0, 1.0, 0.0}, py[3] = {0.0, 0.0, 1.0};
+  const unsigned char both = MPM_FIX_X | MPM_FIX_Y;
   for (int kind = MPM_BC_NOSLIP; kind <= MPM_BC_FRICTIONLESS; kind++) {
     mpm_bc bc;
     mpm_err err = {0};
     int held = -1;
     ck_assert_int_eq(mpm_bc_setup(&bc, &m, free4, &err), MPM_OK);
     ck_assert_int_eq(mpm_bc_add_polygon(&bc, &m, 3, px, py, kind, &held, &err), MPM_OK);
-    ck_assert_int_eq(held, 6);                       /* (i, j) with i + j <= 2 */
-    for (int j = 0; j <= 4; j++)
-      for (int i = 0; i <= 4; i++) {
+    ck_assert_int_eq(held, 15);                      /* (i, j) with i + j <= 4 */
+    for (int j = 0; j <= 8; j++)
+      for (int i = 0; i <= 8; i++) {
         unsigned char f = bc.fix[mpm_mesh_node(&m, i, j)];
-        if (i + j > 2)
+        if (i + j > 4)
           ck_assert_int_eq(f, 0);
-        else if (kind == MPM_BC_NOSLIP)
-          ck_assert_int_eq(f, MPM_FIX_X | MPM_FIX_Y);
+        else if (kind == MPM_BC_NOSLIP || (i > 0 && j > 0 && i + j < 4))
+          ck_assert_int_eq(f, both);                 /* rough, or strictly inside */
       }
     if (kind == MPM_BC_FRICTIONLESS) {
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 1, 1)], MPM_FIX_X);  /* on the 45 deg side */
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 1)], MPM_FIX_X);  /* on x = 0 */
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 1, 0)], MPM_FIX_Y);  /* on y = 0 */
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 1, 3)], MPM_FIX_Y);  /* 45 deg side: y */
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 2)], MPM_FIX_Y);
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 2)], MPM_FIX_X);  /* on x = 0 */
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 0)], MPM_FIX_Y);  /* on y = 0 */
     }
     mpm_bc_clear(&bc);
   }
@@ -313,6 +316,37 @@ START_TEST(t_stop_mass)
 }
 END_TEST
 
+/* Nodal density: a block of whole units filled with 2 x 2 points of density
+ * rho gives rho back at every point, at its edges and corners too (a corner
+ * node gets N sums 9/16 + 3/16 + 3/16 + 1/16 = 1 of one unit's four points,
+ * m_i = rho dx dy / 4 = rho V_i); one point alone at a unit centre gives
+ * m_i = m/4 and V_i = dx dy / 4 at its four nodes: m / (dx dy). */
+START_TEST(t_nodal_density)
+{
+  mpm_mesh m;
+  unit_mesh(&m, 5, 4, 0.1);
+  double x[32], y[32], mass[32], rho[32];
+  size_t n = 0;
+  const double rho0 = 1500.0, mp = rho0 * 0.05 * 0.05;
+  for (int j = 0; j < 4; j++)              /* units (1..2, 1..2): x, y in [0.1, 0.3] */
+    for (int i = 0; i < 4; i++) {
+      x[n] = 0.1 + 0.025 + 0.05 * i;
+      y[n] = 0.1 + 0.025 + 0.05 * j;
+      mass[n++] = mp;
+    }
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_nodal_density(&m, n, x, y, mass, rho, &err), MPM_OK);
+  for (size_t p = 0; p < n; p++)
+    ck_assert_double_eq_tol(rho[p], rho0, 1e-9 * rho0);
+  double x1 = 0.45, y1 = 0.35, m1 = 2.0, r1;
+  ck_assert_int_eq(mpm_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_OK);
+  ck_assert_double_eq_tol(r1, m1 / (0.1 * 0.1), 1e-9 * r1);
+  x1 = 0.6;                                /* outside: an error naming it */
+  ck_assert_int_eq(mpm_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_EOUTSIDE);
+  ck_assert_ptr_nonnull(strstr(err.msg, "(0.6, 0.35)"));
+}
+END_TEST
+
 int main(void)
 {
   Suite *su = suite_create("silo");
@@ -325,6 +359,7 @@ int main(void)
   tcase_add_test(tc, t_remove_below_level);
   tcase_add_test(tc, t_leaving_elsewhere_is_an_error);
   tcase_add_test(tc, t_stop_mass);
+  tcase_add_test(tc, t_nodal_density);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

@@ -6,3 +6,4 @@ include verification/V1-elastic-waves/local.mk
 include verification/V2-constitutive/local.mk
 include verification/ngf1d/local.mk
 include verification/V5-silo/local.mk
+include verification/V6-hourglass-slug/local.mk

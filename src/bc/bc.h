@@ -56,9 +56,10 @@ int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double 
 void mpm_bc_open_outlet(mpm_bc *bc);
 
 /* Staircase wall: every node inside or on the polygon (nv vertices, within
- * 1e-9 of a unit of its boundary) is held: both components for noslip; for
- * frictionless the component closest to the normal of the nearest polygon
- * side. Returns the number of nodes held in *nheld (may be NULL). */
+ * 1e-9 of a unit of its boundary) is held: both components for noslip and
+ * for nodes strictly inside; a frictionless boundary node holds the
+ * component closer to the normal of the nearest polygon side (y for a
+ * 45 degree side). Returns the number of nodes held in *nheld (may be NULL). */
 int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
                        const double *py, int kind, int *nheld, mpm_err *err);
 

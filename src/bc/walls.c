@@ -161,12 +161,19 @@ int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
           ny = sy;
         }
       }
-      if (!(best <= tol * tol || inside(nv, px, py, x, y)))
+      const int on_side = best <= tol * tol;
+      if (!(on_side || inside(nv, px, py, x, y)))
         continue;
+      /* inside: both components; on the boundary, frictionless holds the
+       * component closer to the side's normal, y on a 45 degree side (the
+       * material then slides along the steps towards lower ground) */
+      unsigned char bits = MPM_FIX_X | MPM_FIX_Y;
+      if (on_side && kind == MPM_BC_FRICTIONLESS)
+        bits = fabs(nx) > fabs(ny) * (1.0 + 1e-12) ? MPM_FIX_X : MPM_FIX_Y;
       const int id = mpm_mesh_node(m, i, j);
-      bc->mask[0][id] |= wall_bits(kind, fabs(nx) >= fabs(ny));
+      bc->mask[0][id] |= bits;
       if (bc->mask[1])
-        bc->mask[1][id] |= wall_bits(kind, fabs(nx) >= fabs(ny));
+        bc->mask[1][id] |= bits;
       held++;
     }
   if (nheld)
