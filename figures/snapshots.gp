@@ -3,7 +3,7 @@
 #   cblabel='...'; cbmin=0; cbmax=1; xmin=0; xmax=1; ymin=0; ymax=1; \
 #   outfile='x.png'; width=1200; height=600" snapshots.gp
 # Each CSV has a header row and x,y,value columns. titles: '|'-separated.
-# states=1 draws two colours (value 0 dense: grey-blue, 1 disconnected: red).
+# states=1 draws two colours (value 0 dense: blue, 1 disconnected: red), no colour box.
 if (!exists("states")) states = 0
 if (!exists("width")) width = 1200
 if (!exists("height")) height = 700
@@ -22,13 +22,12 @@ set key off
 if (states) {
   set palette defined (0 '#4060c0', 1 '#e03020')
   set cbrange [0:1]
-  set cbtics ("dense" 0, "disconnected" 1)
+  unset colorbox
 } else {
   set palette rgbformulae 33,13,10
   set cbrange [cbmin:cbmax]
 }
 set cblabel cblabel
-getitle(i) = (strstrt(titles, '|') == 0) ? titles : word(system(sprintf("echo '%s' | tr '|' ' '", titles)), i)
 do for [i = 1:n] {
   t = system(sprintf("echo '%s' | cut -d'|' -f%d", titles, i))
   set title t
