@@ -131,7 +131,7 @@ START_TEST(t_csv_header)
 {
   const char *h = mpm_diag_csv_header();
   ck_assert_str_eq(h, "t,kinetic,kinetic_per_mass,px,py,mass,volume,xcm,ycm,pmean,"
-                      "npoints,ndisconnected,stop\n");
+                      "npoints,ndisconnected,stop,mass_removed,nremoved,mass_region\n");
 }
 END_TEST
 
@@ -144,7 +144,7 @@ START_TEST(t_csv_row)
   unsigned long np, nd;
   mpm_diag_compute(pts, 0.125, &d);
   ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
-  ck_assert_str_eq(buf, "0.125,15.125,3.78125,0,0.5,4,1,0.75,1.5,3.25,3,1,0\n");
+  ck_assert_str_eq(buf, "0.125,15.125,3.78125,0,0.5,4,1,0.75,1.5,3.25,3,1,0,0,0,0\n");
   d.stop = MPM_STOP_KE;
   ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
   int stop = -1;

@@ -8,3 +8,5 @@ include verification/V3-incline/local.mk
 include verification/V4-collapse/local.mk
 include verification/ngf1d/local.mk
 include verification/V7-ngf-chute/local.mk
+include verification/V5-silo/local.mk
+include verification/V6-hourglass-slug/local.mk

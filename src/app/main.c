@@ -13,7 +13,9 @@
 
 #include "app/analyse.h"
 #include "app/constitutive.h"
+#include "app/state.h"
 #include "diag/diag.h"
+#include "diag/region.h"
 #include "io/io.h"
 #include "solver/solver.h"
 
@@ -36,6 +38,9 @@ static const char usage_text[] =
   "                 [--slope XA:XB|auto] [--width W]\n"
   "        measurements: velocity profile, free surface, smoothed pressure,\n"
   "        per-frame speed, acceleration, mu, front, slope (docs/diagnostics.md)\n"
+  "  state INPUT RUNDIR [--frame N|last]\n"
+  "        nodal density projected back to the points of one frame, and the\n"
+  "        state it gives (dense / disconnected), as CSV\n"
   "  constitutive [ARGS]\n"
   "        drive one material point through a velocity-gradient history\n"
   "        (granmpm constitutive --help)\n"
@@ -140,7 +145,29 @@ typedef struct run_ctx {
   mpm_output *out;
   int quiet, tty;
   long frames;
+  double *ft, *fm;     /* time and region mass of every frame, for the flow rate */
+  size_t nf, capf;
 } run_ctx;
+
+/* Keep (t, mass in region) of a frame; 0 when out of memory. */
+static int keep_frame(run_ctx *c, double t, double m)
+{
+  if (c->nf == c->capf) {
+    size_t cap = c->capf ? 2 * c->capf : 256;
+    double *a = realloc(c->ft, cap * sizeof *a);
+    if (!a)
+      return 0;
+    c->ft = a;
+    double *b = realloc(c->fm, cap * sizeof *b);
+    if (!b)
+      return 0;
+    c->fm = b;
+    c->capf = cap;
+  }
+  c->ft[c->nf] = t;
+  c->fm[c->nf++] = m;
+  return 1;
+}
 
 static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
 {
@@ -148,6 +175,11 @@ static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
   mpm_diag d;
   mpm_diag_compute(s->pts, s->t, &d);
   d.stop = s->stop;
+  d.mass_removed = s->mass_removed;
+  d.nremoved = s->nremoved;
+  d.mass_region = mpm_sim_region_mass(s);
+  if (!keep_frame(c, d.t, d.mass_region))
+    return mpm_err_set(err, MPM_ENOMEM, "frame %ld: out of memory", c->frames);
   c->frames++;
   return mpm_output_frame(c->out, s->pts, &d, err);
 }
@@ -190,6 +222,30 @@ static char *input_text(const mpm_config *cfg)
   return buf;
 }
 
+/* Flow rate fitted to the region mass of the frames between region.m_lo and
+ * region.m_hi: on stderr and in DIR/flow-rate.txt ("Q n_frames m_hi m_lo").
+ * Too few frames in the band is said, not an error. */
+static int report_flow_rate(const run_ctx *c, const mpm_config *cfg, mpm_err *err)
+{
+  double q = 0.0;
+  size_t n = 0;
+  mpm_err ferr = {0};
+  if (mpm_region_flow_rate(c->ft, c->fm, c->nf, cfg->region.m_hi, cfg->region.m_lo, &q, &n,
+                           &ferr) != MPM_OK) {
+    fprintf(stderr, "granmpm: no flow rate: %s\n", ferr.msg);
+    return MPM_OK;
+  }
+  fprintf(stderr, "granmpm: flow rate Q = %.6g kg/(m s) from %zu frames with %g <= mass <= %g "
+          "kg/m\n", q, n, cfg->region.m_lo, cfg->region.m_hi);
+  char path[MPM_PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/flow-rate.txt", cfg->output.dir);
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return mpm_err_set(err, MPM_EIO, "%s: cannot write", path);
+  fprintf(f, "%.10g %zu %.10g %.10g\n", q, n, cfg->region.m_hi, cfg->region.m_lo);
+  return fclose(f) == 0 ? MPM_OK : mpm_err_set(err, MPM_EIO, "%s: cannot write", path);
+}
+
 static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
 {
   run_opts o;
@@ -227,12 +283,20 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     fprintf(stderr, "granmpm: stopped at t = %.6g s (before t_end = %.6g s): kinetic energy "
             "per unit mass %.3g J/kg < stop.ke = %.3g J/kg\n", sim->t, cfg.time.t_end,
             sim->stop_value, cfg.stop.ke);
+  } else if (sim->stop == MPM_STOP_MASS) {
+    fprintf(stderr, "granmpm: stopped at t = %.6g s (before t_end = %.6g s): mass in region "
+            "%.6g kg/m < stop.mass = %.6g kg/m\n", sim->t, cfg.time.t_end, sim->stop_value,
+            cfg.stop.mass);
   }
+  if (st == MPM_OK && cfg.region.m_hi > 0.0)
+    st = report_flow_rate(&ctx, &cfg, &err);
   if (st == MPM_OK && !o.quiet) {
     fprintf(stderr, "granmpm: %ld steps of %.4g s, %ld frames, %zu points -> %s/run.h5\n",
             sim->step, sim->dt, ctx.frames, sim->pts->n, cfg.output.dir);
   }
   mpm_sim_free(sim);
+  free(ctx.ft);
+  free(ctx.fm);
   return st == MPM_OK ? 0 : EXIT_RUNTIME;
 }
 
@@ -295,6 +359,8 @@ int main(int argc, char **argv)
     return cmd_check(argc - 1, argv + 1);
   if (strcmp(cmd, "extract") == 0)
     return cmd_extract(argc - 1, argv + 1);
+  if (strcmp(cmd, "state") == 0)
+    return mpm_app_state(argc - 1, argv + 1);
   if (strcmp(cmd, "constitutive") == 0)
     return mpm_app_constitutive(argc - 1, argv + 1);
   return usage_error("unknown command '%s'", cmd);

@@ -60,7 +60,10 @@ int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
 
   memcpy(bc->edge, edge, sizeof bc->edge);
   bc->nnodes = m->nnodes;
-  bc->fix = calloc((size_t)m->nnodes, 1);
+  bc->out_edge = -1;
+  bc->open = 0;
+  bc->mask[1] = NULL;
+  bc->fix = bc->mask[0] = calloc((size_t)m->nnodes, 1);
   if (!bc->fix)
     return mpm_err_set(err, MPM_ENOMEM, "boundary mask: out of memory");
   for (int j = 0; j <= m->ny; j++) {
@@ -76,8 +79,9 @@ int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
 
 void mpm_bc_clear(mpm_bc *bc)
 {
-  free(bc->fix);
-  bc->fix = NULL;
+  free(bc->mask[0]);
+  free(bc->mask[1]);
+  bc->fix = bc->mask[0] = bc->mask[1] = NULL;
   bc->nnodes = 0;
 }
 
@@ -99,6 +103,8 @@ static int is_wall(int kind)
 void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y)
 {
   double xhi = m->x0 + m->lx, yhi = m->y0 + m->ly;
+  if (mpm_bc_left_through_outlet(bc, m, *x, *y))
+    return;                                  /* leaves through the open outlet */
   if (*x < m->x0 && is_wall(bc->edge[MPM_EDGE_LEFT])) *x = m->x0;
   if (*x > xhi && is_wall(bc->edge[MPM_EDGE_RIGHT])) *x = xhi;
   if (*y < m->y0 && is_wall(bc->edge[MPM_EDGE_BOTTOM])) *y = m->y0;

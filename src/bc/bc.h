@@ -15,7 +15,12 @@ enum { MPM_FIX_X = 1, MPM_FIX_Y = 2 };
 typedef struct mpm_bc {
   int edge[4];          /* left, right, bottom, top: enum mpm_bc_kind */
   int nnodes;
-  unsigned char *fix;   /* [nnodes] MPM_FIX_X | MPM_FIX_Y */
+  unsigned char *fix;   /* [nnodes] MPM_FIX_X | MPM_FIX_Y: the mask in force
+                           (mask[0], or mask[1] once the outlet is open) */
+  unsigned char *mask[2];  /* owned: outlet closed, outlet open (NULL: no outlet) */
+  int out_edge;         /* MPM_EDGE_* of the outlet, -1: none */
+  double out_from, out_to;  /* its extent along the edge [m] */
+  int open;             /* 1 once mpm_bc_open_outlet was called */
 } mpm_bc;
 
 enum { MPM_EDGE_LEFT = 0, MPM_EDGE_RIGHT, MPM_EDGE_BOTTOM, MPM_EDGE_TOP };
@@ -38,5 +43,27 @@ void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
  * near a wall can carry a point a fraction of a step past it; free edges are
  * left alone (leaving through them is an error for the caller). */
 void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y);
+
+/* Outlet: the nodes of edge e (MPM_EDGE_*) whose coordinate along the edge
+ * lies in [from, to] (ends included) become a wall of kind `closed` (noslip
+ * or frictionless) until mpm_bc_open_outlet, and carry no condition of that
+ * edge afterwards (a perpendicular edge meeting the outlet at a corner, such
+ * as a symmetry line, keeps its own). The orifice size is the distance
+ * between the first and last free node, as in [DK15] section 4.2. Call
+ * after mpm_bc_setup, before mpm_bc_add_polygon. */
+int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
+                      int closed, mpm_err *err);
+void mpm_bc_open_outlet(mpm_bc *bc);
+
+/* Staircase wall: every node inside or on the polygon (nv vertices, within
+ * 1e-9 of a unit of its boundary) is held: both components for noslip and
+ * for nodes strictly inside; a frictionless boundary node holds the
+ * component closer to the normal of the nearest polygon side (y for a
+ * 45 degree side). Returns the number of nodes held in *nheld (may be NULL). */
+int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
+                       const double *py, int kind, int *nheld, mpm_err *err);
+
+/* 1 if a point at (x, y) outside the mesh left through an open outlet. */
+int mpm_bc_left_through_outlet(const mpm_bc *bc, const mpm_mesh *m, double x, double y);
 
 #endif

@@ -21,6 +21,11 @@ enum mpm_bc_kind {
   MPM_BC_PERIODIC       /* opposite edge aliased; must be set on both */
 };
 
+/* Mesh edge carrying an outlet. */
+enum mpm_outlet_edge {
+  MPM_OUTLET_NONE = 0, MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT, MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP
+};
+
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
 typedef struct mpm_fill_config {
@@ -90,11 +95,38 @@ typedef struct mpm_config {
     double ke;                 /* end the run when kinetic energy per unit mass
                                   falls below this [J/kg]; 0: never */
     double t_min;              /* ... but not before this time [s] */
+    double mass;               /* end the run when the mass in region falls below
+                                  this [kg/m]; 0: never */
   } stop;
 
   struct {
     char dir[MPM_PATH_MAX];    /* run directory */
   } output;
+
+  /* Silo and hourglass features (docs/input-reference.md). */
+  struct {
+    int edge;                  /* enum mpm_outlet_edge; MPM_OUTLET_NONE: no outlet */
+    double from, to;           /* extent along the edge (x on bottom/top, y on
+                                  left/right) [m] */
+    double t_open;             /* closed before, open from this time on [s] */
+    int closed;                /* enum mpm_bc_kind while closed (noslip, frictionless) */
+  } outlet;
+
+  struct {
+    int nvert;                 /* 0: no wall */
+    double px[MPM_MAX_POLY], py[MPM_MAX_POLY];  /* polygon [m] */
+    int kind;                  /* enum mpm_bc_kind: noslip or frictionless */
+  } wall;
+
+  struct {
+    double below;              /* remove points whose y falls below this [m] */
+    int free_edges;            /* 1: points leaving through a free edge are removed */
+  } remove;
+
+  struct {
+    double xmin, xmax, ymin, ymax;  /* region whose mass is reported [m] */
+    double m_hi, m_lo;         /* flow-rate fit between these masses [kg/m]; 0: none */
+  } region;
 } mpm_config;
 
 #endif

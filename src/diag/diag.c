@@ -78,7 +78,7 @@ double mpm_diag_kinetic_per_mass(const mpm_points *pts)
 const char *mpm_diag_csv_header(void)
 {
   return "t,kinetic,kinetic_per_mass,px,py,mass,volume,xcm,ycm,pmean,"
-         "npoints,ndisconnected,stop\n";
+         "npoints,ndisconnected,stop,mass_removed,nremoved,mass_region\n";
 }
 
 int mpm_diag_csv_row(const mpm_diag *d, char *buf, size_t len)
@@ -87,9 +87,10 @@ int mpm_diag_csv_row(const mpm_diag *d, char *buf, size_t len)
     return MPM_EINVAL;
   int w = snprintf(buf, len,
                    "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,"
-                   "%zu,%zu,%d\n",
+                   "%zu,%zu,%d,%.10g,%ld,%.10g\n",
                    d->t, d->kinetic, d->kinetic_per_mass, d->px, d->py, d->mass,
-                   d->volume, d->xcm, d->ycm, d->pmean, d->npoints, d->ndisconnected, d->stop);
+                   d->volume, d->xcm, d->ycm, d->pmean, d->npoints, d->ndisconnected, d->stop,
+                   d->mass_removed, d->nremoved, d->mass_region);
   if (w < 0 || (size_t)w >= len) {
     buf[0] = '\0';
     return MPM_EINVAL;

@@ -10,7 +10,8 @@
 enum mpm_stop_reason {
   MPM_STOP_NONE = 0,   /* still running */
   MPM_STOP_T_END,      /* reached time.t_end */
-  MPM_STOP_KE          /* kinetic energy per unit mass fell below stop.ke */
+  MPM_STOP_KE,         /* kinetic energy per unit mass fell below stop.ke */
+  MPM_STOP_MASS        /* the mass in region fell below stop.mass */
 };
 
 typedef struct mpm_diag {
@@ -25,9 +26,12 @@ typedef struct mpm_diag {
   size_t npoints;
   size_t ndisconnected;
   int stop;                    /* enum mpm_stop_reason; set by the caller */
+  double mass_removed;         /* mass removed so far [kg/m]; set by the caller */
+  long nremoved;               /* points removed so far; set by the caller */
+  double mass_region;          /* mass in the reported region [kg/m]; set by the caller */
 } mpm_diag;
 
-/* Every field but stop (left 0). */
+/* Every field but those set by the caller (left 0). */
 void mpm_diag_compute(const mpm_points *pts, double t, mpm_diag *d);
 
 /* sum m |v|^2 / 2 / sum m [J/kg] (0 for no mass), in point order: the same

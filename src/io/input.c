@@ -45,11 +45,13 @@
 /* ------------------------------------------------------------ the key table */
 
 enum section {
-  S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_STOP, S_OUTPUT, NSEC
+  S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_STOP, S_OUTPUT,
+  S_OUTLET, S_WALL, S_REMOVE, S_REGION, NSEC
 };
 
 static const char *const sec_names[NSEC] = {
-  "mesh", "time", "gravity", "material", "boundary", "fill", "stop", "output"
+  "mesh", "time", "gravity", "material", "boundary", "fill", "stop", "output",
+  "outlet", "wall", "remove", "region"
 };
 
 enum key_type {
@@ -63,7 +65,8 @@ enum key_type {
 };
 
 enum name_kind {
-  NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM
+  NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
+  NK_EDGE
 };
 
 enum key_flag {
@@ -160,8 +163,31 @@ static const key_def keys[] = {
 
   NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),
   NUM(S_STOP, KT_REAL, "t_min", C_(stop.t_min), 0, 0, 1e9, 0, "s"),
+  NUM(S_STOP, KT_REAL, "mass", C_(stop.mass), 0, 0, 1e9, 0, "kg/m"),
 
   NAMED(S_OUTPUT, KT_PATH, "dir", C_(output.dir), NK_NONE, "run"),
+
+  NAMED(S_OUTLET, KT_ENUM, "edge", C_(outlet.edge), NK_EDGE, "none"),
+  NUM(S_OUTLET, KT_REAL, "from", C_(outlet.from), 0, -1e9, 1e9, 0, "m"),
+  NUM(S_OUTLET, KT_REAL, "to", C_(outlet.to), 0, -1e9, 1e9, 0, "m"),
+  NUM(S_OUTLET, KT_REAL, "t_open", C_(outlet.t_open), 0, 0, 1e9, 0, "s"),
+  NAMED(S_OUTLET, KT_ENUM, "closed", C_(outlet.closed), NK_BC, "noslip"),
+
+  {.name = "x", .sec = S_WALL, .type = KT_LIST, .off = C_(wall.px), .lo = -1e9, .hi = 1e9,
+   .unit = "m"},
+  {.name = "y", .sec = S_WALL, .type = KT_LIST, .off = C_(wall.py), .lo = -1e9, .hi = 1e9,
+   .unit = "m"},
+  NAMED(S_WALL, KT_ENUM, "kind", C_(wall.kind), NK_BC, "noslip"),
+
+  NUM(S_REMOVE, KT_REAL, "below", C_(remove.below), -1e9, -1e9, 1e9, 0, "m"),
+  NUM(S_REMOVE, KT_BOOL, "free_edges", C_(remove.free_edges), 0, 0, 1, 0, "-"),
+
+  NUM(S_REGION, KT_REAL, "xmin", C_(region.xmin), -1e9, -1e9, 1e9, 0, "m"),
+  NUM(S_REGION, KT_REAL, "xmax", C_(region.xmax), 1e9, -1e9, 1e9, 0, "m"),
+  NUM(S_REGION, KT_REAL, "ymin", C_(region.ymin), -1e9, -1e9, 1e9, 0, "m"),
+  NUM(S_REGION, KT_REAL, "ymax", C_(region.ymax), 1e9, -1e9, 1e9, 0, "m"),
+  NUM(S_REGION, KT_REAL, "m_hi", C_(region.m_hi), 0, 0, 1e9, 0, "kg/m"),
+  NUM(S_REGION, KT_REAL, "m_lo", C_(region.m_lo), 0, 0, 1e9, 0, "kg/m"),
 };
 
 #define NKEYS ((int)(sizeof keys / sizeof keys[0]))
@@ -173,6 +199,11 @@ static const char *const diagonal_names[] = {"/", "\\", "mirror", NULL};
 static const char *const fill_shape_names[] = {
   [MPM_FILL_RECTANGLE] = "rectangle", [MPM_FILL_DISC] = "disc",
   [MPM_FILL_POLYGON] = "polygon", [MPM_FILL_POLYGON + 1] = NULL
+};
+
+static const char *const edge_names[] = {
+  [MPM_OUTLET_NONE] = "none", [MPM_OUTLET_LEFT] = "left", [MPM_OUTLET_RIGHT] = "right",
+  [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top", [MPM_OUTLET_TOP + 1] = NULL
 };
 
 static int list_index(const char *const *list, const char *s)
@@ -191,6 +222,7 @@ static const char *name_at(int kind, int i)
   case NK_TOPOLOGY: return i < 2 ? topology_names[i] : NULL;
   case NK_DIAGONAL: return i < 3 ? diagonal_names[i] : NULL;
   case NK_FILL_SHAPE: return i >= 0 && i <= MPM_FILL_POLYGON ? fill_shape_names[i] : NULL;
+  case NK_EDGE: return i >= 0 && i <= MPM_OUTLET_TOP ? edge_names[i] : NULL;
   case NK_BC: return i >= 0 && i <= MPM_BC_PERIODIC ? mpm_bc_kind_name(i) : NULL;
   case NK_NGF_FORM: return mpm_ngf_form_name(i);
   case NK_SHAPE:
@@ -217,6 +249,7 @@ static int name_value(int kind, const char *s)
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return list_index(fill_shape_names, s);
   case NK_NGF_FORM: return mpm_ngf_form_from_name(s);
+  case NK_EDGE: return list_index(edge_names, s);
   default: return -1;
   }
 }
@@ -420,6 +453,7 @@ typedef struct in_ctx {
   int brace_line[MAX_BRACES];
   loc at[MPM_MAX_FILLS][NKEYS];  /* where each key was set (row 0: non-fill keys) */
   int nlist[MPM_MAX_FILLS][2];   /* number of polygon x and y values */
+  int wall_nlist[2];             /* the same for the wall polygon */
   cfg_opt_t opts[NSEC + 1][NKEYS + 2];  /* libconfuse options: sections, root last */
 } in_ctx;
 
@@ -702,7 +736,7 @@ static int store_list(in_ctx *c, void *rec, const where *w, const char *const *v
     if (store_real(c, &e, vals[i], &arr[i]) != MPM_OK)
       return MPM_EINPUT;
   }
-  c->nlist[w->fill][strcmp(kd->name, "x") == 0 ? 0 : 1] = n;
+  (w->fill < 0 ? c->wall_nlist : c->nlist[w->fill])[strcmp(kd->name, "x") == 0 ? 0 : 1] = n;
   *loc_of(c, w->key, w->fill) = n > 0 ? locs[0] : w->at;
   return MPM_OK;
 }
@@ -1602,6 +1636,83 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
   return fail_key(c, &w, "model \"%s\": %s", show(cfg->material.model).s, e.msg);
 }
 
+/* Outlet: an extent on a non-periodic edge, inside it; closed by a wall. */
+static int check_outlet(in_ctx *c, const mpm_config *cfg)
+{
+  const int e = cfg->outlet.edge;
+  if (e == MPM_OUTLET_NONE)
+    return MPM_OK;
+  const int kf = key_index(S_OUTLET, "from"), kt = key_index(S_OUTLET, "to");
+  const int ke = key_index(S_OUTLET, "edge"), kc = key_index(S_OUTLET, "closed");
+  if (cfg->outlet.closed != MPM_BC_NOSLIP && cfg->outlet.closed != MPM_BC_FRICTIONLESS) {
+    where w = blame(c, cfg, -1, kc, kc);
+    return fail_key(c, &w, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
+                    mpm_bc_kind_name(cfg->outlet.closed));
+  }
+  const int kinds[] = {0, cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
+  if (kinds[e] == MPM_BC_PERIODIC) {
+    where w = blame(c, cfg, -1, ke, ke);
+    return fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic edge)", edge_names[e]);
+  }
+  const int vert = e == MPM_OUTLET_LEFT || e == MPM_OUTLET_RIGHT;
+  const double d = vert ? cfg->mesh.dy : cfg->mesh.dx;
+  const double m0 = vert ? cfg->mesh.y0 : cfg->mesh.x0;
+  const double m1 = m0 + (vert ? cfg->mesh.ny : cfg->mesh.nx) * d, tol = GEOM_TOL * d;
+  if (!(cfg->outlet.to > cfg->outlet.from)) {
+    where w = blame(c, cfg, -1, kt, kf);
+    return fail_key(c, &w, "to = %s <= from = %s (allowed: to > from)", num(cfg->outlet.to).s,
+                    num(cfg->outlet.from).s);
+  }
+  if (cfg->outlet.from < m0 - tol || cfg->outlet.to > m1 + tol) {
+    where w = blame(c, cfg, -1, kt, kf);
+    return fail_key(c, &w, "the outlet spans %s ... %s, outside the %s edge (allowed: %s ... %s m)",
+                    approx(cfg->outlet.from).s, approx(cfg->outlet.to).s, edge_names[e],
+                    approx(m0).s, approx(m1).s);
+  }
+  return MPM_OK;
+}
+
+/* Wall polygon: as many x as y values, none or 3 ... MPM_MAX_POLY; a wall kind. */
+static int check_wall(in_ctx *c, mpm_config *cfg)
+{
+  const int kx = key_index(S_WALL, "x"), ky = key_index(S_WALL, "y");
+  const int nx = c->wall_nlist[0], ny = c->wall_nlist[1];
+  where w = blame(c, cfg, -1, ky, kx);
+  if (nx != ny)
+    return fail_key(c, &w, "x has %d values, y has %d (allowed: as many x values as y values)",
+                    nx, ny);
+  if (nx > 0 && nx < 3)
+    return fail_key(c, &w, "%d vertices (allowed: none, or 3 ... %d vertices)", nx,
+                    MPM_MAX_POLY);
+  cfg->wall.nvert = nx;
+  const int kk = key_index(S_WALL, "kind");
+  if (cfg->wall.kind != MPM_BC_NOSLIP && cfg->wall.kind != MPM_BC_FRICTIONLESS) {
+    where wk = blame(c, cfg, -1, kk, kk);
+    return fail_key(c, &wk, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
+                    mpm_bc_kind_name(cfg->wall.kind));
+  }
+  return MPM_OK;
+}
+
+/* Region: a non-empty box; the flow-rate levels, if given, in order. */
+static int check_region(in_ctx *c, const mpm_config *cfg)
+{
+  const char *pairs[][2] = {{"xmax", "xmin"}, {"ymax", "ymin"}};
+  const double v[][2] = {{cfg->region.xmax, cfg->region.xmin}, {cfg->region.ymax, cfg->region.ymin}};
+  for (int i = 0; i < 2; i++)
+    if (!(v[i][0] > v[i][1])) {
+      where w = blame(c, cfg, -1, key_index(S_REGION, pairs[i][0]), key_index(S_REGION, pairs[i][1]));
+      return fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)", pairs[i][0],
+                      num(v[i][0]).s, pairs[i][1], num(v[i][1]).s, pairs[i][0], pairs[i][1]);
+    }
+  if (cfg->region.m_hi > 0.0 && !(cfg->region.m_hi > cfg->region.m_lo)) {
+    where w = blame(c, cfg, -1, key_index(S_REGION, "m_hi"), key_index(S_REGION, "m_lo"));
+    return fail_key(c, &w, "m_hi = %s <= m_lo = %s (allowed: m_hi > m_lo, or m_hi = 0: no fit)",
+                    num(cfg->region.m_hi).s, num(cfg->region.m_lo).s);
+  }
+  return MPM_OK;
+}
+
 static int validate(in_ctx *c, mpm_config *cfg)
 {
   if (check_required(c) != MPM_OK)
@@ -1612,7 +1723,8 @@ static int validate(in_ctx *c, mpm_config *cfg)
                    MPM_MAX_FILLS);
   }
   if (check_mesh(c, cfg) || check_time(c, cfg) || check_gravity(c, cfg) ||
-      check_material(c, cfg) || check_boundary(c, cfg))
+      check_material(c, cfg) || check_boundary(c, cfg) || check_outlet(c, cfg) ||
+      check_wall(c, cfg) || check_region(c, cfg))
     return MPM_EINPUT;
   resolve_stop(c, cfg);
   for (int i = 0; i < cfg->nfill; i++)
@@ -1741,7 +1853,7 @@ static void write_section(FILE *f, const mpm_config *cfg, int s)
       write_path(f, (const char *)cfg + keys[k].off);
       fputc('\n', f);
     } else {
-      write_key(f, cfg, &keys[k], 0);
+      write_key(f, cfg, &keys[k], s == S_WALL ? cfg->wall.nvert : 0);
     }
   }
   fputs("}\n", f);

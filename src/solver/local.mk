@@ -1,5 +1,5 @@
 noinst_LTLIBRARIES += libmpm_solver.la
-libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h
+libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h src/solver/remove.c
 
 check_PROGRAMS += tests/test_solver
 TESTS += tests/test_solver
@@ -14,3 +14,10 @@ TESTS += tests/test_threads
 tests_test_threads_SOURCES = tests/test_threads.c
 tests_test_threads_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_threads_LDADD = $(tests_test_solver_LDADD)
+check_PROGRAMS += tests/test_silo
+TESTS += tests/test_silo
+tests_test_silo_SOURCES = tests/test_silo.c
+tests_test_silo_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_silo_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
+	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_core.la \
+	$(GSL_LIBS) $(CHECK_LIBS) -lm

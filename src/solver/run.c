@@ -1,7 +1,8 @@
 /* run.c: the run driver: step from t = 0 to t_end, emitting frames at t = 0,
  * every frame_dt and at the end, and reporting progress. The run ends early
  * when the kinetic energy per unit mass falls below stop.ke at t >= stop.t_min
- * (tested after every step). */
+ * (tested after every step), or when the mass in cfg.region falls below
+ * stop.mass. */
 #define _POSIX_C_SOURCE 200809L
 #include "solver/solver.h"
 
@@ -24,6 +25,13 @@ static int stop_test(mpm_sim *s, double eps)
     if (ke < c->stop.ke) {
       s->stop_value = ke;
       return MPM_STOP_KE;
+    }
+  }
+  if (c->stop.mass > 0.0 && s->t >= c->stop.t_min - eps) {
+    double m = mpm_sim_region_mass(s);
+    if (m < c->stop.mass) {
+      s->stop_value = m;
+      return MPM_STOP_MASS;
     }
   }
   return s->t >= c->time.t_end - eps ? MPM_STOP_T_END : MPM_STOP_NONE;

@@ -49,6 +49,8 @@ typedef struct mpm_sim {
                                    * ended, MPM_STOP_NONE while it runs */
   double stop_value;              /* the measured value that fired the stop test */
   double mtiny;                   /* nodes lighter than this are skipped */
+  double mass_removed;            /* mass of the points removed so far [kg/m] */
+  long nremoved;                  /* their number */
 } mpm_sim;
 
 /* Build a simulation from a resolved configuration. */
@@ -72,6 +74,17 @@ typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);
 /* Progress callback (may be NULL): called every few steps with the wall-clock
  * rate, for the progress line. */
 typedef void (*mpm_progress_fn)(void *ctx, const mpm_sim *s, double steps_per_s);
+
+/* Remove the points below cfg.remove.below, and those outside the mesh that
+ * left through the open outlet (or a free edge when cfg.remove.free_edges),
+ * adding their mass to s->mass_removed. A point outside the mesh that left
+ * any other way is an error (MPM_EOUTSIDE) naming it, its position and the
+ * time t it got there. Called by mpm_sim_step once the points have moved
+ * (for a nonlocal model before their units are frozen). */
+int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err);
+
+/* Mass in the region of cfg.region [kg/m]. */
+double mpm_sim_region_mass(const mpm_sim *s);
 
 /* Step until cfg.time.t_end or until a stop condition of cfg.stop holds,
  * emitting frames; s->stop says which ended the run (set before the last

@@ -136,6 +136,12 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
     rc = mpm_bc_setup(&s->bc, &s->mesh, edge, err);
   }
+  if (rc == MPM_OK && cfg->outlet.edge != MPM_OUTLET_NONE)
+    rc = mpm_bc_set_outlet(&s->bc, &s->mesh, cfg->outlet.edge - MPM_OUTLET_LEFT + MPM_EDGE_LEFT,
+                           cfg->outlet.from, cfg->outlet.to, cfg->outlet.closed, err);
+  if (rc == MPM_OK && cfg->wall.nvert > 0)
+    rc = mpm_bc_add_polygon(&s->bc, &s->mesh, cfg->wall.nvert, cfg->wall.px, cfg->wall.py,
+                            cfg->wall.kind, NULL, err);
   if (rc == MPM_OK && !(s->shape = mpm_shape_lookup(cfg->mesh.shape)))
     rc = mpm_err_set(err, MPM_EINPUT, "mesh.shape '%s' unknown", cfg->mesh.shape);
   if (rc == MPM_OK && !(s->mat = mpm_material_lookup(cfg->material.model)))
@@ -486,7 +492,7 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   mpm_points *P = s->pts;
   mpm_nonlocal *nl = s->nl;
   const double h = s->dt / s->n_sub;
-  const size_t n = P->n;
+  size_t n = P->n;
   long bad = -1;
   if ((*rc = reserve_L(s, err)) != MPM_OK)
     return -1;
@@ -500,8 +506,11 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
     s->lyy[p] = L.m[1][1];
     bookkeeping(s, p);
   }
-  if ((*rc = locate(s, err)) != MPM_OK)
+  /* Points leaving through an outlet go before the units are frozen: outside
+   * the mesh they have no unit. */
+  if ((*rc = mpm_sim_remove_points(s, s->t + s->dt, err)) != MPM_OK || (*rc = locate(s, err)) != MPM_OK)
     return -1;
+  n = P->n;
   for (int k = 0; k < s->n_sub; k++) {
 #pragma omp parallel for schedule(static)
     for (size_t p = 0; p < n; p++) {                       /* p_n > 0, rho_{n+1} >= rho_c */
@@ -543,6 +552,9 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   int rc = mpm_stencil_compute(s->st, s->shape, &s->mesh, s->pts, s->t, err);
   if (rc != MPM_OK)
     return rc;
+  if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc.open &&
+      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt)
+    mpm_bc_open_outlet(&s->bc);                              /* the orifice opens */
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
   grid_phase(s, bx, by);
@@ -561,5 +573,5 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
                        s->pts->id[bad], s->pts->x[bad], s->pts->y[bad], s->t + s->dt);
   s->t += s->dt;
   s->step++;
-  return MPM_OK;
+  return mpm_sim_remove_points(s, s->t, err);
 }

@@ -1,0 +1,84 @@
+/* remove.c: points leave the simulation ([DK15] sections 4.2, 4.3): below a
+ * level, or out of the mesh through an open outlet (or a free edge when
+ * allowed). Their mass is added to s->mass_removed, so the mass in the domain
+ * plus the removed mass stays the initial mass to round-off. */
+#include "solver/solver.h"
+
+#include <stdlib.h>
+
+#include "diag/region.h"
+
+/* 0: stays; 1: removed; -1: outside the mesh where nothing lets it leave. */
+static int fate(const mpm_sim *s, double x, double y)
+{
+  const mpm_mesh *m = &s->mesh;
+  const mpm_config *c = &s->cfg;
+  if (y < c->remove.below)
+    return 1;
+  const int out_l = !m->periodic_x && x < m->x0, out_r = !m->periodic_x && x > m->x0 + m->lx;
+  const int out_b = !m->periodic_y && y < m->y0, out_t = !m->periodic_y && y > m->y0 + m->ly;
+  if (!(out_l || out_r || out_b || out_t))
+    return 0;
+  if (mpm_bc_left_through_outlet(&s->bc, m, x, y))
+    return 1;
+  if (!c->remove.free_edges)
+    return -1;
+  const int *e = s->bc.edge;
+  if ((out_l && e[MPM_EDGE_LEFT] != MPM_BC_FREE) || (out_r && e[MPM_EDGE_RIGHT] != MPM_BC_FREE) ||
+      (out_b && e[MPM_EDGE_BOTTOM] != MPM_BC_FREE) || (out_t && e[MPM_EDGE_TOP] != MPM_BC_FREE))
+    return -1;
+  return 1;
+}
+
+/* Keep the entries of a per-point array of n values whose keep flag is set,
+ * in order (as mpm_points_compact does for the point store). */
+static void compact_values(double *a, const unsigned char *keep, size_t n)
+{
+  size_t q = 0;
+  for (size_t p = 0; p < n; p++)
+    if (keep[p])
+      a[q++] = a[p];
+}
+
+int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
+{
+  mpm_points *P = s->pts;
+  size_t first = P->n;
+  for (size_t p = 0; p < P->n; p++) {
+    const int f = fate(s, P->x[p], P->y[p]);
+    if (f < 0)
+      return mpm_err_set(err, MPM_EOUTSIDE,
+                         "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s, not through "
+                         "an open outlet or a removing edge", P->id[p], P->x[p], P->y[p], t);
+    if (f > 0 && first == P->n)
+      first = p;
+  }
+  if (first == P->n)
+    return MPM_OK;                               /* nothing leaves: the common case */
+  unsigned char *keep = malloc(P->n);
+  if (!keep)
+    return mpm_err_set(err, MPM_ENOMEM, "point removal: out of memory");
+  for (size_t p = 0; p < P->n; p++) {
+    keep[p] = p < first || fate(s, P->x[p], P->y[p]) == 0;
+    if (!keep[p]) {
+      s->mass_removed += P->mass[p];
+      s->nremoved++;
+    }
+  }
+  const size_t n = P->n;
+  mpm_points_compact(P, keep);
+  if (s->lxx) {                                  /* NGF's stored L_p follow their points */
+    double *arrs[] = {s->lxx, s->lxy, s->lyx, s->lyy};
+    for (size_t k = 0; k < 4; k++)
+      compact_values(arrs[k], keep, n);
+  }
+  free(keep);
+  return MPM_OK;
+}
+
+double mpm_sim_region_mass(const mpm_sim *s)
+{
+  const mpm_config *c = &s->cfg;
+  return mpm_region_mass(s->pts, c->region.xmin, c->region.xmax, c->region.ymin,
+                         c->region.ymax);
+}

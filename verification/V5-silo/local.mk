@@ -1,0 +1,2 @@
+VERIFY_CASES += verification/V5-silo
+TESTS += verification/V5-silo/check
