@@ -12,19 +12,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/h5err.h"
 #include "io/io.h"
 
 struct mpm_run {
   char path[MPM_PATH_MAX + 16];
   hid_t file;
   int nframes;
-  H5E_auto2_t efunc;
-  void *edata;
+  mpm_h5_quiet quiet;  /* HDF5's error printing is off while the run is open */
 };
 
 static int fail(mpm_run *r, mpm_err *err, const char *what)
 {
-  return mpm_err_set(err, MPM_EIO, "%s in '%s'", what, r->path);
+  return mpm_err_set(err, MPM_EIO, "%s in '%s': %s", what, r->path, mpm_h5_reason(&r->quiet));
 }
 
 int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
@@ -37,8 +37,7 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
     free(r);
     return mpm_err_set(err, MPM_EINPUT, "run directory name too long: '%s'", dir);
   }
-  H5Eget_auto2(H5E_DEFAULT, &r->efunc, &r->edata);
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);            /* errors become return codes */
+  mpm_h5_quiet_begin(&r->quiet);                    /* errors become return codes */
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
 #if H5_VERSION_GE(1, 10, 7)
   H5Pset_file_locking(fapl, 0, 1);                  /* a running job may still write */
@@ -46,7 +45,8 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
   r->file = H5Fopen(r->path, H5F_ACC_RDONLY, fapl);
   H5Pclose(fapl);
   if (r->file < 0) {
-    int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?)", r->path);
+    int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?): %s", r->path,
+                         mpm_h5_reason(&r->quiet));
     mpm_run_close(r);
     return rc;
   }
@@ -71,7 +71,7 @@ void mpm_run_close(mpm_run *r)
     return;
   if (r->file >= 0)
     H5Fclose(r->file);
-  H5Eset_auto2(H5E_DEFAULT, r->efunc, r->edata);
+  mpm_h5_quiet_end(&r->quiet);
   free(r);
 }
 
