@@ -9,10 +9,7 @@ static void elastic_update(const mpm_material_params *par, const mpm_mat3 *L, do
                            mpm_mpoint *pt)
 {
   mpm_sym3 D = mpm_mat3_sym(L);
-  mpm_mat3 W = mpm_mat3_skw(L);
-  mpm_sym3 rate = mpm_sym3_add(mpm_sym3_elastic(D, par->G, par->K),   /* C:D */
-                               mpm_sym3_spin(&W, pt->sigma));        /* W s - s W */
-  pt->sigma = mpm_sym3_axpy(pt->sigma, dt, rate);
+  pt->sigma = mpm_material_trial(par, D, L, pt->sigma, dt);      /* no yield, no disconnection */
   pt->gdp = 0.0;
   pt->state = MPM_STATE_DENSE;
 }

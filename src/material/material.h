@@ -57,6 +57,17 @@ typedef struct mpm_material_type {
   int nonlocal;
 } mpm_material_type;
 
+/* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):
+ * sigma_tr = sigma_n + dt (C:D + W sigma_n - sigma_n W), D = sym L, W = skw L. */
+static inline mpm_sym3 mpm_material_trial(const mpm_material_params *par, mpm_sym3 D,
+                                          const mpm_mat3 *L, mpm_sym3 sigma, double dt)
+{
+  mpm_mat3 W = mpm_mat3_skw(L);
+  mpm_sym3 rate = mpm_sym3_add(mpm_sym3_elastic(D, par->G, par->K),  /* C:D */
+                               mpm_sym3_spin(&W, sigma));           /* W s - s W */
+  return mpm_sym3_axpy(sigma, dt, rate);
+}
+
 extern const mpm_material_type mpm_material_elastic;  /* Jaumann hypoelastic */
 extern const mpm_material_type mpm_material_mu_i;     /* trans-phase mu(I) [DK15] */
 extern const mpm_material_type mpm_material_ngf;      /* trans-phase NGF [DK-silo] */

@@ -162,10 +162,7 @@ static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double
     ngf_disconnect(D, pt);
     return;
   }
-  mpm_mat3 W = mpm_mat3_skw(L);
-  mpm_sym3 rate = mpm_sym3_add(mpm_sym3_elastic(D, par->G, par->K),  /* C:D */
-                               mpm_sym3_spin(&W, pt->sigma));       /* W s - s W */
-  mpm_sym3 s_tr = mpm_sym3_axpy(pt->sigma, dt, rate);              /* sigma_tr */
+  mpm_sym3 s_tr = mpm_material_trial(par, D, L, pt->sigma, dt);   /* sigma_tr */
   double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
   if (!(p > 0.0)) {
     ngf_disconnect(D, pt);
