@@ -10,14 +10,9 @@ granmpm=${GRANMPM:-$src/src/app/granmpm}
 out=${1:?usage: dk15-fig6.sh OUTDIR}
 work=$out/dk15-fig6.d
 mkdir -p "$work"
-sfx=-reduced; [ "${DK15_FULL:-0}" = 1 ] && sfx=
 files= titles=
 for c in hourglass-flat hourglass-sloped; do
-  run=${DK15_RUNS:+$DK15_RUNS/$c}
-  if [ -z "$run" ]; then
-    run=$work/$c
-    OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$granmpm" run "$src/inputs/$c$sfx.conf" --quiet --output "$run"
-  fi
+  run=$("$src/figures/hourglass-runs" "$out" "$c")           # shared with Fig. 7
   for t in 0 1 2 5; do
     f=$work/$c-$t.csv
     "$granmpm" extract "$run" --frame $((t * 20)) --fields x,y,gdot_p > "$f"   # frames every 0.05 s

@@ -13,11 +13,7 @@ mkdir -p "$work"
 sfx=-reduced; [ "${DK15_FULL:-0}" = 1 ] && sfx=
 files= titles=
 for c in hourglass-flat hourglass-sloped; do
-  run=${DK15_RUNS:+$DK15_RUNS/$c}
-  if [ -z "$run" ]; then
-    run=$work/$c
-    OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$granmpm" run "$src/inputs/$c$sfx.conf" --quiet --output "$run"
-  fi
+  run=$("$src/figures/hourglass-runs" "$out" "$c")           # shared with Fig. 6
   for t in 0.5 1 2 5; do
     fr=$(awk -v t="$t" 'BEGIN { printf "%d", t / 0.05 + 0.5 }')
     f=$work/$c-$t.csv
