@@ -23,6 +23,7 @@
 #include "diag/region.h"
 #include "mesh/mesh.h"
 #include "solver/solver.h"
+#include "sim_config.h"
 
 START_TEST(t_flow_rate_exact_line)
 {
@@ -174,16 +175,7 @@ static void falling_config(mpm_config *c)
   c->time.frame_dt = 0.01;
   c->time.flip = 1.0;
   c->gravity.gy = -9.8;
-  strcpy(c->material.model, "elastic");
-  c->material.E = 1e5;
-  c->material.nu = 0.3;
-  c->material.rho_s = 2450;
-  c->material.rho_c = 1500;
-  c->material.mu_s = 0.3819;
-  c->material.mu_2 = 0.6435;
-  c->material.I0 = 0.279;
-  c->material.d = 0.005;
-  c->material.t0 = 1e-3;
+  sim_config_material(c, "elastic", 1e5);
   c->bc.left = c->bc.right = MPM_BC_NOSLIP;
   c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.top = MPM_BC_FREE;

@@ -14,6 +14,7 @@
 #include "core/config.h"
 #include "diag/diag.h"
 #include "solver/solver.h"
+#include "sim_config.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -35,16 +36,7 @@ static void base_config(mpm_config *c, int nx, int ppu, double vx, double vy)
   c->time.t_end = 1e-2;
   c->time.frame_dt = 1e-2;
   c->time.flip = 1.0;
-  strcpy(c->material.model, "elastic");
-  c->material.E = 1e6;
-  c->material.nu = 0.3;
-  c->material.rho_s = 2450;
-  c->material.rho_c = 1500;
-  c->material.mu_s = 0.3819;
-  c->material.mu_2 = 0.6435;
-  c->material.I0 = 0.279;
-  c->material.d = 0.005;
-  c->material.t0 = 1e-3;
+  sim_config_material(c, "elastic", 1e6);
   c->bc.left = c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.right = c->bc.top = MPM_BC_FREE;
   c->nfill = 1;

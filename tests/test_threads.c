@@ -17,6 +17,7 @@
 
 #include "core/config.h"
 #include "solver/solver.h"
+#include "sim_config.h"
 
 static void column_config(mpm_config *c, const char *topology)
 {
@@ -33,16 +34,7 @@ static void column_config(mpm_config *c, const char *topology)
   c->time.frame_dt = 1.0;
   c->time.flip = 1.0;
   c->gravity.gy = -9.8;
-  strcpy(c->material.model, "mu_i");
-  c->material.E = 1e6;
-  c->material.nu = 0.3;
-  c->material.rho_s = 2450;
-  c->material.rho_c = 1500;
-  c->material.mu_s = 0.3819;
-  c->material.mu_2 = 0.6435;
-  c->material.I0 = 0.279;
-  c->material.d = 0.005;
-  c->material.t0 = 1e-3;
+  sim_config_material(c, "mu_i", 1e6);
   c->bc.left = MPM_BC_SYMMETRY;
   c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.right = MPM_BC_FRICTIONLESS;
