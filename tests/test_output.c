@@ -91,9 +91,11 @@ static void fill_mesh(mpm_mesh *m)
   m->ly = m->ny * m->dy;
 }
 
+/* A fresh directory under $TMPDIR (default /tmp). */
 static void make_tmpdir(char *dir)
 {
-  snprintf(dir, DIR_MAX, "/tmp/gm-test-output-XXXXXX");
+  const char *base = getenv("TMPDIR");
+  snprintf(dir, DIR_MAX, "%s/gm-test-output-XXXXXX", base && *base ? base : "/tmp");
   ck_assert_ptr_nonnull(mkdtemp(dir));
 }
 
