@@ -143,7 +143,7 @@ START_TEST(t_root_solves_quadratic)
     long double worst = 0.0L;
     for (int n = 0; n < 200000; n++) {
       root_case r = random_case(&seed, form);
-      double x = mpm_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug);
+      double x = mpm_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, 0.0);
       ck_assert(isfinite(x) && x >= 0.0);
       long double q[3], scale;
       quad_ref(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, x, q, &scale);
@@ -173,7 +173,7 @@ START_TEST(t_root_is_physical)
     for (int n = 0; n < 200000; n++) {
       root_case r = random_case(&seed, form);
       double S2 = r.par.mu_2 * r.p;
-      double x = mpm_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug);
+      double x = mpm_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, 0.0);
       ck_assert(x >= 0.0);
       if (r.gs == 0.0 && r.tau_tr < S2) {
         ck_assert_double_eq(x, 0.0);

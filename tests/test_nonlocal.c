@@ -4,7 +4,11 @@
  * 2e + 2f in the interior; each ghost rule on each edge reproduces the field
  * it stands for (even about a Neumann face, odd about a Dirichlet face,
  * periodic); empty neighbours act as Neumann faces; the explicit diffusion
- * limit (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) <= 1 is sharp. */
+ * limit (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) <= 1 is sharp. The unit mean
+ * of p^-1/2 (material.p_sample = "unit") is the mean of q^-1/2 of a linear q:
+ * in 1D 2 / (sqrt(q_lo) + sqrt(q_hi)), in 2D a quadrature of it; a linear
+ * pressure field is reconstructed exactly, up to a free surface where it
+ * falls to 0. */
 #define _DEFAULT_SOURCE /* M_PI */
 #include <check.h>
 #include <float.h>
@@ -413,6 +417,137 @@ START_TEST(t_diffusion_limit_sharp)
 }
 END_TEST
 
+/* Mean of q^-1/2 over s, t in [-1, 1], q = p0 + a s + c t, by the product
+ * midpoint rule on n x n cells (error O(1/n^2) away from q = 0). */
+static double midpoint_mean_isqrt(double p0, double a, double c, int n)
+{
+  double sum = 0.0;
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++)
+      sum += 1.0 / sqrt(p0 + a * (-1.0 + (i + 0.5) * 2.0 / n) + c * (-1.0 + (j + 0.5) * 2.0 / n));
+  return sum / ((double)n * n);
+}
+
+START_TEST(t_mean_isqrt)
+{
+  const double p0 = 7.3;
+  ck_assert_double_eq_tol(mpm_nonlocal_mean_isqrt(p0, 0.0, 0.0), 1.0 / sqrt(p0), 1e-16);
+  /* 1D: int_{-1}^{1} (p0 + a s)^-1/2 ds / 2 = 2 / (sqrt(p0 + a) + sqrt(p0 - a)),
+   * across the Taylor / closed-form switch, up to q = 0 at one end */
+  for (double r = 1e-9; r <= 1.0; r *= 1.7) {
+    double a = r * p0, want = 2.0 / (sqrt(p0 + a) + sqrt(p0 - a));
+    ck_assert_double_eq_tol(mpm_nonlocal_mean_isqrt(p0, a, 0.0), want, 1e-12 * want);
+    ck_assert_double_eq_tol(mpm_nonlocal_mean_isqrt(p0, 0.0, -a), want, 1e-12 * want);
+  }
+  double top = 2.0 / sqrt(2.0 * p0);                     /* q from 0 to 2 p0 */
+  ck_assert_double_eq_tol(mpm_nonlocal_mean_isqrt(p0, p0, 0.0), top, 1e-14 * top);
+  /* 2D against quadrature (4000^2 cells: relative error below 1e-8 here) */
+  const double ac[][2] = {{0.3, 0.2}, {-1.1, 2.4}, {3.0, 1e-5}, {1e-3, 5e-4}};
+  for (size_t k = 0; k < sizeof ac / sizeof ac[0]; k++) {
+    double want = midpoint_mean_isqrt(p0, ac[k][0], ac[k][1], 4000);
+    ck_assert_double_eq_tol(mpm_nonlocal_mean_isqrt(p0, ac[k][0], ac[k][1]), want, 1e-8 * want);
+    ck_assert_double_eq_tol(mpm_nonlocal_mean_isqrt(p0, ac[k][1], -ac[k][0]), want, 1e-8 * want);
+  }
+}
+END_TEST
+
+/* mpm_nonlocal_pressure on a chute-like column (periodic along x, no-slip
+ * bottom, free top) with p linear in y, p = kap (H - y), 4 points per unit at
+ * random masses and the p of their unit centre: every unit gets the exact
+ * mean of p^-1/2 over its extent, the top one 2 / sqrt(p at its bottom face)
+ * (the limiter holds the reconstruction at 0 on the free surface); a unit
+ * whose one-sided extrapolation would go negative is limited to 0 there;
+ * empty units get 0. */
+static double linear_p(const double *c, double x, double y)
+{
+  (void)x;
+  return c[0] * (c[1] - y);
+}
+
+static int lower_six(int i, int j)
+{
+  (void)i;
+  return j < 6;
+}
+
+START_TEST(t_unit_pressure_column)
+{
+  mpm_mesh m = make_mesh(2, 8, 0.01, 0.02, 1, 0);
+  int edge[4] = {MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_NOSLIP, MPM_BC_FREE};
+  const double coef[2] = {150.0, m.y0 + 6 * m.dy};       /* kap, H: six filled units */
+  cloud c = make_cloud(&m, 2, linear_p, coef, lower_six, 5u);
+  mpm_nonlocal *ws = run(&m, edge, &c);
+  mpm_nonlocal_pressure(ws, c.n, c.m, c.g, c.dense);     /* c.g holds p here */
+  for (int j = 0; j < m.ny; j++)
+    for (int i = 0; i < m.nx; i++) {
+      double lo = linear_p(coef, 0.0, m.y0 + j * m.dy), hi = linear_p(coef, 0.0, m.y0 + (j + 1) * m.dy);
+      double want = j < 6 ? 2.0 / (sqrt(lo) + sqrt(hi)) : 0.0;
+      /* top unit: a round-off delta in the reconstructed surface value moves
+       * the mean by ~ sqrt(delta / p); elsewhere round-off only */
+      double tol = (j == 5 ? 1e-7 : 1e-13) * want;
+      ck_assert_msg(fabs(ws->isp[i + m.nx * j] - want) <= tol,
+                    "unit (%d, %d): isp %.17g, want %.17g", i, j, ws->isp[i + m.nx * j], want);
+    }
+  ck_assert_double_eq_tol(ws->isp[5 * m.nx], 2.0 / sqrt(coef[0] * m.dy), 1e-7);
+  mpm_nonlocal_free(ws);
+  /* two units, p = 1 above p = 5: the top one extrapolates to 1 - 2 < 0 at its
+   * top face, limited to 0 there: the mean over q in [0, 2] is 2 / sqrt(2) */
+  mpm_mesh m2 = make_mesh(1, 3, 0.1, 0.1, 0, 0);
+  int e2[4] = {MPM_BC_FREE, MPM_BC_FREE, MPM_BC_NOSLIP, MPM_BC_FREE};
+  double x[2] = {m2.x0 + 0.05, m2.x0 + 0.05}, y[2] = {m2.y0 + 0.05, m2.y0 + 0.15};
+  double ms[2] = {1.0, 1.0}, g[2] = {0.0, 0.0}, pr[2] = {5.0, 1.0};
+  unsigned char d[2] = {1, 1};
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m2, e2, MPM_NONLOCAL_CENTRE, 2, &err), MPM_OK);
+  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m2, 2, x, y, &err), MPM_OK);
+  mpm_nonlocal_average(ws, 2, ms, g, d);
+  mpm_nonlocal_pressure(ws, 2, ms, pr, d);
+  ck_assert_double_eq_tol(ws->isp[1], sqrt(2.0), 1e-14);
+  /* the bottom one: one-sided 5 -> 1 gives q in [3, 7] (the wall does not count) */
+  ck_assert_double_eq_tol(ws->isp[0], 2.0 / (sqrt(3.0) + sqrt(7.0)), 1e-14);
+  ck_assert_double_eq(ws->isp[2], 0.0);                 /* empty */
+  ck_assert_double_eq_tol(mpm_nonlocal_point_isp(ws, 1), sqrt(2.0), 1e-14);
+  mpm_nonlocal_free(ws);
+  cloud_free(&c);
+}
+END_TEST
+
+/* A plane p = p0 + gx x + gy y on a 3 x 3 block surrounded by empty units:
+ * central differences in the middle unit, one-sided at the block's sides,
+ * each the exact mean of p^-1/2 of the plane over its unit (quadrature). */
+static double plane_p(const double *c, double x, double y)
+{
+  return c[0] + c[1] * x + c[2] * y;
+}
+
+static int block3(int i, int j)
+{
+  return i >= 1 && i <= 3 && j >= 1 && j <= 3;
+}
+
+START_TEST(t_unit_pressure_plane)
+{
+  mpm_mesh m = make_mesh(5, 5, 0.1, 0.08, 0, 0);
+  int edge[4] = {MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE};
+  const double coef[3] = {200.0, 60.0, -90.0};           /* p >= 42 on the block */
+  cloud c = make_cloud(&m, 3, plane_p, coef, block3, 9u);
+  mpm_nonlocal *ws = run(&m, edge, &c);
+  mpm_nonlocal_pressure(ws, c.n, c.m, c.g, c.dense);
+  for (int j = 0; j < m.ny; j++)
+    for (int i = 0; i < m.nx; i++) {
+      double xc = m.x0 + (i + 0.5) * m.dx, yc = m.y0 + (j + 0.5) * m.dy;
+      double want = block3(i, j) ? midpoint_mean_isqrt(plane_p(coef, xc, yc), coef[1] * m.dx / 2,
+                                                       coef[2] * m.dy / 2, 2000) : 0.0;
+      ck_assert_double_eq_tol(ws->pe[i + m.nx * j], block3(i, j) ? plane_p(coef, xc, yc) : 0.0,
+                              1e-12);
+      ck_assert_msg(fabs(ws->isp[i + m.nx * j] - want) <= 1e-7 * want,
+                    "unit (%d, %d): isp %.17g, want %.17g", i, j, ws->isp[i + m.nx * j], want);
+    }
+  mpm_nonlocal_free(ws);
+  cloud_free(&c);
+}
+END_TEST
+
 /* Errors: mismatched periodic edges, unknown kinds, the unimplemented rule,
  * a point outside the mesh; free(NULL). */
 START_TEST(t_errors)
@@ -451,6 +586,9 @@ int main(void)
   tcase_add_test(tc, t_empty_neighbour_neumann);
   tcase_add_test(tc, t_periodic_wrap);
   tcase_add_test(tc, t_diffusion_limit_sharp);
+  tcase_add_test(tc, t_mean_isqrt);
+  tcase_add_test(tc, t_unit_pressure_column);
+  tcase_add_test(tc, t_unit_pressure_plane);
   tcase_add_test(tc, t_errors);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

@@ -66,7 +66,7 @@ enum key_type {
 
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
-  NK_EDGE
+  NK_NGF_P_SAMPLE, NK_EDGE
 };
 
 enum key_flag {
@@ -136,6 +136,7 @@ static const key_def keys[] = {
   NUM(S_MATERIAL, KT_REAL, "A", C_(material.A), 0.48, 0, 100, 0, "-"),
   NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
   NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
+  NAMED(S_MATERIAL, KT_ENUM, "p_sample", C_(material.p_sample), NK_NGF_P_SAMPLE, "unit"),
   NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
   NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
   NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
@@ -225,6 +226,7 @@ static const char *name_at(int kind, int i)
   case NK_EDGE: return i >= 0 && i <= MPM_OUTLET_TOP ? edge_names[i] : NULL;
   case NK_BC: return i >= 0 && i <= MPM_BC_PERIODIC ? mpm_bc_kind_name(i) : NULL;
   case NK_NGF_FORM: return mpm_ngf_form_name(i);
+  case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -249,6 +251,7 @@ static int name_value(int kind, const char *s)
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return list_index(fill_shape_names, s);
   case NK_NGF_FORM: return mpm_ngf_form_from_name(s);
+  case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_from_name(s);
   case NK_EDGE: return list_index(edge_names, s);
   default: return -1;
   }
@@ -1615,7 +1618,7 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
     .E = cfg->material.E, .nu = cfg->material.nu, .rho_s = cfg->material.rho_s,
     .rho_c = cfg->material.rho_c, .mu_s = cfg->material.mu_s, .mu_2 = cfg->material.mu_2,
     .I0 = cfg->material.I0, .d = cfg->material.d, .A = cfg->material.A, .t0 = cfg->material.t0,
-    .form = cfg->material.form, .t_seed = cfg->material.t_seed};
+    .form = cfg->material.form, .p_sample = cfg->material.p_sample, .t_seed = cfg->material.t_seed};
   mpm_material_params_derive(&par);
   mpm_err e = {0};
   if (t->check(&par, &e) == MPM_OK)

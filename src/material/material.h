@@ -19,6 +19,7 @@ typedef struct mpm_material_params {
   double d;              /* grain diameter [m] */
   double A, t0;          /* NGF amplitude and time scale [s] */
   int form;              /* NGF PDE form, enum mpm_ngf_form (0: [DK-silo]) */
+  int p_sample;          /* NGF: p^-1/2 of the g^2 term, enum mpm_ngf_p_sample */
   double t_seed;         /* NGF seeding time [s]: the local mu_i update runs for
                             t < t_seed, then g = gdot_p / mu (mpm_ngf_seed); 0: none */
   /* derived (mpm_material_params_derive) */
@@ -38,6 +39,8 @@ typedef struct mpm_mpoint {
   double g;        /* fluidity [1/s], in: g_n, out: g_{n+1} */
   double lap;      /* Laplacian of g of the point's unit [1/(m^2 s)] (input; read
                       only by nonlocal models, mpm_nonlocal_point_lap) */
+  double isp;      /* p^-1/2 for the g^2 term of a nonlocal model [Pa^-1/2] (input;
+                      mpm_nonlocal_point_isp); 0: the point's own p_tr^-1/2 */
   double gdp;      /* equivalent plastic shear rate [1/s] (output) */
   int state;       /* enum mpm_point_state (output) */
 } mpm_mpoint;
@@ -93,16 +96,30 @@ enum mpm_ngf_form { MPM_NGF_DK = 0, MPM_NGF_HS21 };
 int mpm_ngf_form_from_name(const char *name);
 const char *mpm_ngf_form_name(int form);
 
+/* Where the g^2 term b sqrt(rho_s d^2 / p) mu g^2 samples p^-1/2:
+ *   MPM_NGF_P_UNIT:  the mean of p^-1/2 over the point's unit, p reconstructed
+ *                    linearly from the unit pressures (nonlocal.h,
+ *                    mpm_nonlocal_pressure); it integrates the p^-1/2 of a
+ *                    free surface, where the point value under-weights the
+ *                    top unit by a factor up to sqrt(2) (docs/model.md);
+ *   MPM_NGF_P_POINT: the point's own p_tr^-1/2, as [DK-silo] §5.2. */
+enum mpm_ngf_p_sample { MPM_NGF_P_UNIT = 0, MPM_NGF_P_POINT };
+
+/* "unit" | "point" <-> enum mpm_ngf_p_sample; -1 / NULL if unknown. */
+int mpm_ngf_p_sample_from_name(const char *name);
+const char *mpm_ngf_p_sample_name(int sample);
+
 /* 1 if the point is dense this step (contributes to the element g):
  * p_n = -tr(sigma_n)/3 > 0 and rho_{n+1} >= rho_c. */
 int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho);
 
 /* g_{n+1} of MODEL.md section 5 step 4: the root of the quadratic in x = g_{n+1}
  * with the physical choice, for time step dt, pressure p = p_tr > 0, trial
- * shear stress tau_tr >= 0, diffused fluidity gstar = g* >= 0 and
- * mug_n = mu_n g_n (start of step). Returns x >= 0. */
+ * shear stress tau_tr >= 0, diffused fluidity gstar = g* >= 0,
+ * mug_n = mu_n g_n (start of step) and isp, the p^-1/2 of the g^2 term
+ * (0: 1/sqrt(p)). Returns x >= 0. */
 double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
-                        double gstar, double mug_n);
+                        double gstar, double mug_n, double isp);
 
 /* Seeding from a local run: g = gdot_p / mu, mu = tau / p (0 if p <= 0 or tau = 0). */
 double mpm_ngf_seed(mpm_sym3 sigma, double gdp);

@@ -14,6 +14,7 @@
  *   g* = max(0, g_n + (dt/t0) A^2 d^2 lap_e)                       [eq. 5.3]
  *   x = g_{n+1} solves x - g* = -k x F(mu(x)) - c x with k = dt/t0,
  *   c = k b sqrt(rho_s d^2/p) mu_n g_n, mu(x) = tau_tr/(G dt x + p)   [eq. 5.4-5.5]
+ *   (p^-1/2 in c: the unit mean pt->isp, or the point's own, material.p_sample)
  *   tau = tau_tr p/(G dt x + p), sigma = (tau/tau_tr) sigma0_tr - p I,
  *   gdot_p = x mu(x)                                              [eq. 5.5, 5.9]
  * Multiplied out (Gb = G dt, beta = 1 + c, S0 = mu_s p, S2 = mu_2 p, f = k Delta_mu):
@@ -35,6 +36,8 @@
 
 static const char *const form_names[] = {"dk", "hs21"};
 #define NGF_NFORMS ((int)(sizeof form_names / sizeof form_names[0]))
+static const char *const p_sample_names[] = {"unit", "point"};
+#define NGF_NSAMPLES ((int)(sizeof p_sample_names / sizeof p_sample_names[0]))
 
 int mpm_ngf_form_from_name(const char *name)
 {
@@ -47,6 +50,19 @@ int mpm_ngf_form_from_name(const char *name)
 const char *mpm_ngf_form_name(int form)
 {
   return form >= 0 && form < NGF_NFORMS ? form_names[form] : NULL;
+}
+
+int mpm_ngf_p_sample_from_name(const char *name)
+{
+  for (int k = 0; k < NGF_NSAMPLES; k++)
+    if (strcmp(name, p_sample_names[k]) == 0)
+      return k;
+  return -1;
+}
+
+const char *mpm_ngf_p_sample_name(int sample)
+{
+  return sample >= 0 && sample < NGF_NSAMPLES ? p_sample_names[sample] : NULL;
 }
 
 int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho)
@@ -119,7 +135,7 @@ static double larger_root(ngf_quad q)
 }
 
 double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
-                        double gstar, double mug_n)
+                        double gstar, double mug_n, double isp)
 {
   if (!(dt > 0.0))
     return gstar;
@@ -127,7 +143,9 @@ double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, dou
     return 0.0;                                                     /* g = 0 stays */
   double k = dt / par->t0;                                          /* k = dt/t0 */
   double Gb = par->G * dt;                                          /* Gb = G dt */
-  double c = k * par->b * par->d * (sqrt(par->rho_s) / sqrt(p)) * mug_n;  /* k b sqrt(rho_s d^2/p) mu_n g_n */
+  if (!(isp > 0.0))
+    isp = 1.0 / sqrt(p);                                            /* the point's p^-1/2 */
+  double c = k * par->b * par->d * sqrt(par->rho_s) * isp * mug_n;  /* k b sqrt(rho_s d^2/p) mu_n g_n */
   double beta = 1.0 + c;
   ngf_quad q = par->form == MPM_NGF_HS21 ? quad_hs21(par, Gb, p, tau_tr, gstar, k, beta)
                                          : quad_dk(par, Gb, p, tau_tr, gstar, k, beta);
@@ -172,7 +190,7 @@ static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double
   mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
   double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
   double gs = ngf_gstar(par, dt, g_n, pt->lap);                    /* g* */
-  double x = mpm_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n);      /* g_{n+1} */
+  double x = mpm_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt->isp);  /* g_{n+1} */
   double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
   pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);     /* (tau/tau_tr) s0_tr - p I */
   pt->g = x;
@@ -190,6 +208,9 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT, "key 'material.t0' = %g: must be > 0 s", par->t0);
   if (!mpm_ngf_form_name(par->form))
     return mpm_err_set(err, MPM_EINPUT, "NGF form %d unknown (\"dk\" or \"hs21\")", par->form);
+  if (!mpm_ngf_p_sample_name(par->p_sample))
+    return mpm_err_set(err, MPM_EINPUT, "NGF p sampling %d unknown (\"unit\" or \"point\")",
+                       par->p_sample);
   if (!(par->t_seed >= 0.0 && isfinite(par->t_seed)))
     return mpm_err_set(err, MPM_EINPUT, "key 'material.t_seed' = %g: must be >= 0 s",
                        par->t_seed);

@@ -9,6 +9,7 @@
  * midway between the centres), periodic wrap. */
 #include "nonlocal/nonlocal.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "core/config.h"
@@ -37,8 +38,11 @@ void mpm_nonlocal_free(mpm_nonlocal *ws)
   free(ws->smg);
   free(ws->ge);
   free(ws->lap);
+  free(ws->pe);
+  free(ws->isp);
   free(ws->unit);
   free(ws->dense);
+  free(ws->pn);
   free(ws);
 }
 
@@ -48,15 +52,19 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
     return MPM_OK;
   int *u = malloc(cap * sizeof *u);
   unsigned char *d = calloc(cap, 1);
-  if (!u || !d) {
+  double *pn = calloc(cap, sizeof *pn);
+  if (!u || !d || !pn) {
     free(u);
     free(d);
+    free(pn);
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu points", cap);
   }
   free(ws->unit);
   free(ws->dense);
+  free(ws->pn);
   ws->unit = u;
   ws->dense = d;
+  ws->pn = pn;
   ws->pcap = cap;
   return MPM_OK;
 }
@@ -111,7 +119,9 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   ws->smg = calloc(nu, sizeof *ws->smg);
   ws->ge = calloc(nu, sizeof *ws->ge);
   ws->lap = calloc(nu, sizeof *ws->lap);
-  if (!ws->sm || !ws->smg || !ws->ge || !ws->lap) {
+  ws->pe = calloc(nu, sizeof *ws->pe);
+  ws->isp = calloc(nu, sizeof *ws->isp);
+  if (!ws->sm || !ws->smg || !ws->ge || !ws->lap || !ws->pe || !ws->isp) {
     mpm_nonlocal_free(ws);
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu units", nu);
   }
@@ -201,5 +211,97 @@ void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
       double gs = neighbour(ws, i, j, 0, -1, g), gn = neighbour(ws, i, j, 0, 1, g);
       ws->lap[e] = (ge - 2.0 * g + gw) * ws->idx2     /* d2g/dx2 */
                  + (gn - 2.0 * g + gs) * ws->idy2;    /* d2g/dy2 */
+    }
+}
+
+/* H(q) = ((q + c)^3/2 - (q - c)^3/2) / c without cancellation:
+ * ((q + c)^3 - (q - c)^3) / (c ((q + c)^3/2 + (q - c)^3/2)); 3 sqrt(q) at c = 0. */
+static double h_diff(double q, double c)
+{
+  double qm = q - c > 0.0 ? q - c : 0.0, qp = q + c > 0.0 ? q + c : 0.0;
+  double den = qp * sqrt(qp) + qm * sqrt(qm);
+  return den > 0.0 ? (6.0 * q * q + 2.0 * c * c) / den : 0.0;    /* q = c = 0: 0 */
+}
+
+double mpm_nonlocal_mean_isqrt(double p0, double a, double c)
+{
+  a = fabs(a);
+  c = fabs(c);
+  if (c > a) {                                        /* a: the larger half-range */
+    double t = a;
+    a = c;
+    c = t;
+  }
+  if (a <= 1e-3 * p0)                                 /* Taylor; next term < 6e-14 */
+    return (1.0 + (a * a + c * c) / (8.0 * p0 * p0)) / sqrt(p0);
+  /* (1/4) int int q^-1/2 ds dt = (1/(3ac)) [sum of +-(p0 +- a +- c)^3/2]
+   *                           = (H(p0 + a) - H(p0 - a)) / (3a) */
+  return (h_diff(p0 + a, c) - h_diff(p0 - a, c)) / (3.0 * a);
+}
+
+/* Pressure of the unit across the face towards (i + di, j + dj); 0 if there
+ * is none (wall, mesh edge, empty unit). */
+static int neighbour_p(const mpm_nonlocal *ws, int i, int j, int di, int dj, double *pv)
+{
+  int ii = i + di, jj = j + dj;
+  if (ii < 0 || ii >= ws->nx) {
+    if (ws->ghost[ii < 0 ? 0 : 1] != MPM_GHOST_PERIODIC)
+      return 0;
+    ii = (ii + ws->nx) % ws->nx;
+  }
+  if (jj < 0 || jj >= ws->ny) {
+    if (ws->ghost[jj < 0 ? 2 : 3] != MPM_GHOST_PERIODIC)
+      return 0;
+    jj = (jj + ws->ny) % ws->ny;
+  }
+  size_t e = (size_t)ii + (size_t)ws->nx * (size_t)jj;
+  if (!(ws->sm[e] > 0.0))
+    return 0;
+  *pv = ws->pe[e];
+  return 1;
+}
+
+/* Half the change of p across the unit along one direction (gradient times
+ * half the unit): central, one-sided or 0. */
+static double half_change(const mpm_nonlocal *ws, int i, int j, int di, int dj, double p0)
+{
+  double pm = 0.0, pp = 0.0;
+  int hm = neighbour_p(ws, i, j, -di, -dj, &pm), hp = neighbour_p(ws, i, j, di, dj, &pp);
+  if (hm && hp)
+    return 0.25 * (pp - pm);
+  if (hp)
+    return 0.5 * (pp - p0);
+  if (hm)
+    return 0.5 * (p0 - pm);
+  return 0.0;
+}
+
+void mpm_nonlocal_pressure(mpm_nonlocal *ws, size_t n, const double *mass, const double *p,
+                           const unsigned char *dense)
+{
+  size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  for (size_t e = 0; e < nu; e++)
+    ws->pe[e] = 0.0;
+  for (size_t q = 0; q < n; q++)                        /* fixed order: thread-count free */
+    if (dense[q])
+      ws->pe[ws->unit[q]] += mass[q] * p[q];            /* sum m p */
+  for (size_t e = 0; e < nu; e++)
+    ws->pe[e] = ws->sm[e] > 0.0 ? ws->pe[e] / ws->sm[e] : 0.0;  /* p_e (sm from average) */
+  const int nx = ws->nx, ny = ws->ny;
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      size_t e = (size_t)i + (size_t)nx * (size_t)j;
+      double p0 = ws->pe[e];
+      if (!(p0 > 0.0)) {
+        ws->isp[e] = 0.0;
+        continue;
+      }
+      double a = half_change(ws, i, j, 1, 0, p0), c = half_change(ws, i, j, 0, 1, p0);
+      double span = fabs(a) + fabs(c);
+      if (span > p0) {                                  /* limiter: p >= 0 on the unit */
+        a *= p0 / span;
+        c *= p0 / span;
+      }
+      ws->isp[e] = mpm_nonlocal_mean_isqrt(p0, a, c);
     }
 }

@@ -16,13 +16,27 @@
  *      Empty units have lap_e = 0.
  * A point then reads the Laplacian of its unit (mpm_nonlocal_point_lap).
  *
+ * The g^2 term's p^-1/2 may be sampled per unit (material.p_sample = "unit",
+ * docs/model.md): p_e = sum m p / sum m over the same dense points; its
+ * gradient from the neighbouring filled units (central where both exist,
+ * one-sided where one does, 0 where none; walls and empty units do not count,
+ * periodic edges wrap), limited so that the linear reconstruction
+ * p_e + (x - x_e) . grad p stays >= 0 on the whole unit; isp_e is the exact
+ * mean of p^-1/2 of that reconstruction over the unit
+ * (mpm_nonlocal_mean_isqrt). At a free surface p falls linearly to 0 at the
+ * top face, and isp_e = 2 / sqrt(p at the bottom face), where the centre
+ * value p_e^-1/2 is sqrt(2) times too small; inside a smooth field
+ * isp_e = p_e^-1/2 (1 + O(dx^2)).
+ *
  * Usage per MPM step (the solver):
  *   mpm_nonlocal_locate(ws, mesh, n, x, y, err);          once, positions x_{n+1}
  *   for each substep:
  *     ws->dense[p] = mpm_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
  *     mpm_nonlocal_average(ws, n, mass, g, ws->dense);
  *     mpm_nonlocal_laplacian(ws);
- *     per point: lap = mpm_nonlocal_point_lap(ws, p); constitutive update
+ *     mpm_nonlocal_pressure(ws, n, mass, ws->pn, ws->dense);  (unit sampling; pn = p_n)
+ *     per point: lap = mpm_nonlocal_point_lap(ws, p), isp = mpm_nonlocal_point_isp(ws, p);
+ *       constitutive update
  *
  * The sums run over points in index order on one thread, so results do not
  * depend on the number of threads. The Laplacian is independent per unit. */
@@ -60,8 +74,11 @@ typedef struct mpm_nonlocal {
   double *smg;          /* [nx*ny] sum m g [kg/(m s)] */
   double *ge;           /* [nx*ny] element fluidity g_e [1/s] (0 when empty) */
   double *lap;          /* [nx*ny] lap_e [1/(m^2 s)] (0 when empty) */
+  double *pe;           /* [nx*ny] unit pressure p_e [Pa] (0 when empty) */
+  double *isp;          /* [nx*ny] unit mean of p^-1/2 [Pa^-1/2] (0 when empty or p_e <= 0) */
   int *unit;            /* [pcap] frozen unit of each point, i + nx j */
   unsigned char *dense; /* [pcap] scratch for the caller's dense flags (fill after locate) */
+  double *pn;           /* [pcap] scratch for the caller's point pressures p_n [Pa] */
   size_t pcap;          /* capacity of the per-point arrays */
 } mpm_nonlocal;
 
@@ -91,6 +108,19 @@ void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const 
 /* lap_e on every non-empty unit from the current g_e (5-point, ghost rules). */
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws);
 
+/* Unit pressures p_e = sum m p / sum m over the dense points and isp_e, the
+ * mean of p^-1/2 over each unit of the limited linear reconstruction (see
+ * the top of this file). Call after mpm_nonlocal_average with the same dense
+ * flags (it reuses sum m). Sums in point order, as mpm_nonlocal_average. */
+void mpm_nonlocal_pressure(mpm_nonlocal *ws, size_t n, const double *mass, const double *p,
+                           const unsigned char *dense);
+
+/* Mean of q^-1/2 over s, t in [-1, 1] for q = p0 + a s + c t with
+ * p0 > 0 and |a| + |c| <= p0 (exact up to a relative 1e-12: a second-order
+ * Taylor expansion when max(|a|, |c|) <= 1e-3 p0, else the closed form
+ * with one difference left). */
+double mpm_nonlocal_mean_isqrt(double p0, double a, double c);
+
 /* 1 if unit (i, j) holds dense mass. */
 static inline int mpm_nonlocal_filled(const mpm_nonlocal *ws, int i, int j)
 {
@@ -101,6 +131,12 @@ static inline int mpm_nonlocal_filled(const mpm_nonlocal *ws, int i, int j)
 static inline double mpm_nonlocal_point_lap(const mpm_nonlocal *ws, size_t p)
 {
   return ws->lap[ws->unit[p]];
+}
+
+/* p^-1/2 for the g^2 term of point p: its frozen unit's isp_e (0: none). */
+static inline double mpm_nonlocal_point_isp(const mpm_nonlocal *ws, size_t p)
+{
+  return ws->isp[ws->unit[p]];
 }
 
 #endif

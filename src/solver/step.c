@@ -62,6 +62,7 @@ static void params_from_config(mpm_material_params *par, const mpm_config *cfg)
   par->A = cfg->material.A;
   par->t0 = cfg->material.t0;
   par->form = cfg->material.form;
+  par->p_sample = cfg->material.p_sample;
   par->t_seed = cfg->material.t_seed;
   mpm_material_params_derive(par);
 }
@@ -387,16 +388,16 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
 }
 
 /* Step 6 for point p: n substeps of length h of model mat with L fixed; lap
- * is the Laplacian of g its unit sees (nonlocal models only). Returns 0 when
- * the stress became non-finite. */
+ * is the Laplacian of g its unit sees and isp the p^-1/2 of its g^2 term (0:
+ * its own; nonlocal models only). Returns 0 when the stress became non-finite. */
 static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, const mpm_mat3 *L,
-                        double h, int n, double lap)
+                        double h, int n, double lap, double isp)
 {
   mpm_points *P = s->pts;
   mpm_mpoint mp = {
     .sigma = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0},
     .rho = P->mass[p] / P->vol[p],                         /* rho_{n+1} = m / V_{n+1} */
-    .g = P->g[p], .lap = lap, .gdp = P->gdp[p], .state = P->state[p],
+    .g = P->g[p], .lap = lap, .isp = isp, .gdp = P->gdp[p], .state = P->state[p],
   };
   for (int k = 0; k < n; k++)
     mat->update(&s->par, L, h, &mp);
@@ -432,7 +433,7 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = {{{0.0}}};
     grid_to_point(s, p, &L);
-    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0))
+    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0, 0.0))
       bad = (long)p > bad ? (long)p : bad;
     bookkeeping(s, p);
   }
@@ -516,13 +517,17 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
     for (size_t p = 0; p < n; p++) {                       /* p_n > 0, rho_{n+1} >= rho_c */
       mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
       nl->dense[p] = (unsigned char)mpm_ngf_dense(&s->par, sig, P->mass[p] / P->vol[p]);
+      nl->pn[p] = mpm_sym3_pressure(sig);                  /* p_n */
     }
     mpm_nonlocal_average(nl, n, P->mass, P->g, nl->dense);  /* g_e, point order */
     mpm_nonlocal_laplacian(nl);                            /* lap_e */
+    if (s->par.p_sample == MPM_NGF_P_UNIT)
+      mpm_nonlocal_pressure(nl, n, P->mass, nl->pn, nl->dense);  /* isp_e */
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++) {
       mpm_mat3 L = stored_L(s, p);
-      if (!constitutive(s, s->mat, p, &L, h, 1, mpm_nonlocal_point_lap(nl, p)))
+      if (!constitutive(s, s->mat, p, &L, h, 1, mpm_nonlocal_point_lap(nl, p),
+                        mpm_nonlocal_point_isp(nl, p)))
         bad = (long)p > bad ? (long)p : bad;
     }
   }
