@@ -8,7 +8,13 @@
  * of p^-1/2 (material.p_sample = "unit") is the mean of q^-1/2 of a linear q:
  * in 1D 2 / (sqrt(q_lo) + sqrt(q_hi)), in 2D a quadrature of it; a linear
  * pressure field is reconstructed exactly, up to a free surface where it
- * falls to 0. */
+ * falls to 0. The extent rule (material.g_average = "extent") from its
+ * definition: a point whose extent lies in one unit counts exactly as under
+ * the centre rule; otherwise each unit gets the fraction of the extent's
+ * area inside it (1/4 each about a corner, 0.3 / 0.7 across a face), parts
+ * beyond a non-periodic edge dropped and the rest renormalised, periodic
+ * edges wrapped; a point reads the weighted mean of lap_e over the filled
+ * units it overlaps. */
 #define _DEFAULT_SOURCE /* M_PI */
 #include <check.h>
 #include <float.h>
@@ -548,7 +554,7 @@ START_TEST(t_unit_pressure_plane)
 }
 END_TEST
 
-/* Errors: mismatched periodic edges, unknown kinds, the unimplemented rule,
+/* Errors: mismatched periodic edges, unknown kinds, an unknown rule,
  * a point outside the mesh; free(NULL). */
 START_TEST(t_errors)
 {
@@ -564,13 +570,313 @@ START_TEST(t_errors)
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, e3, MPM_NONLOCAL_CENTRE, 1, &err), MPM_EINVAL);
   ck_assert_msg(strstr(err.msg, "bottom") != NULL, "%s", err.msg);
   int ok[4] = {MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_NOSLIP, MPM_BC_FREE};
-  ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, ok, MPM_NONLOCAL_EXTENT, 1, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, ok, MPM_NONLOCAL_EXTENT + 1, 1, &err), MPM_EINVAL);
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, ok, MPM_NONLOCAL_CENTRE, 0, &err), MPM_OK);
   double x[2] = {0.0, 0.0}, y[2] = {1.3, 1.0};   /* y0 = 1.25: the second is below */
   ck_assert_int_eq(mpm_nonlocal_locate(ws, &m, 2, x, y, &err), MPM_EOUTSIDE);
   ck_assert_msg(strstr(err.msg, "point index 1") != NULL, "%s", err.msg);
   mpm_nonlocal_free(ws);
   mpm_nonlocal_free(NULL);
+}
+END_TEST
+
+/* ---- extent rule (material.g_average = "extent") ------------------- */
+
+/* Workspace under the extent rule, n points located with half-vectors
+ * r1 = (r1x, r1y), r2 = (r2x, r2y). */
+static mpm_nonlocal *extent_ws(const mpm_mesh *m, const int edge[4], size_t n, const double *x,
+                               const double *y, const double *r1x, const double *r1y,
+                               const double *r2x, const double *r2y)
+{
+  mpm_nonlocal *ws = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_nonlocal_alloc(&ws, m, edge, MPM_NONLOCAL_EXTENT, 1, &err), MPM_OK);
+  const double *const r[4] = {r1x, r1y, r2x, r2y};
+  ck_assert_msg(mpm_nonlocal_locate_extents(ws, m, n, x, y, r, &err) == MPM_OK, "%s", err.msg);
+  return ws;
+}
+
+/* Weight of unit e in the pairs of point p (0 if it is not among them). */
+static double weight_of(const mpm_nonlocal *ws, size_t p, int e)
+{
+  double w = 0.0;
+  for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
+    if (ws->part[MPM_NONLOCAL_PARTS * p + k] == e)
+      w += ws->w[MPM_NONLOCAL_PARTS * p + k];
+  return w;
+}
+
+/* Points whose extents lie inside their units (2 x 2 points per unit with
+ * the fill's half-widths dx/4, dy/4, jittered by less than the gap to the
+ * faces): g_e, lap_e, point_lap and the unit pressures equal the centre
+ * rule's bitwise, and a uniform g stays uniform. */
+START_TEST(t_extent_inside_is_centre)
+{
+  mpm_mesh m = make_mesh(6, 5, 0.02, 0.03, 1, 0);
+  int edge[4] = {MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_NOSLIP, MPM_BC_FREE};
+  enum { N = 6 * 5 * 4 };
+  double x[N], y[N], ms[N], g[N], gu[N], pr[N], r1x[N], r1y[N], r2x[N], r2y[N];
+  unsigned char d[N];
+  unsigned long sd = 29u;
+  size_t n = 0;
+  for (int j = 0; j < m.ny; j++)
+    for (int i = 0; i < m.nx; i++)
+      for (int q = 0; q < 4; q++, n++) {
+        /* centre 1/4 or 3/4 of the unit +- 0.1 unit, half-width 0.12 unit: inside */
+        x[n] = m.x0 + (i + 0.25 + 0.5 * (q % 2) + 0.2 * (lcg(&sd) - 0.5)) * m.dx;
+        y[n] = m.y0 + (j + 0.25 + 0.5 * (q / 2) + 0.2 * (lcg(&sd) - 0.5)) * m.dy;
+        r1x[n] = 0.12 * m.dx;
+        r1y[n] = 0.0;
+        r2x[n] = 0.0;
+        r2y[n] = -0.12 * m.dy;                          /* signs do not matter */
+        ms[n] = 0.5 + lcg(&sd);
+        g[n] = 10.0 * lcg(&sd);
+        gu[n] = 3.25;
+        pr[n] = 100.0 + 50.0 * lcg(&sd);
+        d[n] = lcg(&sd) < 0.8;
+      }
+  mpm_nonlocal *we = extent_ws(&m, edge, N, x, y, r1x, r1y, r2x, r2y), *wc = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_nonlocal_alloc(&wc, &m, edge, MPM_NONLOCAL_CENTRE, N, &err), MPM_OK);
+  ck_assert_int_eq(mpm_nonlocal_locate(wc, &m, N, x, y, &err), MPM_OK);
+  for (size_t p = 0; p < N; p++) {
+    ck_assert_int_eq(we->unit[p], wc->unit[p]);
+    ck_assert(weight_of(we, p, wc->unit[p]) == 1.0);   /* exactly one pair, weight 1 */
+  }
+  mpm_nonlocal *both[2] = {we, wc};
+  for (int k = 0; k < 2; k++) {
+    mpm_nonlocal_average(both[k], N, ms, g, d);
+    mpm_nonlocal_laplacian(both[k]);
+    mpm_nonlocal_pressure(both[k], N, ms, pr, d);
+  }
+  for (int e = 0; e < m.nx * m.ny; e++) {
+    ck_assert(we->sm[e] == wc->sm[e] && we->ge[e] == wc->ge[e] && we->lap[e] == wc->lap[e]);
+    ck_assert(we->pe[e] == wc->pe[e] && we->isp[e] == wc->isp[e]);
+  }
+  for (size_t p = 0; p < N; p++) {
+    ck_assert(mpm_nonlocal_point_lap(we, p) == mpm_nonlocal_point_lap(wc, p));
+    ck_assert(mpm_nonlocal_point_isp(we, p) == mpm_nonlocal_point_isp(wc, p));
+  }
+  /* uniform g: every filled unit holds 3.25 (a mean of 4 equal values: a
+   * few eps), so lap_e = 0 but in the bottom row, next to the no-slip wall:
+   * (g - 2g - g)/dy^2 */
+  mpm_nonlocal_average(we, N, ms, gu, d);
+  mpm_nonlocal_laplacian(we);
+  for (int e = 0; e < m.nx * m.ny; e++)
+    if (we->sm[e] > 0.0) {
+      ck_assert_double_eq_tol(we->ge[e], 3.25, 16.0 * DBL_EPSILON * 3.25);
+      double want = e < m.nx ? -2.0 * 3.25 / (m.dy * m.dy) : 0.0;
+      ck_assert_double_eq_tol(we->lap[e], want, lap_tol(3.25, m.dx, m.dy));
+    }
+  mpm_nonlocal_free(we);
+  mpm_nonlocal_free(wc);
+}
+END_TEST
+
+/* A point centred on the common corner of four units with a square extent
+ * (half-width a quarter unit; given once as r1 = (h, 0), r2 = (0, h), once as
+ * the rotated diamond r1 = (h/2, h/2), r2 = (-h/2, h/2), whose bounding box is
+ * the same square) gives 1/4 to each; one straddling a vertical face with 30%
+ * of its width on the left gives 0.3 / 0.7. */
+START_TEST(t_extent_corner_and_face)
+{
+  mpm_mesh m = make_mesh(4, 4, 0.1, 0.1, 0, 0);
+  int edge[4] = {MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE};
+  const double h = 0.025, xc = m.x0 + 2 * m.dx, yc = m.y0 + 2 * m.dy;
+  /* face between units (1, 1) and (2, 1) at x = x0 + 0.2; width 2h = 0.05:
+   * 0.015 left of it, 0.035 right; vertically inside row 1 */
+  double x[3] = {xc, xc, m.x0 + 0.2 + 0.01}, y[3] = {yc, yc, m.y0 + 0.15};
+  double r1x[3] = {h, h / 2, h}, r1y[3] = {0.0, h / 2, 0.0};
+  double r2x[3] = {0.0, -h / 2, 0.0}, r2y[3] = {h, h / 2, 0.03};
+  mpm_nonlocal *ws = extent_ws(&m, edge, 3, x, y, r1x, r1y, r2x, r2y);
+  const int four[4] = {1 + 4 * 1, 2 + 4 * 1, 1 + 4 * 2, 2 + 4 * 2};
+  for (size_t p = 0; p < 2; p++)
+    for (int k = 0; k < 4; k++)
+      ck_assert_double_eq_tol(weight_of(ws, p, four[k]), 0.25, 1e-13);
+  ck_assert_double_eq_tol(weight_of(ws, 2, 1 + 4 * 1), 0.3, 1e-13);
+  ck_assert_double_eq_tol(weight_of(ws, 2, 2 + 4 * 1), 0.7, 1e-13);
+  /* the sums: masses 2, 1, 10 and g 4, 8, 1; only the third point in
+   * unit (1, 1) beside the first two's quarters:
+   * g_(1,1) = (0.25*2*4 + 0.25*1*8 + 0.3*10*1) / (0.25*2 + 0.25*1 + 0.3*10) */
+  double ms[3] = {2.0, 1.0, 10.0}, g[3] = {4.0, 8.0, 1.0};
+  unsigned char d[3] = {1, 1, 1};
+  mpm_nonlocal_average(ws, 3, ms, g, d);
+  ck_assert_double_eq_tol(ws->sm[1 + 4 * 1], 0.75 + 3.0, 1e-13);
+  ck_assert_double_eq_tol(ws->ge[1 + 4 * 1], (2.0 + 2.0 + 3.0) / 3.75, 1e-13);
+  ck_assert_double_eq_tol(ws->ge[2 + 4 * 1], (2.0 + 2.0 + 7.0) / 7.75, 1e-13);
+  ck_assert_double_eq_tol(ws->ge[1 + 4 * 2], 4.0 / 0.75, 1e-13);       /* quarters only */
+  ck_assert_double_eq(ws->sm[0], 0.0);
+  /* a point reads the weighted mean of the lap_e of its filled units */
+  for (int e = 0; e < 16; e++)
+    ws->lap[e] = 100.0 * e;
+  double want = 0.3 * ws->lap[5] + 0.7 * ws->lap[6];
+  ck_assert_double_eq_tol(mpm_nonlocal_point_lap(ws, 2), want, 1e-10);
+  ck_assert_double_eq_tol(mpm_nonlocal_point_lap(ws, 0), (500.0 + 600.0 + 900.0 + 1000.0) / 4,
+                          1e-10);
+  for (int e = 0; e < 16; e++)
+    ws->isp[e] = 0.01 * (e + 1);
+  ck_assert_double_eq_tol(mpm_nonlocal_point_isp(ws, 2), 0.3 * 0.06 + 0.7 * 0.07, 1e-15);
+  mpm_nonlocal_free(ws);
+}
+END_TEST
+
+/* point_lap over filled units only: with unit (2, 1) empty (the straddling
+ * point not dense, the others absent), a point 30/70 across the face reads
+ * unit (1, 1)'s lap_e alone; with neither filled, 0. */
+START_TEST(t_extent_point_lap_filled_only)
+{
+  mpm_mesh m = make_mesh(4, 3, 0.1, 0.1, 0, 0);
+  int edge[4] = {MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE};
+  double x[2] = {m.x0 + 0.2 + 0.01, m.x0 + 0.15}, y[2] = {m.y0 + 0.15, m.y0 + 0.15};
+  double r1x[2] = {0.025, 0.025}, r1y[2] = {0, 0}, r2x[2] = {0, 0}, r2y[2] = {0.025, 0.025};
+  mpm_nonlocal *ws = extent_ws(&m, edge, 2, x, y, r1x, r1y, r2x, r2y);
+  double ms[2] = {1.0, 1.0}, g[2] = {2.0, 5.0};
+  unsigned char d[2] = {0, 1};                          /* only the inside point is dense */
+  mpm_nonlocal_average(ws, 2, ms, g, d);
+  ck_assert(mpm_nonlocal_filled(ws, 1, 1) && !mpm_nonlocal_filled(ws, 2, 1));
+  ws->lap[5] = 7.0;
+  ws->lap[6] = 1e6;                                     /* must not be read: empty */
+  ck_assert_double_eq_tol(mpm_nonlocal_point_lap(ws, 0), 7.0, 1e-14);
+  d[1] = 0;
+  mpm_nonlocal_average(ws, 2, ms, g, d);
+  ck_assert_double_eq(mpm_nonlocal_point_lap(ws, 0), 0.0);
+  mpm_nonlocal_free(ws);
+}
+END_TEST
+
+/* Mesh edges: a point 30% beyond a non-periodic edge keeps only its inside
+ * part (weight 1 on its unit); at a corner of the mesh too. Across periodic
+ * edges the part wraps to the opposite unit: 0.3 / 0.7 horizontally, and at
+ * a doubly periodic corner the four corner units get 0.09, 0.21, 0.21, 0.49. */
+START_TEST(t_extent_mesh_edges)
+{
+  const double h = 0.025;                               /* extent 0.05 = half a unit */
+  double r1x[2] = {h, h}, r1y[2] = {0, 0}, r2x[2] = {0, 0}, r2y[2] = {h, h};
+  /* left edge at x0: 0.015 of the width outside; bottom-left corner likewise */
+  mpm_mesh m = make_mesh(4, 3, 0.1, 0.1, 0, 0);
+  int fr[4] = {MPM_BC_FREE, MPM_BC_NOSLIP, MPM_BC_SYMMETRY, MPM_BC_FREE};
+  double x[2] = {m.x0 + 0.01, m.x0 + 0.01}, y[2] = {m.y0 + 0.15, m.y0 + 0.01};
+  mpm_nonlocal *ws = extent_ws(&m, fr, 2, x, y, r1x, r1y, r2x, r2y);
+  ck_assert(weight_of(ws, 0, 0 + 4 * 1) == 1.0);
+  ck_assert(weight_of(ws, 1, 0) == 1.0);
+  mpm_nonlocal_free(ws);
+  /* the same on a non-periodic right edge, 30% outside */
+  double xr[1] = {m.x0 + m.lx - 0.01}, yr[1] = {m.y0 + 0.25};
+  ws = extent_ws(&m, fr, 1, xr, yr, r1x, r1y, r2x, r2y);
+  ck_assert(weight_of(ws, 0, 3 + 4 * 2) == 1.0);
+  mpm_nonlocal_free(ws);
+  /* periodic in x: 0.015 left of x0 wraps to unit nx - 1 */
+  mpm_mesh mp = make_mesh(4, 3, 0.1, 0.1, 1, 0);
+  int pe[4] = {MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_FREE, MPM_BC_FREE};
+  ws = extent_ws(&mp, pe, 1, x, y, r1x, r1y, r2x, r2y);
+  ck_assert_double_eq_tol(weight_of(ws, 0, 3 + 4 * 1), 0.3, 1e-13);
+  ck_assert_double_eq_tol(weight_of(ws, 0, 0 + 4 * 1), 0.7, 1e-13);
+  mpm_nonlocal_free(ws);
+  /* doubly periodic, centre 0.01 inside the top-right corner: 70% of each
+   * side in the corner unit, 30% wrapped */
+  mpm_mesh m2 = make_mesh(4, 3, 0.1, 0.1, 1, 1);
+  int pp[4] = {MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_PERIODIC};
+  double xc[1] = {m2.x0 + m2.lx - 0.01}, yc[1] = {m2.y0 + m2.ly - 0.01};
+  ws = extent_ws(&m2, pp, 1, xc, yc, r1x, r1y, r2x, r2y);
+  ck_assert_double_eq_tol(weight_of(ws, 0, 3 + 4 * 2), 0.49, 1e-13);
+  ck_assert_double_eq_tol(weight_of(ws, 0, 0 + 4 * 2), 0.21, 1e-13);
+  ck_assert_double_eq_tol(weight_of(ws, 0, 3 + 4 * 0), 0.21, 1e-13);
+  ck_assert_double_eq_tol(weight_of(ws, 0, 0 + 4 * 0), 0.09, 1e-13);
+  mpm_nonlocal_free(ws);
+}
+END_TEST
+
+/* A quadratic g sampled by points whose extents lie well inside their units
+ * keeps the exact interior Laplacian 2e + 2f. A uniform g stays uniform when
+ * every point has the largest extent (half-widths dx/2, dy/2), most of them
+ * straddling faces and the mesh edges: the weights of each point sum to 1 and
+ * the units hold all the dense mass. */
+START_TEST(t_extent_quadratic_and_uniform)
+{
+  mpm_mesh m = make_mesh(9, 7, 0.013, 0.021, 0, 0);
+  int edge[4] = {MPM_BC_NOSLIP, MPM_BC_FREE, MPM_BC_FRICTIONLESS, MPM_BC_SYMMETRY};
+  const double coef[5] = {2.0, -3.0, 1.5, 40.0, -25.0};
+  cloud c = make_cloud(&m, 3, quad_field, coef, NULL, 11u);
+  /* make_cloud puts centres >= 0.05 unit from the faces: half-width 0.04 unit */
+  double *r1x = malloc(c.n * sizeof(double)), *r2y = malloc(c.n * sizeof(double));
+  double *zero = calloc(c.n, sizeof(double));
+  for (size_t p = 0; p < c.n; p++) {
+    r1x[p] = 0.04 * m.dx;
+    r2y[p] = 0.04 * m.dy;
+  }
+  mpm_nonlocal *ws = extent_ws(&m, edge, c.n, c.x, c.y, r1x, zero, zero, r2y);
+  mpm_nonlocal_average(ws, c.n, c.m, c.g, c.dense);
+  mpm_nonlocal_laplacian(ws);
+  double gmax = 0.0;
+  for (size_t p = 0; p < c.n; p++)
+    gmax = fmax(gmax, fabs(c.g[p]));
+  for (int j = 1; j < m.ny - 1; j++)
+    for (int i = 1; i < m.nx - 1; i++)
+      ck_assert_double_eq_tol(ws->lap[i + m.nx * j], 2.0 * coef[3] + 2.0 * coef[4],
+                              lap_tol(gmax, m.dx, m.dy));
+  mpm_nonlocal_free(ws);
+  /* uniform g = 1.75 with every point at the largest extent (half a unit),
+   * most straddling faces and edges: g_e stays 1.75 everywhere */
+  for (size_t p = 0; p < c.n; p++) {
+    r1x[p] = 0.5 * m.dx;
+    r2y[p] = 0.5 * m.dy;
+    c.g[p] = 1.75;
+  }
+  ws = extent_ws(&m, edge, c.n, c.x, c.y, r1x, zero, zero, r2y);
+  mpm_nonlocal_average(ws, c.n, c.m, c.g, c.dense);
+  mpm_nonlocal_laplacian(ws);
+  /* g_e is a ratio of sums of at most ~40 positive terms w m g and w m, each
+   * rounded: 64 eps covers it; the 5-point stencil then sees 4 such errors */
+  const double gtol = 64.0 * DBL_EPSILON * 1.75;
+  double sw = 0.0, smass = 0.0;
+  for (int e = 0; e < m.nx * m.ny; e++) {
+    ck_assert_double_eq_tol(ws->ge[e], 1.75, gtol);
+    sw += ws->sm[e];
+  }
+  for (size_t p = 0; p < c.n; p++) {
+    smass += c.m[p];
+    double s = 0.0;
+    for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
+      s += ws->w[MPM_NONLOCAL_PARTS * p + k];
+    ck_assert_double_eq_tol(s, 1.0, 4.0 * DBL_EPSILON);   /* weights sum to 1 */
+  }
+  ck_assert_double_eq_tol(sw, smass, 1e-12 * smass);      /* mass is conserved */
+  for (int j = 0; j < m.ny; j++)
+    for (int i = 0; i < m.nx; i++) {
+      double want = i == 0 ? -2.0 * 1.75 / (m.dx * m.dx) : 0.0;  /* no-slip left edge */
+      ck_assert_double_eq_tol(ws->lap[i + m.nx * j], want,
+                              4.0 * gtol * (1.0 / (m.dx * m.dx) + 1.0 / (m.dy * m.dy)));
+    }
+  mpm_nonlocal_free(ws);
+  free(r1x);
+  free(r2y);
+  free(zero);
+  cloud_free(&c);
+}
+END_TEST
+
+/* Extent errors: wider than a unit, no extents given, unknown rule names. */
+START_TEST(t_extent_errors)
+{
+  mpm_mesh m = make_mesh(3, 3, 0.1, 0.2, 0, 0);
+  int edge[4] = {MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE, MPM_BC_FREE};
+  mpm_nonlocal *ws = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, edge, MPM_NONLOCAL_EXTENT, 2, &err), MPM_OK);
+  double x[2] = {m.x0 + 0.15, m.x0 + 0.15}, y[2] = {m.y0 + 0.3, m.y0 + 0.3};
+  double r1x[2] = {0.03, 0.03}, r1y[2] = {0.0, 0.0}, r2x[2] = {0.0, 0.021}, r2y[2] = {0.1, 0.1};
+  const double *const r[4] = {r1x, r1y, r2x, r2y};
+  ck_assert_int_eq(mpm_nonlocal_locate_extents(ws, &m, 2, x, y, r, &err), MPM_EINVAL);
+  ck_assert_msg(strstr(err.msg, "point index 1") != NULL, "%s", err.msg);   /* 0.051 > dx/2 */
+  ck_assert_int_eq(mpm_nonlocal_locate_extents(ws, &m, 1, x, y, r, &err), MPM_OK);
+  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m, 1, x, y, &err), MPM_EINVAL);
+  mpm_nonlocal_free(ws);
+  ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, edge, 2, 1, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_nonlocal_rule_from_name("centre"), MPM_NONLOCAL_CENTRE);
+  ck_assert_int_eq(mpm_nonlocal_rule_from_name("extent"), MPM_NONLOCAL_EXTENT);
+  ck_assert_int_eq(mpm_nonlocal_rule_from_name("center"), -1);
+  ck_assert_str_eq(mpm_nonlocal_rule_name(MPM_NONLOCAL_EXTENT), "extent");
+  ck_assert_ptr_null(mpm_nonlocal_rule_name(2));
 }
 END_TEST
 
@@ -590,6 +896,12 @@ int main(void)
   tcase_add_test(tc, t_unit_pressure_column);
   tcase_add_test(tc, t_unit_pressure_plane);
   tcase_add_test(tc, t_errors);
+  tcase_add_test(tc, t_extent_inside_is_centre);
+  tcase_add_test(tc, t_extent_corner_and_face);
+  tcase_add_test(tc, t_extent_point_lap_filled_only);
+  tcase_add_test(tc, t_extent_mesh_edges);
+  tcase_add_test(tc, t_extent_quadratic_and_uniform);
+  tcase_add_test(tc, t_extent_errors);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

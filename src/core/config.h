@@ -80,6 +80,8 @@ typedef struct mpm_config {
     double A, t0;              /* NGF nonlocal amplitude, time scale [s] */
     int form;                  /* NGF PDE form, enum mpm_ngf_form ("dk" | "hs21") */
     int p_sample;              /* NGF g^2 term's p^-1/2, enum mpm_ngf_p_sample ("unit" | "point") */
+    int g_average;             /* NGF point shares in the unit averages, enum
+                                  mpm_nonlocal_rule ("centre" | "extent") */
     double t_seed;             /* NGF: local mu(I) update while t < t_seed [s] */
     int n_sub;                 /* constitutive substeps per MPM step (L fixed) */
     double dt_sub;             /* target substep [s]: n_sub = ceil(dt / dt_sub); 0: use n_sub */

@@ -34,6 +34,7 @@
 #include "bc/bc.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
+#include "nonlocal/nonlocal.h"
 #include "shape/shape.h"
 
 #define INPUT_MAX_BYTES (16L << 20)  /* larger input files are refused */
@@ -66,7 +67,7 @@ enum key_type {
 
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
-  NK_NGF_P_SAMPLE, NK_EDGE
+  NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_EDGE
 };
 
 enum key_flag {
@@ -137,6 +138,7 @@ static const key_def keys[] = {
   NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
   NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
   NAMED(S_MATERIAL, KT_ENUM, "p_sample", C_(material.p_sample), NK_NGF_P_SAMPLE, "unit"),
+  NAMED(S_MATERIAL, KT_ENUM, "g_average", C_(material.g_average), NK_NGF_G_AVERAGE, "centre"),
   NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
   NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
   NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
@@ -227,6 +229,7 @@ static const char *name_at(int kind, int i)
   case NK_BC: return i >= 0 && i <= MPM_BC_PERIODIC ? mpm_bc_kind_name(i) : NULL;
   case NK_NGF_FORM: return mpm_ngf_form_name(i);
   case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_name(i);
+  case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -252,6 +255,7 @@ static int name_value(int kind, const char *s)
   case NK_FILL_SHAPE: return list_index(fill_shape_names, s);
   case NK_NGF_FORM: return mpm_ngf_form_from_name(s);
   case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_from_name(s);
+  case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
   case NK_EDGE: return list_index(edge_names, s);
   default: return -1;
   }

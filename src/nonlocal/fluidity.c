@@ -2,7 +2,12 @@
  * with ghost rules (MODEL.md section 5 steps 1-2; [DK-silo] §5.2 (i)-(ii),
  * eq. 5.1; boundary conditions on g from [DK-silo] §4 and §6).
  *
- *   g_e   = sum_{p in e, dense} m_p g_p / sum_{p in e, dense} m_p
+ *   g_e   = sum_{p dense} w_pe m_p g_p / sum_{p dense} w_pe m_p
+ * w_pe = 1 for the unit containing the centre of p (centre rule) or the
+ * fraction of the extent of p lying in unit e (extent rule, [DK-silo]
+ * §5.2 (i); the extent is the axis-aligned rectangle of half-widths
+ * |r1x| + |r2x|, |r1y| + |r2y|, parts outside the mesh dropped, periodic
+ * edges wrapped).
  *   lap_e = (g_E - 2 g_e + g_W)/dx^2 + (g_N - 2 g_e + g_S)/dy^2
  * Ghosts: Neumann g_ghost = g_e (empty neighbour, free edge, frictionless or
  * symmetry wall), Dirichlet g_ghost = -g_e (no-slip wall: g = 0 on the face,
@@ -12,7 +17,25 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <string.h>
+
 #include "core/config.h"
+
+static const char *const rule_names[] = {"centre", "extent"};
+#define NRULES ((int)(sizeof rule_names / sizeof rule_names[0]))
+
+int mpm_nonlocal_rule_from_name(const char *name)
+{
+  for (int k = 0; name && k < NRULES; k++)
+    if (strcmp(name, rule_names[k]) == 0)
+      return k;
+  return -1;
+}
+
+const char *mpm_nonlocal_rule_name(int rule)
+{
+  return rule >= 0 && rule < NRULES ? rule_names[rule] : NULL;
+}
 
 int mpm_nonlocal_ghost_of_bc(int bc_kind)
 {
@@ -41,6 +64,8 @@ void mpm_nonlocal_free(mpm_nonlocal *ws)
   free(ws->pe);
   free(ws->isp);
   free(ws->unit);
+  free(ws->part);
+  free(ws->w);
   free(ws->dense);
   free(ws->pn);
   free(ws);
@@ -50,19 +75,29 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
 {
   if (cap <= ws->pcap)
     return MPM_OK;
+  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
+  const size_t nk = ext ? MPM_NONLOCAL_PARTS * cap : 0;
   int *u = malloc(cap * sizeof *u);
+  int *part = ext ? malloc(nk * sizeof *part) : NULL;
+  double *w = ext ? malloc(nk * sizeof *w) : NULL;
   unsigned char *d = calloc(cap, 1);
   double *pn = calloc(cap, sizeof *pn);
-  if (!u || !d || !pn) {
+  if (!u || !d || !pn || (ext && (!part || !w))) {
     free(u);
+    free(part);
+    free(w);
     free(d);
     free(pn);
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu points", cap);
   }
   free(ws->unit);
+  free(ws->part);
+  free(ws->w);
   free(ws->dense);
   free(ws->pn);
   ws->unit = u;
+  ws->part = part;
+  ws->w = w;
   ws->dense = d;
   ws->pn = pn;
   ws->pcap = cap;
@@ -95,9 +130,8 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
                        size_t cap, mpm_err *err)
 {
   *out = NULL;
-  if (rule != MPM_NONLOCAL_CENTRE)
-    return mpm_err_set(err, MPM_EINVAL,
-                       "nonlocal: only the point-centre rule is implemented (rule %d)", rule);
+  if (!mpm_nonlocal_rule_name(rule))
+    return mpm_err_set(err, MPM_EINVAL, "nonlocal: unknown averaging rule %d", rule);
   if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
     return mpm_err_set(err, MPM_EINVAL, "nonlocal: mesh not set up (%d x %d units)",
                        m->nx, m->ny);
@@ -134,9 +168,64 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   return MPM_OK;
 }
 
-int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
-                        const double *y, mpm_err *err)
+/* The units of one axis that the extent [u - h, u + h] overlaps, in units of
+ * the unit size, u the centre's position within its unit c (0 <= u <= 1) and
+ * 0 <= h <= 1/2 (up to round-off): one (c, length 1) when the extent lies in c,
+ * else c and the neighbour it reaches into, each with the length of its
+ * part; a neighbour beyond a non-periodic edge is dropped, across a periodic
+ * one wrapped. Returns the number of parts (1 or 2). */
+static int axis_parts(double u, double h, int c, int n, int periodic, int idx[2], double len[2])
 {
+  const double lo = u - h, hi = u + h;
+  idx[0] = c;
+  len[0] = 1.0;
+  if (lo >= 0.0 && hi <= 1.0)
+    return 1;                                          /* inside unit c */
+  int nb = lo < 0.0 ? c - 1 : c + 1;                   /* the neighbour reached */
+  len[0] = lo < 0.0 ? fmin(hi, 1.0) : 1.0 - lo;        /* part in c */
+  if (nb < 0 || nb >= n) {
+    if (!periodic)
+      return 1;                                        /* outside the mesh: dropped */
+    nb = (nb + n) % n;
+  }
+  idx[1] = nb;
+  len[1] = lo < 0.0 ? -lo : hi - 1.0;                  /* part in the neighbour */
+  return 2;
+}
+
+/* Extent rule: the (unit, weight) pairs of one point with centre unit (i, j)
+ * at local position (u, v) and half-widths (hu, hv) in units of the unit
+ * size; w = overlap area / area inside the mesh; unused slots get the
+ * centre unit and weight 0. */
+static void extent_parts(const mpm_nonlocal *ws, const mpm_mesh *m, int i, int j, double u,
+                         double v, double hu, double hv, int *part, double *w)
+{
+  int ix[2], jy[2];
+  double lx[2], ly[2];
+  int nxp = axis_parts(u, hu, i, ws->nx, m->periodic_x, ix, lx);
+  int nyp = axis_parts(v, hv, j, ws->ny, m->periodic_y, jy, ly);
+  double area = 0.0;
+  int k = 0;
+  for (int b = 0; b < nyp; b++)
+    for (int a = 0; a < nxp; a++, k++) {
+      part[k] = ix[a] + ws->nx * jy[b];
+      w[k] = lx[a] * ly[b];                            /* overlap area */
+      area += w[k];
+    }
+  for (int q = 0; q < k; q++)
+    w[q] /= area;                                      /* renormalised inside the mesh */
+  for (; k < MPM_NONLOCAL_PARTS; k++) {
+    part[k] = i + ws->nx * j;
+    w[k] = 0.0;
+  }
+}
+
+int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
+                                const double *y, const double *const r[4], mpm_err *err)
+{
+  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
+  if (ext && !r)
+    return mpm_err_set(err, MPM_EINVAL, "nonlocal: the extent rule needs the point extents");
   int rc = mpm_nonlocal_reserve(ws, n, err);
   if (rc != MPM_OK)
     return rc;
@@ -147,8 +236,51 @@ int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const dou
                          "nonlocal: point index %zu at (%.6g, %.6g) m is outside the mesh",
                          p, x[p], y[p]);
     ws->unit[p] = i + ws->nx * j;
+    if (!ext)
+      continue;
+    double xw = x[p], yw = y[p];
+    mpm_mesh_wrap(m, &xw, &yw);
+    const double hu = (fabs(r[0][p]) + fabs(r[2][p])) * m->idx;   /* |r1x| + |r2x|, in units */
+    const double hv = (fabs(r[1][p]) + fabs(r[3][p])) * m->idy;   /* |r1y| + |r2y| */
+    if (!(hu <= 0.5 + 1e-12) || !(hv <= 0.5 + 1e-12))
+      return mpm_err_set(err, MPM_EINVAL,
+                         "nonlocal: point index %zu: extent %.6g x %.6g m is wider than a unit",
+                         p, 2.0 * hu * m->dx, 2.0 * hv * m->dy);
+    const double u = fmin(fmax((xw - m->x0) * m->idx - i, 0.0), 1.0);  /* centre in its unit */
+    const double v = fmin(fmax((yw - m->y0) * m->idy - j, 0.0), 1.0);
+    extent_parts(ws, m, i, j, u, v, hu, hv, ws->part + MPM_NONLOCAL_PARTS * p,
+                 ws->w + MPM_NONLOCAL_PARTS * p);
   }
   return MPM_OK;
+}
+
+int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
+                        const double *y, mpm_err *err)
+{
+  return mpm_nonlocal_locate_extents(ws, m, n, x, y, NULL, err);
+}
+
+/* sum_e w_pe v to the units of point p (extent rule). */
+static void add_parts(const mpm_nonlocal *ws, double *acc, size_t p, double v)
+{
+  const int *part = ws->part + MPM_NONLOCAL_PARTS * p;
+  const double *w = ws->w + MPM_NONLOCAL_PARTS * p;
+  for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
+    if (w[k] > 0.0)
+      acc[part[k]] += w[k] * v;
+}
+
+double mpm_nonlocal_point_mean(const mpm_nonlocal *ws, const double *f, size_t p)
+{
+  const int *part = ws->part + MPM_NONLOCAL_PARTS * p;
+  const double *w = ws->w + MPM_NONLOCAL_PARTS * p;
+  double sw = 0.0, swf = 0.0;
+  for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
+    if (w[k] > 0.0 && ws->sm[part[k]] > 0.0) {       /* filled units only */
+      sw += w[k];
+      swf += w[k] * f[part[k]];
+    }
+  return sw > 0.0 ? swf / sw : 0.0;
 }
 
 void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
@@ -159,9 +291,15 @@ void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const 
     ws->sm[e] = 0.0;
     ws->smg[e] = 0.0;
   }
+  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
   for (size_t p = 0; p < n; p++) {                     /* fixed order: thread-count free */
     if (!dense[p])
       continue;
+    if (ext) {
+      add_parts(ws, ws->sm, p, mass[p]);               /* sum w m */
+      add_parts(ws, ws->smg, p, mass[p] * g[p]);       /* sum w m g */
+      continue;
+    }
     int e = ws->unit[p];
     ws->sm[e] += mass[p];                              /* sum m */
     ws->smg[e] += mass[p] * g[p];                      /* sum m g */
@@ -282,9 +420,15 @@ void mpm_nonlocal_pressure(mpm_nonlocal *ws, size_t n, const double *mass, const
   size_t nu = (size_t)ws->nx * (size_t)ws->ny;
   for (size_t e = 0; e < nu; e++)
     ws->pe[e] = 0.0;
-  for (size_t q = 0; q < n; q++)                        /* fixed order: thread-count free */
-    if (dense[q])
+  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
+  for (size_t q = 0; q < n; q++) {                      /* fixed order: thread-count free */
+    if (!dense[q])
+      continue;
+    if (ext)
+      add_parts(ws, ws->pe, q, mass[q] * p[q]);         /* sum w m p */
+    else
       ws->pe[ws->unit[q]] += mass[q] * p[q];            /* sum m p */
+  }
   for (size_t e = 0; e < nu; e++)
     ws->pe[e] = ws->sm[e] > 0.0 ? ws->pe[e] / ws->sm[e] : 0.0;  /* p_e (sm from average) */
   const int nx = ws->nx, ny = ws->ny;

@@ -4,9 +4,10 @@
  *
  * Per constitutive (sub)step, with point-to-unit membership frozen for the
  * whole MPM step:
- *   1. g_e = sum_p m_p g_p / sum_p m_p over the dense points p of unit e
- *      (a point belongs to the unit containing its centre); units without
- *      dense mass are empty.
+ *   1. g_e = sum_p w_pe m_p g_p / sum_p w_pe m_p over the dense points p,
+ *      w_pe the share of point p in unit e: 1 for the unit containing its
+ *      centre (MPM_NONLOCAL_CENTRE), or the fraction of its extent lying in
+ *      e (MPM_NONLOCAL_EXTENT, below); units without dense mass are empty.
  *   2. lap_e = (g_E - 2 g_e + g_W)/dx^2 + (g_N - 2 g_e + g_S)/dy^2 on unit
  *      centres, with ghost values for missing neighbours:
  *        empty unit, free edge, frictionless or symmetry wall: g_ghost = g_e
@@ -14,10 +15,23 @@
  *        no-slip wall: g_ghost = -g_e (Dirichlet, g = 0 at the face);
  *        periodic edge: the unit on the opposite side (wrap).
  *      Empty units have lap_e = 0.
- * A point then reads the Laplacian of its unit (mpm_nonlocal_point_lap).
+ * A point then reads the Laplacian of its unit (mpm_nonlocal_point_lap), or
+ * under the extent rule the w-weighted mean of lap_e over the filled units it
+ * overlaps.
+ *
+ * Extent rule ([DK-silo] §5.2 (i), material.g_average = "extent"): the
+ * extent of point p is the axis-aligned rectangle of half-widths
+ * hx = |r1x| + |r2x|, hy = |r1y| + |r2y| about its centre (exact for the
+ * rectangular extents the fills create, the bounding box of a sheared
+ * parallelogram). It must not be wider than a unit (2 hx <= dx, 2 hy <= dy),
+ * so it overlaps at most 2 x 2 units; w_pe is the area of the overlap with
+ * unit e over the area of the part inside the mesh: parts beyond a
+ * non-periodic edge are dropped and the rest renormalised, periodic edges
+ * wrap. An extent inside one unit gives that unit w = 1 exactly, so such a
+ * point is treated bitwise as under the centre rule.
  *
  * The g^2 term's p^-1/2 may be sampled per unit (material.p_sample = "unit",
- * docs/model.md): p_e = sum m p / sum m over the same dense points; its
+ * docs/model.md): p_e = sum w m p / sum w m over the same dense points; its
  * gradient from the neighbouring filled units (central where both exist,
  * one-sided where one does, 0 where none; walls and empty units do not count,
  * periodic edges wrap), limited so that the linear reconstruction
@@ -29,7 +43,7 @@
  * isp_e = p_e^-1/2 (1 + O(dx^2)).
  *
  * Usage per MPM step (the solver):
- *   mpm_nonlocal_locate(ws, mesh, n, x, y, err);          once, positions x_{n+1}
+ *   mpm_nonlocal_locate_extents(ws, mesh, n, x, y, r, err);  once, positions x_{n+1}
  *   for each substep:
  *     ws->dense[p] = mpm_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
  *     mpm_nonlocal_average(ws, n, mass, g, ws->dense);
@@ -52,11 +66,12 @@
 enum mpm_nonlocal_rule {
   MPM_NONLOCAL_CENTRE = 0,  /* the whole point goes to the unit containing its centre */
   MPM_NONLOCAL_EXTENT       /* split by the fraction of its extent in each unit
-                               ([DK-silo] §5.2 (i)); not implemented yet: locate()
-                               would store up to four (unit, weight) pairs per point,
-                               average() would add weight m g and weight m, and
-                               point_lap() would return the weighted lap_e */
+                               ([DK-silo] §5.2 (i)): up to four (unit, weight) pairs
+                               per point, see the top of this file */
 };
+
+/* Largest number of units one point's extent overlaps. */
+#define MPM_NONLOCAL_PARTS 4
 
 /* Ghost rule of one mesh edge for g, derived from enum mpm_bc_kind. */
 enum mpm_nonlocal_ghost {
@@ -76,7 +91,10 @@ typedef struct mpm_nonlocal {
   double *lap;          /* [nx*ny] lap_e [1/(m^2 s)] (0 when empty) */
   double *pe;           /* [nx*ny] unit pressure p_e [Pa] (0 when empty) */
   double *isp;          /* [nx*ny] unit mean of p^-1/2 [Pa^-1/2] (0 when empty or p_e <= 0) */
-  int *unit;            /* [pcap] frozen unit of each point, i + nx j */
+  int *unit;            /* [pcap] frozen unit of each point's centre, i + nx j */
+  int *part;            /* extent rule: [MPM_NONLOCAL_PARTS pcap] units of point p at
+                           part[4p .. 4p+3] (unused slots: its centre unit, weight 0) */
+  double *w;            /* extent rule: [MPM_NONLOCAL_PARTS pcap] their weights (sum 1) */
   unsigned char *dense; /* [pcap] scratch for the caller's dense flags (fill after locate) */
   double *pn;           /* [pcap] scratch for the caller's point pressures p_n [Pa] */
   size_t pcap;          /* capacity of the per-point arrays */
@@ -85,7 +103,7 @@ typedef struct mpm_nonlocal {
 /* Workspace for mesh m (set up) with room for cap points. edge[4] holds the
  * enum mpm_bc_kind of the left, right, bottom and top edges; periodic edges
  * must come in pairs and agree with m->periodic_x / periodic_y. rule is an
- * enum mpm_nonlocal_rule (only MPM_NONLOCAL_CENTRE for now). */
+ * enum mpm_nonlocal_rule. */
 int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4], int rule,
                        size_t cap, mpm_err *err);
 void mpm_nonlocal_free(mpm_nonlocal *ws);  /* accepts NULL */
@@ -96,19 +114,31 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err);
 /* Ghost rule of an edge kind (enum mpm_bc_kind); -1 if unknown. */
 int mpm_nonlocal_ghost_of_bc(int bc_kind);
 
-/* Freeze the unit of each of the n points at (x, y). Fails with MPM_EOUTSIDE
- * naming the point index when a point is outside the mesh. */
+/* "centre" | "extent" <-> enum mpm_nonlocal_rule; -1 / NULL if unknown. */
+int mpm_nonlocal_rule_from_name(const char *name);
+const char *mpm_nonlocal_rule_name(int rule);
+
+/* Freeze the unit of each of the n points at (x, y) (its centre) and, under
+ * the extent rule, its (unit, weight) pairs from the extent half-vectors
+ * r = {r1x, r1y, r2x, r2y} (arrays of n each; not read under the centre
+ * rule, where r may be NULL). Fails with MPM_EOUTSIDE naming the point index
+ * when a point is outside the mesh, with MPM_EINVAL naming it when its
+ * extent is wider than a unit or r is NULL under the extent rule. */
+int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
+                                const double *y, const double *const r[4], mpm_err *err);
+
+/* The same without extents (r = NULL): the centre rule only. */
 int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
                         const double *y, mpm_err *err);
 
-/* Element g from the dense points (dense[p] != 0): g_e = sum m g / sum m. */
+/* Element g from the dense points (dense[p] != 0): g_e = sum w m g / sum w m. */
 void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
                           const unsigned char *dense);
 
 /* lap_e on every non-empty unit from the current g_e (5-point, ghost rules). */
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws);
 
-/* Unit pressures p_e = sum m p / sum m over the dense points and isp_e, the
+/* Unit pressures p_e = sum w m p / sum w m over the dense points and isp_e, the
  * mean of p^-1/2 over each unit of the limited linear reconstruction (see
  * the top of this file). Call after mpm_nonlocal_average with the same dense
  * flags (it reuses sum m). Sums in point order, as mpm_nonlocal_average. */
@@ -127,16 +157,26 @@ static inline int mpm_nonlocal_filled(const mpm_nonlocal *ws, int i, int j)
   return ws->sm[i + ws->nx * j] > 0.0;
 }
 
-/* Laplacian seen by point p (its frozen unit's lap_e). */
+/* Extent rule: sum_e w_pe f_e / sum_e w_pe over the filled units e that
+ * point p overlaps; 0 if none is filled. */
+double mpm_nonlocal_point_mean(const mpm_nonlocal *ws, const double *f, size_t p);
+
+/* Laplacian seen by point p: its frozen unit's lap_e, or (extent rule) the
+ * weighted mean over the filled units it overlaps. */
 static inline double mpm_nonlocal_point_lap(const mpm_nonlocal *ws, size_t p)
 {
-  return ws->lap[ws->unit[p]];
+  if (ws->rule == MPM_NONLOCAL_CENTRE)
+    return ws->lap[ws->unit[p]];
+  return mpm_nonlocal_point_mean(ws, ws->lap, p);
 }
 
-/* p^-1/2 for the g^2 term of point p: its frozen unit's isp_e (0: none). */
+/* p^-1/2 for the g^2 term of point p: its frozen unit's isp_e (0: none), or
+ * (extent rule) the weighted mean over the filled units it overlaps. */
 static inline double mpm_nonlocal_point_isp(const mpm_nonlocal *ws, size_t p)
 {
-  return ws->isp[ws->unit[p]];
+  if (ws->rule == MPM_NONLOCAL_CENTRE)
+    return ws->isp[ws->unit[p]];
+  return mpm_nonlocal_point_mean(ws, ws->isp, p);
 }
 
 #endif

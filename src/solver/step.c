@@ -113,7 +113,7 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
     return MPM_OK;
   const mpm_config *cfg = &s->cfg;
   int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
-  int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, edge, MPM_NONLOCAL_CENTRE, s->pts->cap, err);
+  int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, edge, cfg->material.g_average, s->pts->cap, err);
   if (rc != MPM_OK)
     return rc;
   size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
@@ -468,20 +468,23 @@ static int reserve_L(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
-/* Point-to-unit membership for the step, from the positions x_{n+1}; a point
- * outside the mesh is an error naming its id, position and time. */
+/* Point-to-unit membership for the step, from the positions x_{n+1} (and,
+ * under the extent rule, the point extents); a point outside the mesh is an
+ * error naming its id, position and time. */
 static int locate(mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
-  if (mpm_nonlocal_locate(s->nl, &s->mesh, P->n, P->x, P->y, NULL) == MPM_OK)
-    return MPM_OK;
+  const double *const r[4] = {P->r1x, P->r1y, P->r2x, P->r2y};
+  int rc = mpm_nonlocal_locate_extents(s->nl, &s->mesh, P->n, P->x, P->y, r, err);
+  if (rc != MPM_EOUTSIDE)
+    return rc;
   for (size_t p = 0; p < P->n; p++) {
     int i, j;
     if (mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) != MPM_OK)
       return mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s",
                          P->id[p], P->x[p], P->y[p], s->t + s->dt);
   }
-  return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu points", P->n);
+  return rc;
 }
 
 /* Steps 4-7 for a nonlocal model ([DK-silo] section 5.2; MODEL.md section 5):
