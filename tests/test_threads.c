@@ -5,7 +5,10 @@
  * boundaries all take part). After the same number of steps with one thread
  * and with three, every point field must be bitwise equal: point-to-grid
  * sums each node in point order whatever the node ranges of the threads
- * (solver/step.c), and everything else is per point. */
+ * (solver/step.c), and everything else is per point. The same column of NGF
+ * material, seeded after 10 t0 and split between units by the point extents
+ * (material.g_average = "extent"), checks the unit sums of g and p, which
+ * run in point order on one thread. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -19,7 +22,7 @@
 #include "solver/solver.h"
 #include "sim_config.h"
 
-static void column_config(mpm_config *c, const char *topology)
+static void column_config(mpm_config *c, const char *topology, int ngf)
 {
   memset(c, 0, sizeof *c);
   c->mesh.nx = 24;
@@ -34,7 +37,13 @@ static void column_config(mpm_config *c, const char *topology)
   c->time.frame_dt = 1.0;
   c->time.flip = 1.0;
   c->gravity.gy = -9.8;
-  sim_config_material(c, "mu_i", 1e6);
+  sim_config_material(c, ngf ? "ngf" : "mu_i", 1e6);
+  if (ngf) {
+    c->material.A = 0.48;
+    c->material.t_seed = 10.0 * c->material.t0;      /* seeded after ~60 of the steps */
+    c->material.n_sub = 1;
+    c->material.g_average = MPM_NONLOCAL_EXTENT;
+  }
   c->bc.left = MPM_BC_SYMMETRY;
   c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.right = MPM_BC_FRICTIONLESS;
@@ -50,7 +59,7 @@ static void column_config(mpm_config *c, const char *topology)
 }
 
 /* The point fields after nsteps steps on nthreads threads, as one array. */
-static double *run_fields(const char *topology, int nthreads, int nsteps, size_t *len)
+static double *run_fields(const char *topology, int ngf, int nthreads, int nsteps, size_t *len)
 {
 #ifdef _OPENMP
   omp_set_num_threads(nthreads);
@@ -58,7 +67,7 @@ static double *run_fields(const char *topology, int nthreads, int nsteps, size_t
   (void)nthreads;
 #endif
   mpm_config c;
-  column_config(&c, topology);
+  column_config(&c, topology, ngf);
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
@@ -69,8 +78,14 @@ static double *run_fields(const char *topology, int nthreads, int nsteps, size_t
   for (size_t p = 0; p < P->n; p++)
     vmax = fmax(vmax, hypot(P->vx[p], P->vy[p]));
   ck_assert_msg(vmax > 0.05, "max speed %g m/s: the column should be collapsing", vmax);
+  if (ngf) {
+    double gmax = 0.0;
+    for (size_t p = 0; p < P->n; p++)
+      gmax = fmax(gmax, P->g[p]);
+    ck_assert_msg(s->seeded && gmax > 0.0, "NGF: g should be seeded and non-zero (max %g)", gmax);
+  }
   const double *f[] = {P->x, P->y, P->vx, P->vy, P->sxx, P->syy, P->szz, P->sxy,
-                       P->vol, P->gdp};
+                       P->vol, P->gdp, P->g};
   const size_t nf = sizeof f / sizeof f[0], n = P->n;
   double *out = malloc(nf * n * sizeof *out);
   ck_assert_ptr_nonnull(out);
@@ -81,11 +96,11 @@ static double *run_fields(const char *topology, int nthreads, int nsteps, size_t
   return out;
 }
 
-static void same_on_1_and_3_threads(const char *topology)
+static void same_on_1_and_3_threads(const char *topology, int ngf)
 {
   size_t na, nb;
-  double *a = run_fields(topology, 1, 400, &na);  /* about 0.07 s: the column is failing */
-  double *b = run_fields(topology, 3, 400, &nb);
+  double *a = run_fields(topology, ngf, 1, 400, &na);  /* about 0.07 s: the column is failing */
+  double *b = run_fields(topology, ngf, 3, 400, &nb);
   ck_assert_uint_eq(na, nb);
   ck_assert_msg(memcmp(a, b, na * sizeof *a) == 0, "%s: fields differ between 1 and 3 threads",
                 topology);
@@ -93,10 +108,13 @@ static void same_on_1_and_3_threads(const char *topology)
   free(b);
 }
 
-START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4"); }
+START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4", 0); }
 END_TEST
 
-START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3"); }
+START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3", 0); }
+END_TEST
+
+START_TEST(t_ngf_extent_thread_count) { same_on_1_and_3_threads("q4", 1); }
 END_TEST
 
 int main(void)
@@ -108,6 +126,7 @@ int main(void)
   TCase *tc = tcase_create("threads");
   tcase_add_test(tc, t_q4_thread_count);
   tcase_add_test(tc, t_t3_thread_count);
+  tcase_add_test(tc, t_ngf_extent_thread_count);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);
