@@ -13,13 +13,13 @@ tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LI
 	$(CHECK_LIBS) -lm
 
 # test_input compiles the input parser directly, so it needs libconfuse and the
-# name tables (material, shape, bc, mesh) but not HDF5. cli-input.sh runs
+# name tables (material, shape, bc, mesh, nonlocal) but not HDF5. cli-input.sh runs
 # `granmpm check` on every file under tests/inputs/bad and on the good inputs.
 check_PROGRAMS += tests/test_input
 TESTS += tests/test_input tests/cli-input.sh tests/cli-extract.sh
 tests_test_input_SOURCES = tests/test_input.c src/io/input.c
 tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
 tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_mesh.la \
-	libmpm_core.la $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
+tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \
+	libmpm_mesh.la libmpm_core.la $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
 EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/inputs
