@@ -5,7 +5,8 @@
  * boundaries all take part). After the same number of steps with one thread
  * and with three, every point field must be bitwise equal: point-to-grid
  * sums each node in point order whatever the node ranges of the threads
- * (solver/step.c), and everything else is per point. */
+ * (solver/step.c), the unit masses of the element and hybrid densities are
+ * summed in point order on one thread, and everything else is per point. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -19,7 +20,7 @@
 #include "solver/solver.h"
 #include "sim_config.h"
 
-static void column_config(mpm_config *c, const char *topology)
+static void column_config(mpm_config *c, const char *topology, int density)
 {
   memset(c, 0, sizeof *c);
   c->mesh.nx = 24;
@@ -35,6 +36,7 @@ static void column_config(mpm_config *c, const char *topology)
   c->time.flip = 1.0;
   c->gravity.gy = -9.8;
   sim_config_material(c, "mu_i", 1e6);
+  c->material.state_density = density;
   c->bc.left = MPM_BC_SYMMETRY;
   c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.right = MPM_BC_FRICTIONLESS;
@@ -50,7 +52,8 @@ static void column_config(mpm_config *c, const char *topology)
 }
 
 /* The point fields after nsteps steps on nthreads threads, as one array. */
-static double *run_fields(const char *topology, int nthreads, int nsteps, size_t *len)
+static double *run_fields(const char *topology, int density, int nthreads, int nsteps,
+                          size_t *len)
 {
 #ifdef _OPENMP
   omp_set_num_threads(nthreads);
@@ -58,7 +61,7 @@ static double *run_fields(const char *topology, int nthreads, int nsteps, size_t
   (void)nthreads;
 #endif
   mpm_config c;
-  column_config(&c, topology);
+  column_config(&c, topology, density);
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
@@ -81,11 +84,11 @@ static double *run_fields(const char *topology, int nthreads, int nsteps, size_t
   return out;
 }
 
-static void same_on_1_and_3_threads(const char *topology)
+static void same_on_1_and_3_threads(const char *topology, int density)
 {
   size_t na, nb;
-  double *a = run_fields(topology, 1, 400, &na);  /* about 0.07 s: the column is failing */
-  double *b = run_fields(topology, 3, 400, &nb);
+  double *a = run_fields(topology, density, 1, 400, &na);  /* about 0.07 s: the column is failing */
+  double *b = run_fields(topology, density, 3, 400, &nb);
   ck_assert_uint_eq(na, nb);
   ck_assert_msg(memcmp(a, b, na * sizeof *a) == 0, "%s: fields differ between 1 and 3 threads",
                 topology);
@@ -93,10 +96,26 @@ static void same_on_1_and_3_threads(const char *topology)
   free(b);
 }
 
-START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4"); }
+START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4", MPM_DENSITY_POINT); }
 END_TEST
 
-START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3"); }
+START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3", MPM_DENSITY_POINT); }
+END_TEST
+
+/* The element and hybrid densities, and that they do change the run (else
+ * the comparison above would not exercise their unit sums). */
+START_TEST(t_density_thread_count)
+{
+  same_on_1_and_3_threads("q4", MPM_DENSITY_ELEMENT);
+  same_on_1_and_3_threads("q4", MPM_DENSITY_HYBRID);
+  size_t na, nb;
+  double *a = run_fields("q4", MPM_DENSITY_POINT, 1, 400, &na);
+  double *b = run_fields("q4", MPM_DENSITY_HYBRID, 1, 400, &nb);
+  ck_assert_uint_eq(na, nb);
+  ck_assert_msg(memcmp(a, b, na * sizeof *a) != 0, "hybrid density leaves the run unchanged");
+  free(a);
+  free(b);
+}
 END_TEST
 
 int main(void)
@@ -108,6 +127,7 @@ int main(void)
   TCase *tc = tcase_create("threads");
   tcase_add_test(tc, t_q4_thread_count);
   tcase_add_test(tc, t_t3_thread_count);
+  tcase_add_test(tc, t_density_thread_count);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);
