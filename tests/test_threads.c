@@ -8,7 +8,8 @@
  * (solver/step.c), and everything else is per point. The same column of NGF
  * material, seeded after 10 t0 and split between units by the point extents
  * (material.g_average = "extent"), checks the unit sums of g and p, which
- * run in point order on one thread. */
+ * run in point order on one thread. The element and hybrid densities of the
+ * state decision sum their unit masses in point order on one thread too. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -22,7 +23,7 @@
 #include "solver/solver.h"
 #include "sim_config.h"
 
-static void column_config(mpm_config *c, const char *topology, int ngf)
+static void column_config(mpm_config *c, const char *topology, int ngf, int density)
 {
   memset(c, 0, sizeof *c);
   c->mesh.nx = 24;
@@ -44,6 +45,7 @@ static void column_config(mpm_config *c, const char *topology, int ngf)
     c->material.n_sub = 1;
     c->material.g_average = MPM_NONLOCAL_EXTENT;
   }
+  c->material.state_density = density;
   c->bc.left = MPM_BC_SYMMETRY;
   c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.right = MPM_BC_FRICTIONLESS;
@@ -59,7 +61,8 @@ static void column_config(mpm_config *c, const char *topology, int ngf)
 }
 
 /* The point fields after nsteps steps on nthreads threads, as one array. */
-static double *run_fields(const char *topology, int ngf, int nthreads, int nsteps, size_t *len)
+static double *run_fields(const char *topology, int ngf, int density, int nthreads, int nsteps,
+                          size_t *len)
 {
 #ifdef _OPENMP
   omp_set_num_threads(nthreads);
@@ -67,7 +70,7 @@ static double *run_fields(const char *topology, int ngf, int nthreads, int nstep
   (void)nthreads;
 #endif
   mpm_config c;
-  column_config(&c, topology, ngf);
+  column_config(&c, topology, ngf, density);
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
@@ -96,11 +99,11 @@ static double *run_fields(const char *topology, int ngf, int nthreads, int nstep
   return out;
 }
 
-static void same_on_1_and_3_threads(const char *topology, int ngf)
+static void same_on_1_and_3_threads(const char *topology, int ngf, int density)
 {
   size_t na, nb;
-  double *a = run_fields(topology, ngf, 1, 400, &na);  /* about 0.07 s: the column is failing */
-  double *b = run_fields(topology, ngf, 3, 400, &nb);
+  double *a = run_fields(topology, ngf, density, 1, 400, &na);  /* about 0.07 s: the column is failing */
+  double *b = run_fields(topology, ngf, density, 3, 400, &nb);
   ck_assert_uint_eq(na, nb);
   ck_assert_msg(memcmp(a, b, na * sizeof *a) == 0, "%s: fields differ between 1 and 3 threads",
                 topology);
@@ -108,13 +111,29 @@ static void same_on_1_and_3_threads(const char *topology, int ngf)
   free(b);
 }
 
-START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4", 0); }
+START_TEST(t_q4_thread_count) { same_on_1_and_3_threads("q4", 0, MPM_DENSITY_POINT); }
 END_TEST
 
-START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3", 0); }
+START_TEST(t_t3_thread_count) { same_on_1_and_3_threads("t3", 0, MPM_DENSITY_POINT); }
 END_TEST
 
-START_TEST(t_ngf_extent_thread_count) { same_on_1_and_3_threads("q4", 1); }
+START_TEST(t_ngf_extent_thread_count) { same_on_1_and_3_threads("q4", 1, MPM_DENSITY_POINT); }
+END_TEST
+
+/* The element and hybrid densities, and that they do change the run (else
+ * the comparison above would not exercise their unit sums). */
+START_TEST(t_density_thread_count)
+{
+  same_on_1_and_3_threads("q4", 0, MPM_DENSITY_ELEMENT);
+  same_on_1_and_3_threads("q4", 0, MPM_DENSITY_HYBRID);
+  size_t na, nb;
+  double *a = run_fields("q4", 0, MPM_DENSITY_POINT, 1, 400, &na);
+  double *b = run_fields("q4", 0, MPM_DENSITY_HYBRID, 1, 400, &nb);
+  ck_assert_uint_eq(na, nb);
+  ck_assert_msg(memcmp(a, b, na * sizeof *a) != 0, "hybrid density leaves the run unchanged");
+  free(a);
+  free(b);
+}
 END_TEST
 
 int main(void)
@@ -127,6 +146,7 @@ int main(void)
   tcase_add_test(tc, t_q4_thread_count);
   tcase_add_test(tc, t_t3_thread_count);
   tcase_add_test(tc, t_ngf_extent_thread_count);
+  tcase_add_test(tc, t_density_thread_count);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

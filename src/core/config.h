@@ -85,6 +85,8 @@ typedef struct mpm_config {
     double t_seed;             /* NGF: local mu(I) update while t < t_seed [s] */
     int n_sub;                 /* constitutive substeps per MPM step (L fixed) */
     double dt_sub;             /* target substep [s]: n_sub = ceil(dt / dt_sub); 0: use n_sub */
+    int state_density;         /* density of the state decision, enum mpm_density_rule
+                                  ("point" | "element" | "hybrid", [D-thesis] §3.4) */
   } material;
 
   struct {

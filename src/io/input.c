@@ -67,7 +67,7 @@ enum key_type {
 
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
-  NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_EDGE
+  NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE
 };
 
 enum key_flag {
@@ -142,6 +142,7 @@ static const key_def keys[] = {
   NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
   NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
   NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
+  NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
 
   NAMED(S_BOUNDARY, KT_ENUM, "left", C_(bc.left), NK_BC, "free"),
   NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
@@ -230,6 +231,7 @@ static const char *name_at(int kind, int i)
   case NK_NGF_FORM: return mpm_ngf_form_name(i);
   case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_name(i);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_name(i);
+  case NK_DENSITY: return mpm_density_rule_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -256,6 +258,7 @@ static int name_value(int kind, const char *s)
   case NK_NGF_FORM: return mpm_ngf_form_from_name(s);
   case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_from_name(s);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
+  case NK_DENSITY: return mpm_density_rule_from_name(s);
   case NK_EDGE: return list_index(edge_names, s);
   default: return -1;
   }

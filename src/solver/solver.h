@@ -42,6 +42,11 @@ typedef struct mpm_sim {
   size_t lcap;                    /* length of the L arrays */
   int seeded;                     /* NGF: 1 once g was seeded from the local run */
 
+  /* density of the state decision ([D-thesis] §3.4; cfg.material.state_density) */
+  mpm_density *dens;              /* unit sums; NULL for the point rule */
+  double *rho;                    /* [rcap] density each point's update sees [kg/m^3] */
+  size_t rcap;                    /* length of rho */
+
   double t, dt;                   /* current time, time step [s] */
   long step;
   double mass0;                   /* initial mass, for bookkeeping */

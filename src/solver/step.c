@@ -9,10 +9,15 @@
  * their units, and per substep rebuilds the element g and its Laplacian from
  * the dense points before the point updates (nonlocal_phase); before t_seed
  * it runs as the local mu(I) model, then g is seeded from it (seeding).
+ * The density a point's state is decided with is m / V_{n+1} by default;
+ * with material.state_density = "element" or "hybrid" ([D-thesis] §3.4) all points
+ * move first and the unit masses are summed from x_{n+1} before the updates
+ * (density_phase, and likewise in nonlocal_phase). V_p always keeps its local
+ * update.
  * Threads: the stencil is parallel over points; point-to-grid and the grid
  * update over ranges of nodes (grid_phase); the rest over points
- * (point_phase), except the element sums of g, which run in point order on
- * one thread. No sum depends on the thread count, so neither do results. */
+ * (point_phase), except the element sums of g and of mass, which run in
+ * point order on one thread. No sum depends on the thread count, so neither do results. */
 #include "solver/solver.h"
 
 #include <math.h>
@@ -125,6 +130,33 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
+/* Per-point density and the unit sums for the element and hybrid rules (the
+ * point rule reads m / V directly and needs neither). The per-point L arrays
+ * hold the velocity gradients between moving the points and updating them. */
+static int density_alloc(mpm_sim *s, mpm_err *err)
+{
+  int rule = s->cfg.material.state_density;
+  if (!mpm_density_rule_name(rule))
+    return mpm_err_set(err, MPM_EINPUT, "material.state_density = %d unknown", rule);
+  if (rule == MPM_DENSITY_POINT)
+    return MPM_OK;
+  int rc = mpm_density_alloc(&s->dens, &s->mesh, err);
+  if (rc != MPM_OK)
+    return rc;
+  size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
+  if (!(s->rho = malloc(n * sizeof *s->rho)))
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu densities", n);
+  s->rcap = n;
+  if (s->lxx)
+    return MPM_OK;
+  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
+  for (size_t k = 0; k < 4; k++)
+    if (!(*arrs[k] = calloc(n, sizeof(double))))
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
+  s->lcap = n;
+  return MPM_OK;
+}
+
 int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
 {
   *out = NULL;
@@ -160,6 +192,8 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
   if (rc == MPM_OK)
     rc = nonlocal_alloc(s, err);
+  if (rc == MPM_OK)
+    rc = density_alloc(s, err);
   if (rc != MPM_OK) {
     mpm_sim_free(s);
     return rc;
@@ -181,6 +215,8 @@ void mpm_sim_free(mpm_sim *s)
   mpm_stencil_free(s->st);
   free(s->nbusy);
   mpm_nonlocal_free(s->nl);
+  mpm_density_free(s->dens);
+  free(s->rho);
   free(s->lxx);
   free(s->lxy);
   free(s->lyx);
@@ -387,6 +423,13 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
   L->m[1][1] = lyy;
 }
 
+/* Density the update of point p sees: m / V_{n+1} (point rule), or the
+ * element / hybrid value computed for the step ([D-thesis] §3.4). */
+static double state_rho(const mpm_sim *s, size_t p)
+{
+  return s->dens ? s->rho[p] : s->pts->mass[p] / s->pts->vol[p];  /* rho_{n+1} */
+}
+
 /* Step 6 for point p: n substeps of length h of model mat with L fixed; lap
  * is the Laplacian of g its unit sees and isp the p^-1/2 of its g^2 term (0:
  * its own; nonlocal models only). Returns 0 when the stress became non-finite. */
@@ -396,7 +439,7 @@ static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, cons
   mpm_points *P = s->pts;
   mpm_mpoint mp = {
     .sigma = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0},
-    .rho = P->mass[p] / P->vol[p],                         /* rho_{n+1} = m / V_{n+1} */
+    .rho = state_rho(s, p),
     .g = P->g[p], .lap = lap, .isp = isp, .gdp = P->gdp[p], .state = P->state[p],
   };
   for (int k = 0; k < n; k++)
@@ -440,6 +483,15 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
   return bad;
 }
 
+/* Element or hybrid density of every point from x_{n+1}, V_{n+1}. */
+static void update_density(mpm_sim *s)
+{
+  const mpm_points *P = s->pts;
+  if (s->dens)
+    mpm_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x, P->y,
+                        P->mass, P->vol, s->rho);
+}
+
 /* L_p as stored for the substeps. */
 static mpm_mat3 stored_L(const mpm_sim *s, size_t p)
 {
@@ -451,10 +503,17 @@ static mpm_mat3 stored_L(const mpm_sim *s, size_t p)
   return L;
 }
 
-/* Grow the per-point L arrays with the point store. */
+/* Grow the per-point L arrays (and densities) with the point store. */
 static int reserve_L(mpm_sim *s, mpm_err *err)
 {
   size_t n = s->pts->n;
+  if (s->dens && n > s->rcap) {
+    double *r = realloc(s->rho, n * sizeof *r);
+    if (!r)
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu densities", n);
+    s->rho = r;
+    s->rcap = n;
+  }
   if (n <= s->lcap)
     return MPM_OK;
   double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
@@ -515,11 +574,12 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   if ((*rc = mpm_sim_remove_points(s, s->t + s->dt, err)) != MPM_OK || (*rc = locate(s, err)) != MPM_OK)
     return -1;
   n = P->n;
+  update_density(s);
   for (int k = 0; k < s->n_sub; k++) {
 #pragma omp parallel for schedule(static)
     for (size_t p = 0; p < n; p++) {                       /* p_n > 0, rho_{n+1} >= rho_c */
       mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
-      nl->dense[p] = (unsigned char)mpm_ngf_dense(&s->par, sig, P->mass[p] / P->vol[p]);
+      nl->dense[p] = (unsigned char)mpm_ngf_dense(&s->par, sig, state_rho(s, p));
       nl->pn[p] = mpm_sym3_pressure(sig);                  /* p_n */
     }
     mpm_nonlocal_average(nl, n, P->mass, P->g, nl->dense);  /* g_e, point order */
@@ -533,6 +593,37 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
                         mpm_nonlocal_point_isp(nl, p)))
         bad = (long)p > bad ? (long)p : bad;
     }
+  }
+  return bad;
+}
+
+/* Steps 4-7 for a local model with the element or hybrid density: the
+ * density of a unit needs every point at x_{n+1}, so all points move first
+ * (L_p stored, walls and periodic wrap applied), then the unit sums run in
+ * point order and the points are updated. Returns as point_phase. */
+static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm_err *err)
+{
+  mpm_points *P = s->pts;
+  const double h = s->dt / s->n_sub;
+  long bad = -1;
+  if ((*rc = reserve_L(s, err)) != MPM_OK)
+    return -1;
+#pragma omp parallel for schedule(static)
+  for (size_t p = 0; p < P->n; p++) {
+    mpm_mat3 L = {{{0.0}}};
+    grid_to_point(s, p, &L);
+    s->lxx[p] = L.m[0][0];
+    s->lxy[p] = L.m[0][1];
+    s->lyx[p] = L.m[1][0];
+    s->lyy[p] = L.m[1][1];
+    bookkeeping(s, p);
+  }
+  update_density(s);
+#pragma omp parallel for schedule(static) reduction(max : bad)
+  for (size_t p = 0; p < P->n; p++) {
+    mpm_mat3 L = stored_L(s, p);
+    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0))
+      bad = (long)p > bad ? (long)p : bad;
   }
   return bad;
 }
@@ -570,6 +661,10 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   long bad;
   if (mat->nonlocal) {
     bad = nonlocal_phase(s, &rc, err);
+    if (rc != MPM_OK)
+      return rc;
+  } else if (s->dens) {
+    bad = density_phase(s, mat, &rc, err);
     if (rc != MPM_OK)
       return rc;
   } else {

@@ -1,0 +1,145 @@
+/* density.c: the density a point's state is decided with ([D-thesis] §3.4).
+ *
+ *   point   rho_p = m_p / V_p, V_p *= exp(dt tr L_p)     (local rule, eq. 3.34; [DK15])
+ *   element rho_e = m_e / V_e, m_e = sum_{p in e} m_p,   (eq. 3.36-3.38; plane strain,
+ *           V_e = dx dy                                  per unit thickness)
+ *   hybrid  point rule in boundary units, element rule in the interior (§3.4.1).
+ * A point belongs to the unit containing its centre. The thesis finds boundary
+ * units by a Sobel filter of the point counts with an unstated threshold; here a
+ * unit holding points is a boundary unit when one of the eight units around it
+ * (the 3 x 3 support of that filter) holds none. A partially filled unit at a
+ * free surface has empty units above it, so it is a boundary unit. Units beyond
+ * a non-periodic mesh edge do not count as empty (material resting on a wall is
+ * not at a free boundary); periodic edges wrap.
+ * Only the state decision reads this density: V_p keeps its local update, so
+ * mass is conserved point by point. The unit sums run over the points in index
+ * order on one thread, so the result does not depend on the thread count. */
+#include "mesh/mesh.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const rule_names[] = {
+  [MPM_DENSITY_POINT] = "point", [MPM_DENSITY_ELEMENT] = "element",
+  [MPM_DENSITY_HYBRID] = "hybrid"
+};
+
+int mpm_density_rule_from_name(const char *name)
+{
+  for (int r = MPM_DENSITY_POINT; r <= MPM_DENSITY_HYBRID; r++)
+    if (strcmp(name, rule_names[r]) == 0)
+      return r;
+  return -1;
+}
+
+const char *mpm_density_rule_name(int rule)
+{
+  return rule >= MPM_DENSITY_POINT && rule <= MPM_DENSITY_HYBRID ? rule_names[rule] : NULL;
+}
+
+void mpm_density_free(mpm_density *ws)
+{
+  if (!ws)
+    return;
+  free(ws->sm);
+  free(ws->count);
+  free(ws->edge);
+  free(ws);
+}
+
+int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err)
+{
+  *out = NULL;
+  if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
+    return mpm_err_set(err, MPM_EINVAL, "density: mesh not set up (%d x %d units)", m->nx, m->ny);
+  mpm_density *ws = calloc(1, sizeof *ws);
+  size_t nu = (size_t)m->nx * (size_t)m->ny;
+  if (ws) {
+    ws->nx = m->nx;
+    ws->ny = m->ny;
+    ws->area = m->dx * m->dy;
+    ws->sm = calloc(nu, sizeof *ws->sm);
+    ws->count = calloc(nu, sizeof *ws->count);
+    ws->edge = calloc(nu, sizeof *ws->edge);
+  }
+  if (!ws || !ws->sm || !ws->count || !ws->edge) {
+    mpm_density_free(ws);
+    return mpm_err_set(err, MPM_ENOMEM, "density: no memory for %zu units", nu);
+  }
+  *out = ws;
+  return MPM_OK;
+}
+
+/* m_e and the point count of every unit, in point order. */
+static void unit_sums(mpm_density *ws, const mpm_mesh *m, size_t n, const double *x,
+                      const double *y, const double *mass)
+{
+  size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  memset(ws->sm, 0, nu * sizeof *ws->sm);
+  memset(ws->count, 0, nu * sizeof *ws->count);
+  for (size_t p = 0; p < n; p++) {                    /* fixed order: thread-count free */
+    int i, j;
+    if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+      continue;                                       /* leaving the mesh: not counted */
+    size_t e = (size_t)i + (size_t)ws->nx * (size_t)j;
+    ws->sm[e] += mass[p];                             /* m_e = sum m_p */
+    ws->count[e]++;
+  }
+}
+
+/* Count of unit (i, j) seen from inside: -1 beyond a non-periodic edge. */
+static int count_at(const mpm_density *ws, const mpm_mesh *m, int i, int j)
+{
+  if (i < 0 || i >= ws->nx) {
+    if (!m->periodic_x)
+      return -1;
+    i = (i + ws->nx) % ws->nx;
+  }
+  if (j < 0 || j >= ws->ny) {
+    if (!m->periodic_y)
+      return -1;
+    j = (j + ws->ny) % ws->ny;
+  }
+  return ws->count[(size_t)i + (size_t)ws->nx * (size_t)j];
+}
+
+/* edge[e] = 1 for a unit with points and an empty unit among its 8 neighbours. */
+static void mark_edges(mpm_density *ws, const mpm_mesh *m)
+{
+  for (int j = 0; j < ws->ny; j++)
+    for (int i = 0; i < ws->nx; i++) {
+      size_t e = (size_t)i + (size_t)ws->nx * (size_t)j;
+      int edge = 0;
+      for (int dj = -1; dj <= 1 && ws->count[e] > 0; dj++)
+        for (int di = -1; di <= 1; di++)
+          edge |= count_at(ws, m, i + di, j + dj) == 0;
+      ws->edge[e] = (unsigned char)edge;
+    }
+}
+
+void mpm_density_compute(mpm_density *ws, const mpm_mesh *m, int rule, size_t n,
+                         const double *x, const double *y, const double *mass,
+                         const double *vol, double *rho)
+{
+  if (rule == MPM_DENSITY_POINT) {
+    for (size_t p = 0; p < n; p++)
+      rho[p] = mass[p] / vol[p];                      /* rho_p = m_p / V_p */
+    return;
+  }
+  unit_sums(ws, m, n, x, y, mass);
+  if (rule == MPM_DENSITY_HYBRID)
+    mark_edges(ws, m);
+  const double iarea = 1.0 / ws->area;
+#pragma omp parallel for schedule(static)
+  for (size_t p = 0; p < n; p++) {
+    int i, j;
+    size_t e = 0;
+    int in = mpm_mesh_unit(m, x[p], y[p], &i, &j) == MPM_OK;
+    if (in)
+      e = (size_t)i + (size_t)ws->nx * (size_t)j;
+    if (!in || (rule == MPM_DENSITY_HYBRID && ws->edge[e]))
+      rho[p] = mass[p] / vol[p];                      /* local rule, eq. 3.34 */
+    else
+      rho[p] = ws->sm[e] * iarea;                     /* rho_e = m_e / V_e, eq. 3.38 */
+  }
+}
