@@ -79,7 +79,7 @@ typedef struct mpm_config {
     double mu_s, mu_2, I0, d;  /* mu(I) parameters; d grain diameter [m] */
     double A, t0;              /* NGF nonlocal amplitude, time scale [s] */
     int form;                  /* NGF PDE form, enum mpm_ngf_form ("dk" | "hs21") */
-    int p_sample;              /* NGF g^2 term's p^-1/2, enum mpm_ngf_p_sample ("unit" | "point") */
+    int p_sample;              /* NGF g^2 term's p^-1/2, enum mpm_ngf_p_sample ("point" | "unit") */
     int g_average;             /* NGF point shares in the unit averages, enum
                                   mpm_nonlocal_rule ("centre" | "extent") */
     double t_seed;             /* NGF: local mu(I) update while t < t_seed [s] */

@@ -97,15 +97,17 @@ int mpm_ngf_form_from_name(const char *name);
 const char *mpm_ngf_form_name(int form);
 
 /* Where the g^2 term b sqrt(rho_s d^2 / p) mu g^2 samples p^-1/2:
+ *   MPM_NGF_P_POINT: the point's own p_tr^-1/2, as [DK-silo] §5.2 (with A = 0
+ *                    the update is exactly mu(I) point by point);
  *   MPM_NGF_P_UNIT:  the mean of p^-1/2 over the point's unit, p reconstructed
  *                    linearly from the unit pressures (nonlocal.h,
  *                    mpm_nonlocal_pressure); it integrates the p^-1/2 of a
  *                    free surface, where the point value under-weights the
- *                    top unit by a factor up to sqrt(2) (docs/model.md);
- *   MPM_NGF_P_POINT: the point's own p_tr^-1/2, as [DK-silo] §5.2. */
-enum mpm_ngf_p_sample { MPM_NGF_P_UNIT = 0, MPM_NGF_P_POINT };
+ *                    top unit by a factor up to sqrt(2) when g is smooth on the
+ *                    unit scale (A d >~ dx; docs/model.md). */
+enum mpm_ngf_p_sample { MPM_NGF_P_POINT = 0, MPM_NGF_P_UNIT };
 
-/* "unit" | "point" <-> enum mpm_ngf_p_sample; -1 / NULL if unknown. */
+/* "point" | "unit" <-> enum mpm_ngf_p_sample; -1 / NULL if unknown. */
 int mpm_ngf_p_sample_from_name(const char *name);
 const char *mpm_ngf_p_sample_name(int sample);
 

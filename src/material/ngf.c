@@ -36,7 +36,7 @@
 
 static const char *const form_names[] = {"dk", "hs21"};
 #define NGF_NFORMS ((int)(sizeof form_names / sizeof form_names[0]))
-static const char *const p_sample_names[] = {"unit", "point"};
+static const char *const p_sample_names[] = {"point", "unit"};
 #define NGF_NSAMPLES ((int)(sizeof p_sample_names / sizeof p_sample_names[0]))
 
 int mpm_ngf_form_from_name(const char *name)
@@ -209,7 +209,7 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
   if (!mpm_ngf_form_name(par->form))
     return mpm_err_set(err, MPM_EINPUT, "NGF form %d unknown (\"dk\" or \"hs21\")", par->form);
   if (!mpm_ngf_p_sample_name(par->p_sample))
-    return mpm_err_set(err, MPM_EINPUT, "NGF p sampling %d unknown (\"unit\" or \"point\")",
+    return mpm_err_set(err, MPM_EINPUT, "NGF p sampling %d unknown (\"point\" or \"unit\")",
                        par->p_sample);
   if (!(par->t_seed >= 0.0 && isfinite(par->t_seed)))
     return mpm_err_set(err, MPM_EINPUT, "key 'material.t_seed' = %g: must be >= 0 s",
