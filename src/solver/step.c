@@ -527,6 +527,28 @@ static int reserve_L(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
+/* Steps 4, 5 and 7 for every point before any constitutive update (models
+ * whose update needs all points at x_{n+1}): grid-to-point, L_p stored for
+ * the update, walls and periodic wrap. */
+static int move_points(mpm_sim *s, mpm_err *err)
+{
+  mpm_points *P = s->pts;
+  int rc = reserve_L(s, err);
+  if (rc != MPM_OK)
+    return rc;
+#pragma omp parallel for schedule(static)
+  for (size_t p = 0; p < P->n; p++) {
+    mpm_mat3 L = {{{0.0}}};
+    grid_to_point(s, p, &L);
+    s->lxx[p] = L.m[0][0];
+    s->lxy[p] = L.m[0][1];
+    s->lyx[p] = L.m[1][0];
+    s->lyy[p] = L.m[1][1];
+    bookkeeping(s, p);
+  }
+  return MPM_OK;
+}
+
 /* Point-to-unit membership for the step, from the positions x_{n+1} (and,
  * under the extent rule, the point extents); a point outside the mesh is an
  * error naming its id, position and time. */
@@ -555,25 +577,14 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   mpm_points *P = s->pts;
   mpm_nonlocal *nl = s->nl;
   const double h = s->dt / s->n_sub;
-  size_t n = P->n;
   long bad = -1;
-  if ((*rc = reserve_L(s, err)) != MPM_OK)
+  if ((*rc = move_points(s, err)) != MPM_OK)
     return -1;
-#pragma omp parallel for schedule(static)
-  for (size_t p = 0; p < n; p++) {
-    mpm_mat3 L = {{{0.0}}};
-    grid_to_point(s, p, &L);
-    s->lxx[p] = L.m[0][0];
-    s->lxy[p] = L.m[0][1];
-    s->lyx[p] = L.m[1][0];
-    s->lyy[p] = L.m[1][1];
-    bookkeeping(s, p);
-  }
   /* Points leaving through an outlet go before the units are frozen: outside
    * the mesh they have no unit. */
   if ((*rc = mpm_sim_remove_points(s, s->t + s->dt, err)) != MPM_OK || (*rc = locate(s, err)) != MPM_OK)
     return -1;
-  n = P->n;
+  size_t n = P->n;
   update_density(s);
   for (int k = 0; k < s->n_sub; k++) {
 #pragma omp parallel for schedule(static)
@@ -606,23 +617,13 @@ static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm
   mpm_points *P = s->pts;
   const double h = s->dt / s->n_sub;
   long bad = -1;
-  if ((*rc = reserve_L(s, err)) != MPM_OK)
+  if ((*rc = move_points(s, err)) != MPM_OK)
     return -1;
-#pragma omp parallel for schedule(static)
-  for (size_t p = 0; p < P->n; p++) {
-    mpm_mat3 L = {{{0.0}}};
-    grid_to_point(s, p, &L);
-    s->lxx[p] = L.m[0][0];
-    s->lxy[p] = L.m[0][1];
-    s->lyx[p] = L.m[1][0];
-    s->lyy[p] = L.m[1][1];
-    bookkeeping(s, p);
-  }
   update_density(s);
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = stored_L(s, p);
-    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0))
+    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0, 0.0))
       bad = (long)p > bad ? (long)p : bad;
   }
   return bad;
