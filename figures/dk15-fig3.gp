@@ -22,7 +22,7 @@ set output out
 set datafile separator comma
 set grid lc rgb "#dddddd"
 set logscale xy
-set xrange [0.3:12]
+set xrange [0.3:16]
 set yrange [0.3:30]
 set xlabel "aspect ratio a = H / w"
 set ylabel "run-out (x_f - w) / w"
