@@ -111,6 +111,21 @@ void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
   }
 }
 
+/* Per-point L storage for the phases that move every point before any
+ * update (nonlocal models, element and hybrid densities); once per run. */
+static int L_alloc(mpm_sim *s, mpm_err *err)
+{
+  if (s->lxx)
+    return MPM_OK;
+  size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
+  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
+  for (size_t k = 0; k < 4; k++)
+    if (!(*arrs[k] = calloc(n, sizeof(double))))
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
+  s->lcap = n;
+  return MPM_OK;
+}
+
 /* Per-point L storage and the nonlocal workspace for models that need them. */
 static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
 {
@@ -121,13 +136,7 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, edge, cfg->material.g_average, s->pts->cap, err);
   if (rc != MPM_OK)
     return rc;
-  size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
-  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
-  for (size_t k = 0; k < 4; k++)
-    if (!(*arrs[k] = calloc(n, sizeof(double))))
-      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
-  s->lcap = n;
-  return MPM_OK;
+  return L_alloc(s, err);
 }
 
 /* Per-point density and the unit sums for the element and hybrid rules (the
@@ -147,14 +156,7 @@ static int density_alloc(mpm_sim *s, mpm_err *err)
   if (!(s->rho = malloc(n * sizeof *s->rho)))
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu densities", n);
   s->rcap = n;
-  if (s->lxx)
-    return MPM_OK;
-  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
-  for (size_t k = 0; k < 4; k++)
-    if (!(*arrs[k] = calloc(n, sizeof(double))))
-      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
-  s->lcap = n;
-  return MPM_OK;
+  return L_alloc(s, err);
 }
 
 int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
