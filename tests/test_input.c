@@ -397,7 +397,7 @@ static const bad_set bad_sets[] = {
   {"meshes.nx=3", "--set 'meshes.nx=3': unknown section 'meshes' (allowed: mesh, time, gravity, "
                   "material, boundary, fill, stop, output, outlet, wall, remove, region)"},
   {"mesh.nxx=3", "--set 'mesh.nxx=3': unknown key 'mesh.nxx' (allowed keys in 'mesh': nx, ny, "
-                 "x0, y0, dx, dy, topology, diagonal, mirror_x, shape)"},
+                 "x0, y0, dx, dy, topology, diagonal, mirror_x, shape, dilatation)"},
   {"fill.b.ppu=3", "--set 'fill.b.ppu=3': no fill titled 'b' (allowed: a)"},
   {"fill.a.speed=3", "--set 'fill.a.speed=3': unknown key 'fill.a.speed' (allowed keys in 'fill': "
                      "shape, xmin, ymin, xmax, ymax, cx, cy, radius, x, y, ppu, density, vx, vy, "

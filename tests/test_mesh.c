@@ -463,14 +463,56 @@ static int near_rel(double a, double b)
   return fabs(a - b) <= 1e-14 * fabs(b);
 }
 
+/* Unit rule: rho_u = sum m_p / sum V_p over the points whose centre lies in
+ * the unit. Volumes differing point by point within a unit give one value
+ * for all its points (the volume-weighted harmonic mean, not the count over
+ * the unit area); a unit holding 3 points reads the same as one holding 4
+ * when their volumes agree (no quantisation by the count). */
+START_TEST(t_density_unit_block)
+{
+  mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
+  mpm_density *ws = density_ws(&m);
+  pointset ps = {0};
+  fill_units(&ps, &m, 1, 4, 1, 2);
+  double sv[64] = {0}, sm[64] = {0};
+  for (size_t p = 0; p < ps.n; p++) {
+    ps.v[p] = PV * (0.7 + 0.1 * (double)(p % 7));   /* 0.7 ... 1.3 PV */
+    ps.m[p] = PM * (1.0 + 0.05 * (double)(p % 3));
+  }
+  ps.n -= 1;                                        /* unit (4, 2) keeps 3 points */
+  for (size_t p = 0; p < ps.n; p++) {
+    int e = ps.ui[p] + m.nx * ps.uj[p];
+    sv[e] += ps.v[p];
+    sm[e] += ps.m[p];
+  }
+  compute(ws, &m, MPM_DENSITY_UNIT, &ps);
+  for (size_t p = 0; p < ps.n; p++) {
+    int e = ps.ui[p] + m.nx * ps.uj[p];
+    double want = sm[e] / sv[e];
+    ck_assert_msg(near_rel(ps.rho[p], want), "point %zu: %.17g, want %.17g", p, ps.rho[p], want);
+  }
+  /* equal volumes: 3 points read the point density as 4 do */
+  for (size_t p = 0; p < ps.n; p++) {
+    ps.v[p] = PV;
+    ps.m[p] = PM;
+  }
+  compute(ws, &m, MPM_DENSITY_UNIT, &ps);
+  for (size_t p = 0; p < ps.n; p++)
+    ck_assert_msg(near_rel(ps.rho[p], PM / PV), "point %zu: %.17g", p, ps.rho[p]);
+  mpm_density_free(ws);
+}
+END_TEST
+
 START_TEST(t_density_names)
 {
   ck_assert_int_eq(mpm_density_rule_from_name("point"), MPM_DENSITY_POINT);
   ck_assert_int_eq(mpm_density_rule_from_name("element"), MPM_DENSITY_ELEMENT);
   ck_assert_int_eq(mpm_density_rule_from_name("hybrid"), MPM_DENSITY_HYBRID);
+  ck_assert_int_eq(mpm_density_rule_from_name("unit"), MPM_DENSITY_UNIT);
   ck_assert_int_eq(mpm_density_rule_from_name("nodal"), -1);
   ck_assert_str_eq(mpm_density_rule_name(MPM_DENSITY_HYBRID), "hybrid");
-  ck_assert_ptr_null(mpm_density_rule_name(3));
+  ck_assert_str_eq(mpm_density_rule_name(MPM_DENSITY_UNIT), "unit");
+  ck_assert_ptr_null(mpm_density_rule_name(4));
   ck_assert_ptr_null(mpm_density_rule_name(-1));
   mpm_density_free(NULL);
 }
@@ -601,6 +643,7 @@ int main(void)
   tcase_add_test(tc, t_density_element_block);
   tcase_add_test(tc, t_density_hybrid_block);
   tcase_add_test(tc, t_density_hybrid_edges);
+  tcase_add_test(tc, t_density_unit_block);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

@@ -108,6 +108,65 @@ START_TEST(t_pic_velocity_is_displacement_rate)
 }
 END_TEST
 
+/* mesh.dilatation = "unit" (B-bar): every point's volumetric rate is the
+ * divergence of the grid velocity at the centre of its unit, from the q4
+ * corners 0 (i,j), 1 (i+1,j), 2 (i+1,j+1), 3 (i,j+1):
+ * div_c = (v1x + v2x - v0x - v3x) / (2 dx) + (v2y + v3y - v0y - v1y) / (2 dy),
+ * so V_{n+1} / V_n = exp(dt div_c) and, from zero stress, the in-plane
+ * mean stress is the same multiple of dt div_c for every point. The point
+ * rule ("point") fails the same check on this non-uniform start. */
+START_TEST(t_bbar_unit_dilatation)
+{
+  for (int bbar = 1; bbar >= 0; bbar--) {
+    mpm_config c;
+    base_config(&c, 4, 2, 0.0, 0.0);
+    c.bc.left = c.bc.bottom = MPM_BC_FREE;
+    c.fill[0].xmin = c.fill[0].ymin = 0.1;
+    c.fill[0].xmax = c.fill[0].ymax = 0.3;
+    c.time.flip = 0.0;
+    c.mesh.dilatation = bbar ? MPM_DILATATION_UNIT : MPM_DILATATION_POINT;
+    mpm_sim *s = NULL;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+    const size_t n = s->pts->n;
+    ck_assert_uint_eq(n, 16);
+    double v0[16];
+    int unit[16][2];
+    for (size_t p = 0; p < n; p++) {        /* a field with bilinear and quadratic parts */
+      double x = s->pts->x[p], y = s->pts->y[p];
+      s->pts->vx[p] = 3.0 * (x - 0.2) * (y - 0.2) / 0.01 + 0.5 * (x - 0.2) * (x - 0.2) / 0.01;
+      s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
+      v0[p] = s->pts->vol[p];
+      ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &unit[p][0], &unit[p][1]), MPM_OK);
+    }
+    ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+    const double dt = s->dt, hx = 0.5 / c.mesh.dx, hy = 0.5 / c.mesh.dy;
+    double worst = 0.0, k_lo = INFINITY, k_hi = -INFINITY;
+    for (size_t p = 0; p < n; p++) {
+      int i = unit[p][0], j = unit[p][1];
+      int n0 = mpm_mesh_node(&s->mesh, i, j), n1 = mpm_mesh_node(&s->mesh, i + 1, j);
+      int n2 = mpm_mesh_node(&s->mesh, i + 1, j + 1), n3 = mpm_mesh_node(&s->mesh, i, j + 1);
+      double div = hx * (s->nvx[n1] + s->nvx[n2] - s->nvx[n0] - s->nvx[n3])
+                 + hy * (s->nvy[n2] + s->nvy[n3] - s->nvy[n0] - s->nvy[n1]);
+      ck_assert_double_gt(fabs(div), 0.1);   /* every unit is compressed or stretched */
+      double rate = log(s->pts->vol[p] / v0[p]) / dt;
+      worst = fmax(worst, fabs(rate - div) / fabs(div));
+      double k = 0.5 * (s->pts->sxx[p] + s->pts->syy[p]) / (dt * div);
+      k_lo = fmin(k_lo, k);
+      k_hi = fmax(k_hi, k);
+    }
+    if (bbar) {
+      ck_assert_double_le(worst, 1e-9);        /* log of a ratio near 1: round-off ~1e-12 / dt div */
+      ck_assert_double_le(k_hi - k_lo, 1e-9 * fabs(k_hi));
+      ck_assert_double_gt(k_hi, 0.0);          /* expansion raises the mean stress (tension) */
+    } else {
+      ck_assert_double_ge(worst, 0.05);
+    }
+    mpm_sim_free(s);
+  }
+}
+END_TEST
+
 /* A block at rest with no gravity: the kinetic energy is 0 < stop.ke from
  * the start, so the run ends at the first step at or after t_min. */
 START_TEST(t_stop_at_rest)
@@ -316,6 +375,7 @@ int main(void)
   TCase *tc = tcase_create("solver");
   tcase_add_test(tc, t_wall_stops_flip_velocity);
   tcase_add_test(tc, t_pic_velocity_is_displacement_rate);
+  tcase_add_test(tc, t_bbar_unit_dilatation);
   tcase_add_test(tc, t_stop_at_rest);
   tcase_add_test(tc, t_stop_runs_to_end);
   tcase_add_test(tc, t_ngf_a0_is_mu_i);

@@ -46,6 +46,10 @@ static void column_config(mpm_config *c, const char *topology, int ngf, int dens
     c->material.g_average = MPM_NONLOCAL_EXTENT;
   }
   c->material.state_density = density;
+  if (density == MPM_DENSITY_UNIT) {   /* with the B-bar dilatation, as the slug uses it */
+    strcpy(c->mesh.shape, "delta");
+    c->mesh.dilatation = MPM_DILATATION_UNIT;
+  }
   c->bc.left = MPM_BC_SYMMETRY;
   c->bc.bottom = MPM_BC_NOSLIP;
   c->bc.right = MPM_BC_FRICTIONLESS;
@@ -126,6 +130,7 @@ START_TEST(t_density_thread_count)
 {
   same_on_1_and_3_threads("q4", 0, MPM_DENSITY_ELEMENT);
   same_on_1_and_3_threads("q4", 0, MPM_DENSITY_HYBRID);
+  same_on_1_and_3_threads("q4", 0, MPM_DENSITY_UNIT);
   size_t na, nb;
   double *a = run_fields("q4", 0, MPM_DENSITY_POINT, 1, 400, &na);
   double *b = run_fields("q4", 0, MPM_DENSITY_HYBRID, 1, 400, &nb);

@@ -28,6 +28,10 @@ enum mpm_outlet_edge {
 
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
+/* Where the volumetric strain rate is sampled: at the point (standard MPM) or
+ * at the centre of the point's unit for every point in it (B-bar, delta/q4). */
+enum mpm_dilatation { MPM_DILATATION_POINT = 0, MPM_DILATATION_UNIT };
+
 typedef struct mpm_fill_config {
   int shape;                   /* enum mpm_fill_shape */
   double xmin, ymin, xmax, ymax;  /* rectangle [m] */
@@ -52,6 +56,7 @@ typedef struct mpm_config {
     char diagonal[MPM_NAME_MAX];  /* "/" "\\" "mirror" (T3 only) */
     double mirror_x;           /* x of the mirror line [m] */
     char shape[MPM_NAME_MAX];  /* shape-function variant: "delta" | "ugimp" */
+    int dilatation;            /* enum mpm_dilatation ("point" | "unit") */
   } mesh;
 
   struct {

@@ -67,7 +67,7 @@ enum key_type {
 
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
-  NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE
+  NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE, NK_DILATATION
 };
 
 enum key_flag {
@@ -112,6 +112,7 @@ static const key_def keys[] = {
   NAMED(S_MESH, KT_NAME, "diagonal", C_(mesh.diagonal), NK_DIAGONAL, "/"),
   NUM(S_MESH, KT_REAL, "mirror_x", C_(mesh.mirror_x), 0, -1e9, 1e9, 0, "m"),
   NAMED(S_MESH, KT_NAME, "shape", C_(mesh.shape), NK_SHAPE, "ugimp"),
+  NAMED(S_MESH, KT_ENUM, "dilatation", C_(mesh.dilatation), NK_DILATATION, "point"),
 
   NUM(S_TIME, KT_REAL, "dt", C_(time.dt), 0, 0, 1e6, 0, "s"),
   NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 0, 1, KF_LO_OPEN, "-"),
@@ -210,6 +211,11 @@ static const char *const edge_names[] = {
   [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top", [MPM_OUTLET_TOP + 1] = NULL
 };
 
+static const char *const dilatation_names[] = {
+  [MPM_DILATATION_POINT] = "point", [MPM_DILATATION_UNIT] = "unit",
+  [MPM_DILATATION_UNIT + 1] = NULL
+};
+
 static int list_index(const char *const *list, const char *s)
 {
   for (int i = 0; list[i]; i++)
@@ -227,6 +233,7 @@ static const char *name_at(int kind, int i)
   case NK_DIAGONAL: return i < 3 ? diagonal_names[i] : NULL;
   case NK_FILL_SHAPE: return i >= 0 && i <= MPM_FILL_POLYGON ? fill_shape_names[i] : NULL;
   case NK_EDGE: return i >= 0 && i <= MPM_OUTLET_TOP ? edge_names[i] : NULL;
+  case NK_DILATATION: return i >= 0 && i <= MPM_DILATATION_UNIT ? dilatation_names[i] : NULL;
   case NK_BC: return i >= 0 && i <= MPM_BC_PERIODIC ? mpm_bc_kind_name(i) : NULL;
   case NK_NGF_FORM: return mpm_ngf_form_name(i);
   case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_name(i);
@@ -260,6 +267,7 @@ static int name_value(int kind, const char *s)
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
   case NK_DENSITY: return mpm_density_rule_from_name(s);
   case NK_EDGE: return list_index(edge_names, s);
+  case NK_DILATATION: return list_index(dilatation_names, s);
   default: return -1;
   }
 }
@@ -1389,6 +1397,15 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
     where w = blame(c, cfg, -1, key_index(S_MESH, "nx"), key_index(S_MESH, "ny"));
     return fail_key(c, &w, "%d x %d units make %s nodes (allowed: (nx+1)(ny+1) <= %s)",
                     cfg->mesh.nx, cfg->mesh.ny, num(nodes).s, num(MAX_NODES).s);
+  }
+  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
+      (strcmp(cfg->mesh.shape, "delta") != 0 || strcmp(cfg->mesh.topology, "q4") != 0)) {
+    const int ks = key_index(S_MESH, "shape"), kt = key_index(S_MESH, "topology");
+    where w = blame(c, cfg, -1, key_index(S_MESH, "dilatation"),
+                    strcmp(cfg->mesh.shape, "delta") != 0 ? ks : kt);
+    return fail_key(c, &w, "dilatation = \"unit\" with shape = \"%s\", topology = \"%s\" "
+                    "(allowed: shape = \"delta\" and topology = \"q4\")",
+                    cfg->mesh.shape, cfg->mesh.topology);
   }
   double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
   double m = cfg->mesh.mirror_x;

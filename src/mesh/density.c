@@ -4,6 +4,11 @@
  *   element rho_e = m_e / V_e, m_e = sum_{p in e} m_p,   (eq. 3.36-3.38; plane strain,
  *           V_e = dx dy                                  per unit thickness)
  *   hybrid  point rule in boundary units, element rule in the interior (§3.4.1).
+ *   unit    rho_u = sum_{p in e} m_p / sum_{p in e} V_p: the element rule with
+ *           the volume the points occupy in place of the unit area, so neither
+ *           quantised by the point count nor low in partly filled units. Every
+ *           point of a unit gets the same state: a unit carries stress only
+ *           when its points are dense on average.
  * A point belongs to the unit containing its centre. The thesis finds boundary
  * units by a Sobel filter of the point counts with an unstated threshold; here a
  * unit holding points is a boundary unit when one of the eight units around it
@@ -21,12 +26,12 @@
 
 static const char *const rule_names[] = {
   [MPM_DENSITY_POINT] = "point", [MPM_DENSITY_ELEMENT] = "element",
-  [MPM_DENSITY_HYBRID] = "hybrid"
+  [MPM_DENSITY_HYBRID] = "hybrid", [MPM_DENSITY_UNIT] = "unit"
 };
 
 int mpm_density_rule_from_name(const char *name)
 {
-  for (int r = MPM_DENSITY_POINT; r <= MPM_DENSITY_HYBRID; r++)
+  for (int r = MPM_DENSITY_POINT; r <= MPM_DENSITY_UNIT; r++)
     if (strcmp(name, rule_names[r]) == 0)
       return r;
   return -1;
@@ -34,7 +39,7 @@ int mpm_density_rule_from_name(const char *name)
 
 const char *mpm_density_rule_name(int rule)
 {
-  return rule >= MPM_DENSITY_POINT && rule <= MPM_DENSITY_HYBRID ? rule_names[rule] : NULL;
+  return rule >= MPM_DENSITY_POINT && rule <= MPM_DENSITY_UNIT ? rule_names[rule] : NULL;
 }
 
 void mpm_density_free(mpm_density *ws)
@@ -42,6 +47,7 @@ void mpm_density_free(mpm_density *ws)
   if (!ws)
     return;
   free(ws->sm);
+  free(ws->sv);
   free(ws->count);
   free(ws->edge);
   free(ws);
@@ -59,10 +65,11 @@ int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err)
     ws->ny = m->ny;
     ws->area = m->dx * m->dy;
     ws->sm = calloc(nu, sizeof *ws->sm);
+    ws->sv = calloc(nu, sizeof *ws->sv);
     ws->count = calloc(nu, sizeof *ws->count);
     ws->edge = calloc(nu, sizeof *ws->edge);
   }
-  if (!ws || !ws->sm || !ws->count || !ws->edge) {
+  if (!ws || !ws->sm || !ws->sv || !ws->count || !ws->edge) {
     mpm_density_free(ws);
     return mpm_err_set(err, MPM_ENOMEM, "density: no memory for %zu units", nu);
   }
@@ -70,12 +77,13 @@ int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err)
   return MPM_OK;
 }
 
-/* m_e and the point count of every unit, in point order. */
+/* m_e, the point volume and the point count of every unit, in point order. */
 static void unit_sums(mpm_density *ws, const mpm_mesh *m, size_t n, const double *x,
-                      const double *y, const double *mass)
+                      const double *y, const double *mass, const double *vol)
 {
   size_t nu = (size_t)ws->nx * (size_t)ws->ny;
   memset(ws->sm, 0, nu * sizeof *ws->sm);
+  memset(ws->sv, 0, nu * sizeof *ws->sv);
   memset(ws->count, 0, nu * sizeof *ws->count);
   for (size_t p = 0; p < n; p++) {                    /* fixed order: thread-count free */
     int i, j;
@@ -83,6 +91,7 @@ static void unit_sums(mpm_density *ws, const mpm_mesh *m, size_t n, const double
       continue;                                       /* leaving the mesh: not counted */
     size_t e = (size_t)i + (size_t)ws->nx * (size_t)j;
     ws->sm[e] += mass[p];                             /* m_e = sum m_p */
+    ws->sv[e] += vol[p];
     ws->count[e]++;
   }
 }
@@ -126,7 +135,7 @@ void mpm_density_compute(mpm_density *ws, const mpm_mesh *m, int rule, size_t n,
       rho[p] = mass[p] / vol[p];                      /* rho_p = m_p / V_p */
     return;
   }
-  unit_sums(ws, m, n, x, y, mass);
+  unit_sums(ws, m, n, x, y, mass, vol);
   if (rule == MPM_DENSITY_HYBRID)
     mark_edges(ws, m);
   const double iarea = 1.0 / ws->area;
@@ -139,6 +148,8 @@ void mpm_density_compute(mpm_density *ws, const mpm_mesh *m, int rule, size_t n,
       e = (size_t)i + (size_t)ws->nx * (size_t)j;
     if (!in || (rule == MPM_DENSITY_HYBRID && ws->edge[e]))
       rho[p] = mass[p] / vol[p];                      /* local rule, eq. 3.34 */
+    else if (rule == MPM_DENSITY_UNIT)
+      rho[p] = ws->sm[e] / ws->sv[e];                 /* rho_u = sum m_p / sum V_p */
     else
       rho[p] = ws->sm[e] * iarea;                     /* rho_e = m_e / V_e, eq. 3.38 */
   }

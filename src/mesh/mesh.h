@@ -67,18 +67,20 @@ int mpm_mesh_basis(const mpm_mesh *m, double x, double y,
 enum mpm_density_rule {
   MPM_DENSITY_POINT = 0,  /* m_p / V_p, V_p from the local update [DK15] */
   MPM_DENSITY_ELEMENT,    /* m_e / (dx dy) of the unit holding the point's centre */
-  MPM_DENSITY_HYBRID      /* point in boundary units, element in the interior */
+  MPM_DENSITY_HYBRID,     /* point in boundary units, element in the interior */
+  MPM_DENSITY_UNIT        /* sum m_p / sum V_p over the points of the unit */
 };
 
-/* "point" | "element" | "hybrid" <-> enum mpm_density_rule; -1 / NULL if unknown. */
+/* "point" | "element" | "hybrid" | "unit" <-> enum mpm_density_rule; -1 / NULL if unknown. */
 int mpm_density_rule_from_name(const char *name);
 const char *mpm_density_rule_name(int rule);
 
-/* Per-unit workspace of the element and hybrid rules. */
+/* Per-unit workspace of the element, hybrid and unit rules. */
 typedef struct mpm_density {
   int nx, ny;           /* units */
   double area;          /* V_e = dx dy [m^2] (per unit thickness) */
   double *sm;           /* [nx*ny] m_e: mass of the points in the unit [kg/m] */
+  double *sv;           /* [nx*ny] unit rule: volume of the points in the unit [m^2] */
   int *count;           /* [nx*ny] number of points in the unit */
   unsigned char *edge;  /* [nx*ny] hybrid: 1 for a boundary unit (a unit with
                            points and an empty unit among its 8 neighbours) */

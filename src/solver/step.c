@@ -283,6 +283,16 @@ static int range_start(const mpm_sim *s, int t, int nt)
   return b;
 }
 
+/* grad N_k at the centre of a q4 unit, corners in mpm_mesh_basis order
+ * (0,0) (1,0) (1,1) (0,1): with delta weights this is the stencil order of
+ * every point in the unit, and the mean of grad N over the unit. */
+static void centre_gradient(const mpm_mesh *m, double gx[4], double gy[4])
+{
+  const double hx = 0.5 * m->idx, hy = 0.5 * m->idy;
+  gx[0] = -hx; gx[1] = hx; gx[2] = hx; gx[3] = -hx;
+  gy[0] = -hy; gy[1] = -hy; gy[2] = hy; gy[3] = hy;
+}
+
 /* Step 2 on nodes [lo, hi):
  * m_i, (mv)_i, f_i = sum_p [S_ip m_p, S_ip m_p v_p, -V_p sigma_p . gradS_ip + S_ip m_p b]. */
 static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
@@ -297,6 +307,9 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
   memset(nfx + lo, 0, len);
   memset(nfy + lo, 0, len);
   const unsigned width = (unsigned)(hi - lo);
+  const int bbar = s->cfg.mesh.dilatation == MPM_DILATATION_UNIT;
+  double cgx[4], cgy[4];
+  centre_gradient(&s->mesh, cgx, cgy);
   for (size_t p = 0; p < P->n; p++) {
     const int *node = st->node + p * MPM_STENCIL_W;
     const int c = st->count[p];
@@ -310,6 +323,7 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
     const double m = P->mass[p], V = P->vol[p];
     const double mvx = m * P->vx[p], mvy = m * P->vy[p];
     const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
+    const double sm = bbar ? 0.5 * (sxx + syy) : 0.0;   /* in-plane mean stress */
     for (; k < c; k++) {
       const int i = node[k];
       if ((unsigned)(i - lo) >= width)
@@ -320,6 +334,10 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
       nmvy[i] += Sk * mvy;
       nfx[i] += -V * (sxx * gxk + sxy * gyk) + Sm * bx;  /* -V sigma.gradS + S m b */
       nfy[i] += -V * (sxy * gxk + syy * gyk) + Sm * by;
+      if (bbar) {                          /* mean stress on the unit-centre gradient */
+        nfx[i] -= V * sm * (cgx[k] - gxk);
+        nfy[i] -= V * sm * (cgy[k] - gyk);
+      }
     }
   }
 }
@@ -412,6 +430,18 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
     lxy += s->nvx[i] * gy[k];
     lyx += s->nvy[i] * gx[k];
     lyy += s->nvy[i] * gy[k];
+  }
+  if (s->cfg.mesh.dilatation == MPM_DILATATION_UNIT) {
+    /* B-bar: tr L is replaced by the divergence at the unit centre, which is
+     * the unit's rate of area change (the in-plane mean stress does work on
+     * it in point_to_grid, so the pair conserves energy). */
+    double cgx[4], cgy[4], div = 0.0;
+    centre_gradient(&s->mesh, cgx, cgy);
+    for (int k = 0; k < st->count[p]; k++)
+      div += s->nvx[node[k]] * cgx[k] + s->nvy[node[k]] * cgy[k];
+    const double corr = 0.5 * (div - lxx - lyy);
+    lxx += corr;
+    lyy += corr;
   }
   const double fl = s->cfg.time.flip;                     /* FLIP share (1: [DK15]) */
   P->vx[p] = fl * (P->vx[p] + dt * ax) + (1.0 - fl) * vx;  /* v_p = fl v_FLIP + (1-fl) v_PIC */
