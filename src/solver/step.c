@@ -10,10 +10,10 @@
  * the dense points before the point updates (nonlocal_phase); before t_seed
  * it runs as the local mu(I) model, then g is seeded from it (seeding).
  * The density a point's state is decided with is m / V_{n+1} by default;
- * with material.state_density = "element" or "hybrid" ([D-thesis] §3.4) all points
- * move first and the unit masses are summed from x_{n+1} before the updates
- * (density_phase, and likewise in nonlocal_phase). V_p always keeps its local
- * update.
+ * with material.state_density = "element", "hybrid" ([D-thesis] §3.4) or "unit"
+ * all points move first and the unit sums are taken from x_{n+1} before the
+ * updates (density_phase, and likewise in nonlocal_phase). V_p always keeps its
+ * local update (with mesh.dilatation = "unit", from the unit-centre divergence).
  * Threads: the stencil is parallel over points; point-to-grid and the grid
  * update over ranges of nodes (grid_phase); the rest over points
  * (point_phase), except the element sums of g and of mass, which run in
@@ -139,7 +139,7 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   return L_alloc(s, err);
 }
 
-/* Per-point density and the unit sums for the element and hybrid rules (the
+/* Per-point density and the unit sums for the element, hybrid and unit rules (the
  * point rule reads m / V directly and needs neither). The per-point L arrays
  * hold the velocity gradients between moving the points and updating them. */
 static int density_alloc(mpm_sim *s, mpm_err *err)
@@ -515,7 +515,7 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
   return bad;
 }
 
-/* Element or hybrid density of every point from x_{n+1}, V_{n+1}. */
+/* Element, hybrid or unit density of every point from x_{n+1}, V_{n+1}. */
 static void update_density(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
