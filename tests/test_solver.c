@@ -50,6 +50,15 @@ static void base_config(mpm_config *c, int nx, int ppu, double vx, double vy)
   strcpy(f->name, "block");
 }
 
+/* base_config with free walls and the block filling [lo, hi]^2 only. */
+static void free_block_config(mpm_config *c, int nx, double lo, double hi)
+{
+  base_config(c, nx, 2, 0.0, 0.0);
+  c->bc.left = c->bc.bottom = MPM_BC_FREE;
+  c->fill[0].xmin = c->fill[0].ymin = lo;
+  c->fill[0].xmax = c->fill[0].ymax = hi;
+}
+
 START_TEST(t_wall_stops_flip_velocity)
 {
   mpm_config c;
@@ -77,10 +86,7 @@ START_TEST(t_pic_velocity_is_displacement_rate)
 {
   for (int pic = 1; pic >= 0; pic--) {
     mpm_config c;
-    base_config(&c, 3, 2, 0.0, 0.0);
-    c.bc.left = c.bc.bottom = MPM_BC_FREE;
-    c.fill[0].xmin = c.fill[0].ymin = 0.1;
-    c.fill[0].xmax = c.fill[0].ymax = 0.2;
+    free_block_config(&c, 3, 0.1, 0.2);
     c.time.flip = pic ? 0.0 : 1.0;
     mpm_sim *s = NULL;
     mpm_err err = {0};
@@ -119,10 +125,7 @@ START_TEST(t_bbar_unit_dilatation)
 {
   for (int bbar = 1; bbar >= 0; bbar--) {
     mpm_config c;
-    base_config(&c, 4, 2, 0.0, 0.0);
-    c.bc.left = c.bc.bottom = MPM_BC_FREE;
-    c.fill[0].xmin = c.fill[0].ymin = 0.1;
-    c.fill[0].xmax = c.fill[0].ymax = 0.3;
+    free_block_config(&c, 4, 0.1, 0.3);
     c.time.flip = 0.0;
     c.mesh.dilatation = bbar ? MPM_DILATATION_UNIT : MPM_DILATATION_POINT;
     mpm_sim *s = NULL;
