@@ -109,14 +109,21 @@ START_TEST(t_staircase_triangle)
         unsigned char f = bc.fix[mpm_mesh_node(&m, i, j)];
         if (i + j > 4)
           ck_assert_int_eq(f, 0);
-        else if (kind == MPM_BC_NOSLIP || (i > 0 && j > 0 && i + j < 4))
-          ck_assert_int_eq(f, both);                 /* rough, or strictly inside */
+        else if (kind == MPM_BC_NOSLIP || i + j < 3)
+          ck_assert_int_eq(f, both);                 /* rough, or away from open units */
+        else if (i > 0 && j > 0) {                   /* at units the 45 deg side cuts */
+          ck_assert_int_eq(f, MPM_FIX_N);
+          ck_assert_double_eq_tol(fabs(bc.normal[2 * mpm_mesh_node(&m, i, j)]), sqrt(0.5), 1e-15);
+          ck_assert_double_eq_tol(fabs(bc.normal[2 * mpm_mesh_node(&m, i, j) + 1]), sqrt(0.5), 1e-15);
+        }
       }
     if (kind == MPM_BC_FRICTIONLESS) {
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 1, 3)], MPM_FIX_Y);  /* 45 deg side: y */
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 2)], MPM_FIX_Y);
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 2)], MPM_FIX_X);  /* on x = 0 */
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 0)], MPM_FIX_Y);  /* on y = 0 */
+      /* sides on the mesh edge face no open unit: solid, so that nothing slides
+       * along them through the wall */
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 2)], both);       /* on x = 0 */
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 0)], both);       /* on y = 0 */
+      const unsigned char top = bc.fix[mpm_mesh_node(&m, 0, 4)];    /* vertex, open above */
+      ck_assert(top == MPM_FIX_X || top == MPM_FIX_Y);
     }
     mpm_bc_clear(&bc);
   }

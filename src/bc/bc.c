@@ -63,6 +63,7 @@ int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
   bc->out_edge = -1;
   bc->open = 0;
   bc->mask[1] = NULL;
+  bc->normal = NULL;
   bc->fix = bc->mask[0] = calloc((size_t)m->nnodes, 1);
   if (!bc->fix)
     return mpm_err_set(err, MPM_ENOMEM, "boundary mask: out of memory");
@@ -81,7 +82,9 @@ void mpm_bc_clear(mpm_bc *bc)
 {
   free(bc->mask[0]);
   free(bc->mask[1]);
+  free(bc->normal);
   bc->fix = bc->mask[0] = bc->mask[1] = NULL;
+  bc->normal = NULL;
   bc->nnodes = 0;
 }
 
@@ -89,6 +92,14 @@ void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay)
 {
   for (int i = 0; i < bc->nnodes; i++) {
     unsigned char f = bc->fix[i];
+    if ((f & MPM_FIX_N) && (f & (MPM_FIX_X | MPM_FIX_Y)))
+      f = MPM_FIX_X | MPM_FIX_Y;                    /* two independent normals */
+    if (f & MPM_FIX_N) {
+      const double nx = bc->normal[2 * i], ny = bc->normal[2 * i + 1];
+      const double an = ax[i] * nx + ay[i] * ny;
+      ax[i] -= an * nx;
+      ay[i] -= an * ny;
+    }
     if (f & MPM_FIX_X) ax[i] = 0.0;
     if (f & MPM_FIX_Y) ay[i] = 0.0;
   }

@@ -10,13 +10,17 @@
 #include "core/error.h"
 #include "mesh/mesh.h"
 
-enum { MPM_FIX_X = 1, MPM_FIX_Y = 2 };
+/* MPM_FIX_N: the component along the node's wall normal (an oblique
+ * frictionless wall side); together with MPM_FIX_X or MPM_FIX_Y it holds both. */
+enum { MPM_FIX_X = 1, MPM_FIX_Y = 2, MPM_FIX_N = 4 };
 
 typedef struct mpm_bc {
   int edge[4];          /* left, right, bottom, top: enum mpm_bc_kind */
   int nnodes;
-  unsigned char *fix;   /* [nnodes] MPM_FIX_X | MPM_FIX_Y: the mask in force
-                           (mask[0], or mask[1] once the outlet is open) */
+  unsigned char *fix;   /* [nnodes] MPM_FIX_X | MPM_FIX_Y | MPM_FIX_N: the mask in
+                           force (mask[0], or mask[1] once the outlet is open) */
+  double *normal;       /* owned, [2 nnodes]: unit normal (x, y) of the MPM_FIX_N
+                           nodes; NULL when no wall side is oblique */
   unsigned char *mask[2];  /* owned: outlet closed, outlet open (NULL: no outlet) */
   int out_edge;         /* MPM_EDGE_* of the outlet, -1: none */
   double out_from, out_to;  /* its extent along the edge [m] */
@@ -35,7 +39,8 @@ const char *mpm_bc_kind_name(int kind);
 int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err);
 void mpm_bc_clear(mpm_bc *bc);  /* frees the mask; safe on a zeroed struct */
 
-/* Zero constrained components of nodal vectors ax, ay (momentum or force). */
+/* Zero constrained components of nodal vectors ax, ay (momentum or force):
+ * x and y, or the normal one, (ax, ay) -= ((ax, ay) . n) n. */
 void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
 
 /* Move a point that crossed a wall edge (no-slip, frictionless, symmetry)
@@ -56,10 +61,12 @@ int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double 
 void mpm_bc_open_outlet(mpm_bc *bc);
 
 /* Staircase wall: every node inside or on the polygon (nv vertices, within
- * 1e-9 of a unit of its boundary) is held: both components for noslip and
- * for nodes strictly inside; a frictionless boundary node holds the
- * component closer to the normal of the nearest polygon side (y for a
- * 45 degree side). Returns the number of nodes held in *nheld (may be NULL). */
+ * 1e-9 of a unit of its boundary) is held. Noslip: both components. Frictionless:
+ * a held node that is a corner of an open unit (centre outside the polygon or
+ * on a side) holds only the component along the normal of the nearest side,
+ * x or y for an axis-parallel side, MPM_FIX_N for an oblique one, so material
+ * slides along the side as along a smooth wall; the other held nodes hold
+ * both. Returns the number of nodes held in *nheld (may be NULL). */
 int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
                        const double *py, int kind, int *nheld, mpm_err *err);
 

@@ -4,7 +4,8 @@
  * (silo orifice, [DK15] section 4.2): two masks are kept, one with the
  * stretch closed and one with it free, and opening switches between them.
  * A sloped wall is a staircase of held nodes: every node inside or on a
- * polygon ([DK15] section 4.3). */
+ * polygon ([DK15] section 4.3); frictionless, the nodes along its sides hold
+ * only the component normal to the side. */
 #include "bc/bc.h"
 
 #include <math.h>
@@ -140,6 +141,27 @@ static int inside(int nv, const double *px, const double *py, double x, double y
   return in;
 }
 
+/* 1 when one of the (up to four) mesh units around node (i, j) is open: its
+ * centre lies outside the polygon or on one of its sides. */
+static int touches_open_unit(const mpm_mesh *m, int nv, const double *px, const double *py,
+                             int i, int j, double tol)
+{
+  for (int uj = j - 1; uj <= j; uj++)
+    for (int ui = i - 1; ui <= i; ui++) {
+      if (ui < 0 || uj < 0 || ui >= m->nx || uj >= m->ny)
+        continue;                                     /* beyond the mesh: no material */
+      const double cx = m->x0 + (ui + 0.5) * m->dx, cy = m->y0 + (uj + 0.5) * m->dy;
+      int on_side = 0;
+      for (int a = 0, b = nv - 1; a < nv && !on_side; b = a++) {
+        double sx, sy;
+        on_side = seg_dist2(cx, cy, px[b], py[b], px[a], py[a], &sx, &sy) <= tol * tol;
+      }
+      if (on_side || !inside(nv, px, py, cx, cy))
+        return 1;
+    }
+  return 0;
+}
+
 int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
                        const double *py, int kind, int *nheld, mpm_err *err)
 {
@@ -161,16 +183,27 @@ int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
           ny = sy;
         }
       }
-      const int on_side = best <= tol * tol;
-      if (!(on_side || inside(nv, px, py, x, y)))
+      if (!(best <= tol * tol || inside(nv, px, py, x, y)))
         continue;
-      /* inside: both components; on the boundary, frictionless holds the
-       * component closer to the side's normal, y on a 45 degree side (the
-       * material then slides along the steps towards lower ground) */
-      unsigned char bits = MPM_FIX_X | MPM_FIX_Y;
-      if (on_side && kind == MPM_BC_FRICTIONLESS)
-        bits = fabs(nx) > fabs(ny) * (1.0 + 1e-12) ? MPM_FIX_X : MPM_FIX_Y;
+      /* frictionless: a node at an open unit holds the normal component of
+       * the nearest side, so points in the units along the side slide
+       * parallel to it; the rest (and a side lying on the mesh edge, which no
+       * open unit touches) is solid */
       const int id = mpm_mesh_node(m, i, j);
+      unsigned char bits = MPM_FIX_X | MPM_FIX_Y;
+      if (kind == MPM_BC_FRICTIONLESS && touches_open_unit(m, nv, px, py, i, j, tol)) {
+        if (fabs(ny) <= 1e-12 * fabs(nx))
+          bits = MPM_FIX_X;
+        else if (fabs(nx) <= 1e-12 * fabs(ny))
+          bits = MPM_FIX_Y;
+        else {
+          if (!bc->normal && !(bc->normal = calloc(2 * (size_t)bc->nnodes, sizeof *bc->normal)))
+            return mpm_err_set(err, MPM_ENOMEM, "wall: no memory for node normals");
+          bc->normal[2 * id] = nx;
+          bc->normal[2 * id + 1] = ny;
+          bits = MPM_FIX_N;
+        }
+      }
       bc->mask[0][id] |= bits;
       if (bc->mask[1])
         bc->mask[1][id] |= bits;

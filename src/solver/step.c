@@ -348,6 +348,8 @@ static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double 
 {
   mpm_bc part = *bc;
   part.fix += lo;
+  if (part.normal)
+    part.normal += 2 * lo;
   part.nnodes = hi - lo;
   mpm_bc_apply(&part, ax + lo, ay + lo);
 }
