@@ -114,13 +114,17 @@ START_TEST(t_pic_velocity_is_displacement_rate)
 }
 END_TEST
 
-/* mesh.dilatation = "unit" (B-bar): every point's volumetric rate is the
- * divergence of the grid velocity at the centre of its unit, from the q4
- * corners 0 (i,j), 1 (i+1,j), 2 (i+1,j+1), 3 (i,j+1):
- * div_c = (v1x + v2x - v0x - v3x) / (2 dx) + (v2y + v3y - v0y - v1y) / (2 dy),
- * so V_{n+1} / V_n = exp(dt div_c) and, from zero stress, the in-plane
- * mean stress is the same multiple of dt div_c for every point. The point
- * rule ("point") fails the same check on this non-uniform start. */
+/* mesh.dilatation = "unit" (B-bar): every point's volumetric rate is its
+ * unit's divergence, the mean of tr L over the unit's points weighted by
+ * their volumes (at the start of the step), with tr L at a point from the
+ * q4 corners 0 (i,j), 1 (i+1,j), 2 (i+1,j+1), 3 (i,j+1) and bilinear S:
+ * tr L(xi, eta) = [(1-eta)(v1x-v0x) + eta(v2x-v3x)] / dx
+ *               + [(1-xi)(v3y-v0y) + xi(v2y-v1y)] / dy.
+ * So V_{n+1} / V_n = exp(dt div_u) and, from zero stress, the in-plane
+ * mean stress is the same multiple of dt div_u for every point. The points
+ * are moved off their symmetric places and given unequal volumes, so the
+ * unit mean differs from both the centre value and each point's own rate;
+ * the point rule ("point") fails the same check. */
 START_TEST(t_bbar_unit_dilatation)
 {
   for (int bbar = 1; bbar >= 0; bbar--) {
@@ -133,31 +137,55 @@ START_TEST(t_bbar_unit_dilatation)
     ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
     const size_t n = s->pts->n;
     ck_assert_uint_eq(n, 16);
-    double v0[16];
+    double v0[16], xi[16], eta[16];
     int unit[16][2];
     for (size_t p = 0; p < n; p++) {        /* a field with bilinear and quadratic parts */
+      s->pts->x[p] += (p % 3 == 0) ? 0.011 : 0.0;   /* off the symmetric places, in the unit */
+      s->pts->y[p] -= (p % 4 == 1) ? 0.007 : 0.0;
+      s->pts->vol[p] *= 1.0 + 0.5 * (double)(p % 2);
       double x = s->pts->x[p], y = s->pts->y[p];
       s->pts->vx[p] = 3.0 * (x - 0.2) * (y - 0.2) / 0.01 + 0.5 * (x - 0.2) * (x - 0.2) / 0.01;
       s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
       v0[p] = s->pts->vol[p];
       ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &unit[p][0], &unit[p][1]), MPM_OK);
+      xi[p] = (x - s->mesh.x0) / c.mesh.dx - unit[p][0];
+      eta[p] = (y - s->mesh.y0) / c.mesh.dy - unit[p][1];
     }
     ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
-    const double dt = s->dt, hx = 0.5 / c.mesh.dx, hy = 0.5 / c.mesh.dy;
-    double worst = 0.0, k_lo = INFINITY, k_hi = -INFINITY;
+    const double dt = s->dt;
+    double trl[16], ctr[16];                   /* tr L at the point and at the unit centre */
     for (size_t p = 0; p < n; p++) {
       int i = unit[p][0], j = unit[p][1];
       int n0 = mpm_mesh_node(&s->mesh, i, j), n1 = mpm_mesh_node(&s->mesh, i + 1, j);
       int n2 = mpm_mesh_node(&s->mesh, i + 1, j + 1), n3 = mpm_mesh_node(&s->mesh, i, j + 1);
-      double div = hx * (s->nvx[n1] + s->nvx[n2] - s->nvx[n0] - s->nvx[n3])
-                 + hy * (s->nvy[n2] + s->nvy[n3] - s->nvy[n0] - s->nvy[n1]);
+      for (int at = 0; at < 2; at++) {
+        const double a = at ? 0.5 : xi[p], b = at ? 0.5 : eta[p];
+        (at ? ctr : trl)[p] = ((1.0 - b) * (s->nvx[n1] - s->nvx[n0]) + b * (s->nvx[n2] - s->nvx[n3]))
+                                / c.mesh.dx
+                            + ((1.0 - a) * (s->nvy[n3] - s->nvy[n0]) + a * (s->nvy[n2] - s->nvy[n1]))
+                                / c.mesh.dy;
+      }
+    }
+    double worst = 0.0, k_lo = INFINITY, k_hi = -INFINITY, off_own = 0.0, off_ctr = 0.0;
+    for (size_t p = 0; p < n; p++) {
+      double sv = 0.0, svd = 0.0;
+      for (size_t q = 0; q < n; q++)
+        if (unit[q][0] == unit[p][0] && unit[q][1] == unit[p][1]) {
+          sv += v0[q];
+          svd += v0[q] * trl[q];
+        }
+      const double div = svd / sv;
       ck_assert_double_gt(fabs(div), 0.1);   /* every unit is compressed or stretched */
+      off_own = fmax(off_own, fabs(trl[p] - div) / fabs(div));
+      off_ctr = fmax(off_ctr, fabs(ctr[p] - div) / fabs(div));
       double rate = log(s->pts->vol[p] / v0[p]) / dt;
       worst = fmax(worst, fabs(rate - div) / fabs(div));
       double k = 0.5 * (s->pts->sxx[p] + s->pts->syy[p]) / (dt * div);
       k_lo = fmin(k_lo, k);
       k_hi = fmax(k_hi, k);
     }
+    ck_assert_double_ge(off_own, 0.05);      /* the unit mean is not each point's own rate */
+    ck_assert_double_ge(off_ctr, 0.01);      /* nor the rate at the unit centre */
     if (bbar) {
       ck_assert_double_le(worst, 1e-9);        /* log of a ratio near 1: round-off ~1e-12 / dt div */
       ck_assert_double_le(k_hi - k_lo, 1e-9 * fabs(k_hi));

@@ -46,6 +46,9 @@ typedef struct mpm_sim {
   mpm_density *dens;              /* unit sums; NULL for the point rule */
   double *rho;                    /* [rcap] density each point's update sees [kg/m^3] */
   size_t rcap;                    /* length of rho */
+  double *ug;                     /* mesh.dilatation = "unit": [9 nx ny] per unit, the
+                                   * points' volume and the volume-weighted mean of
+                                   * their dS_k/dx, dS_k/dy (k = 0..3); else NULL */
 
   double t, dt;                   /* current time, time step [s] */
   long step;

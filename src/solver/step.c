@@ -13,7 +13,7 @@
  * with material.state_density = "element", "hybrid" ([D-thesis] §3.4) or "unit"
  * all points move first and the unit sums are taken from x_{n+1} before the
  * updates (density_phase, and likewise in nonlocal_phase). V_p always keeps its
- * local update (with mesh.dilatation = "unit", from the unit-centre divergence).
+ * local update (with mesh.dilatation = "unit", from the unit's B-bar divergence).
  * Threads: the stencil is parallel over points; point-to-grid and the grid
  * update over ranges of nodes (grid_phase); the rest over points
  * (point_phase), except the element sums of g and of mass, which run in
@@ -196,6 +196,9 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     rc = nonlocal_alloc(s, err);
   if (rc == MPM_OK)
     rc = density_alloc(s, err);
+  if (rc == MPM_OK && cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
+      !(s->ug = malloc(9 * (size_t)s->mesh.nx * (size_t)s->mesh.ny * sizeof *s->ug)))
+    rc = mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit gradients");
   if (rc != MPM_OK) {
     mpm_sim_free(s);
     return rc;
@@ -219,6 +222,7 @@ void mpm_sim_free(mpm_sim *s)
   mpm_nonlocal_free(s->nl);
   mpm_density_free(s->dens);
   free(s->rho);
+  free(s->ug);
   free(s->lxx);
   free(s->lxy);
   free(s->lyx);
@@ -283,14 +287,53 @@ static int range_start(const mpm_sim *s, int t, int nt)
   return b;
 }
 
-/* grad N_k at the centre of a q4 unit, corners in mpm_mesh_basis order
- * (0,0) (1,0) (1,1) (0,1): with delta weights this is the stencil order of
- * every point in the unit, and the mean of grad N over the unit. */
-static void centre_gradient(const mpm_mesh *m, double gx[4], double gy[4])
+/* B-bar weights of the step ([mesh] dilatation = "unit", delta weights on q4,
+ * so a point's stencil is the corners of its unit in mpm_mesh_basis order):
+ * per unit u, ug[9u] = sum V_p over its points and ug[9u + 1 + k],
+ * ug[9u + 5 + k] the volume-weighted mean of their dS_k/dx, dS_k/dy. The
+ * points are the unit's quadrature: four points placed symmetrically give the
+ * gradient at the unit centre, one point its own gradient (the point rule),
+ * so a node the points barely reach gets no more force than without B-bar.
+ * Sums in point order on one thread: thread-count free. */
+static void unit_gradients(mpm_sim *s)
 {
-  const double hx = 0.5 * m->idx, hy = 0.5 * m->idy;
-  gx[0] = -hx; gx[1] = hx; gx[2] = hx; gx[3] = -hx;
-  gy[0] = -hy; gy[1] = -hy; gy[2] = hy; gy[3] = hy;
+  const mpm_points *P = s->pts;
+  const mpm_stencil *st = s->st;
+  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  memset(s->ug, 0, 9 * nu * sizeof *s->ug);
+  for (size_t p = 0; p < P->n; p++) {
+    int i, j;
+    if (mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) != MPM_OK)
+      continue;
+    double *u = s->ug + 9 * ((size_t)i + (size_t)s->mesh.nx * (size_t)j);
+    const double V = P->vol[p];
+    const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
+    u[0] += V;
+    for (int k = 0; k < 4; k++) {
+      u[1 + k] += V * gx[k];
+      u[5 + k] += V * gy[k];
+    }
+  }
+  for (size_t e = 0; e < nu; e++) {
+    double *u = s->ug + 9 * e;
+    if (u[0] > 0.0)
+      for (int k = 1; k < 9; k++)
+        u[k] /= u[0];
+  }
+}
+
+/* The B-bar gradients of point p's unit (dS_k/dx at [0..3], dS_k/dy at
+ * [4..7]), or its own gradients when it is outside the mesh. */
+static void bbar_gradient(const mpm_sim *s, size_t p, double gx[4], double gy[4])
+{
+  int i, j;
+  const double *u = NULL;
+  if (mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j) == MPM_OK)
+    u = s->ug + 9 * ((size_t)i + (size_t)s->mesh.nx * (size_t)j);
+  for (int k = 0; k < 4; k++) {
+    gx[k] = u ? u[1 + k] : s->st->dSx[p * MPM_STENCIL_W + k];
+    gy[k] = u ? u[5 + k] : s->st->dSy[p * MPM_STENCIL_W + k];
+  }
 }
 
 /* Step 2 on nodes [lo, hi):
@@ -307,9 +350,7 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
   memset(nfx + lo, 0, len);
   memset(nfy + lo, 0, len);
   const unsigned width = (unsigned)(hi - lo);
-  const int bbar = s->cfg.mesh.dilatation == MPM_DILATATION_UNIT;
-  double cgx[4], cgy[4];
-  centre_gradient(&s->mesh, cgx, cgy);
+  const int bbar = s->ug != NULL;
   for (size_t p = 0; p < P->n; p++) {
     const int *node = st->node + p * MPM_STENCIL_W;
     const int c = st->count[p];
@@ -324,6 +365,9 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
     const double mvx = m * P->vx[p], mvy = m * P->vy[p];
     const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
     const double sm = bbar ? 0.5 * (sxx + syy) : 0.0;   /* in-plane mean stress */
+    double cgx[4] = {0}, cgy[4] = {0};
+    if (bbar)
+      bbar_gradient(s, p, cgx, cgy);
     for (; k < c; k++) {
       const int i = node[k];
       if ((unsigned)(i - lo) >= width)
@@ -334,7 +378,7 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
       nmvy[i] += Sk * mvy;
       nfx[i] += -V * (sxx * gxk + sxy * gyk) + Sm * bx;  /* -V sigma.gradS + S m b */
       nfy[i] += -V * (sxy * gxk + syy * gyk) + Sm * by;
-      if (bbar) {                          /* mean stress on the unit-centre gradient */
+      if (bbar) {                          /* mean stress on the unit's B-bar gradient */
         nfx[i] -= V * sm * (cgx[k] - gxk);
         nfy[i] -= V * sm * (cgy[k] - gyk);
       }
@@ -433,12 +477,13 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
     lyx += s->nvy[i] * gx[k];
     lyy += s->nvy[i] * gy[k];
   }
-  if (s->cfg.mesh.dilatation == MPM_DILATATION_UNIT) {
-    /* B-bar: tr L is replaced by the divergence at the unit centre, which is
-     * the unit's rate of area change (the in-plane mean stress does work on
-     * it in point_to_grid, so the pair conserves energy). */
+  if (s->ug) {
+    /* B-bar: tr L is replaced by the unit's divergence, the volume-weighted
+     * mean of its points' tr L, i.e. its rate of area change (the in-plane
+     * mean stress does work on it in point_to_grid, so the pair conserves
+     * energy). */
     double cgx[4], cgy[4], div = 0.0;
-    centre_gradient(&s->mesh, cgx, cgy);
+    bbar_gradient(s, p, cgx, cgy);
     for (int k = 0; k < st->count[p]; k++)
       div += s->nvx[node[k]] * cgx[k] + s->nvy[node[k]] * cgy[k];
     const double corr = 0.5 * (div - lxx - lyy);
@@ -691,6 +736,8 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
     mpm_bc_open_outlet(&s->bc);                              /* the orifice opens */
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
+  if (s->ug)
+    unit_gradients(s);
   grid_phase(s, bx, by);
   const mpm_material_type *mat = seeding(s);
   long bad;
