@@ -49,6 +49,8 @@ typedef struct mpm_sim {
   double *ug;                     /* mesh.dilatation = "unit": [9 nx ny] per unit, the
                                    * points' volume and the volume-weighted mean of
                                    * their dS_k/dx, dS_k/dy (k = 0..3); else NULL */
+  long *uof;                      /* [ucap] with ug: each point's unit, -1 outside */
+  size_t ucap;
 
   double t, dt;                   /* current time, time step [s] */
   long step;

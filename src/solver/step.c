@@ -223,6 +223,7 @@ void mpm_sim_free(mpm_sim *s)
   mpm_density_free(s->dens);
   free(s->rho);
   free(s->ug);
+  free(s->uof);
   free(s->lxx);
   free(s->lxy);
   free(s->lyx);
@@ -295,17 +296,26 @@ static int range_start(const mpm_sim *s, int t, int nt)
  * gradient at the unit centre, one point its own gradient (the point rule),
  * so a node the points barely reach gets no more force than without B-bar.
  * Sums in point order on one thread: thread-count free. */
-static void unit_gradients(mpm_sim *s)
+static int unit_gradients(mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
   const mpm_stencil *st = s->st;
   const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  if (P->n > s->ucap) {
+    long *u = realloc(s->uof, P->n * sizeof *u);
+    if (!u)
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu point units", P->n);
+    s->uof = u;
+    s->ucap = P->n;
+  }
   memset(s->ug, 0, 9 * nu * sizeof *s->ug);
   for (size_t p = 0; p < P->n; p++) {
     int i, j;
+    s->uof[p] = -1;
     if (mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) != MPM_OK)
       continue;
-    double *u = s->ug + 9 * ((size_t)i + (size_t)s->mesh.nx * (size_t)j);
+    s->uof[p] = (long)i + (long)s->mesh.nx * j;
+    double *u = s->ug + 9 * s->uof[p];
     const double V = P->vol[p];
     const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
     u[0] += V;
@@ -320,19 +330,19 @@ static void unit_gradients(mpm_sim *s)
       for (int k = 1; k < 9; k++)
         u[k] /= u[0];
   }
+  return MPM_OK;
 }
 
-/* The B-bar gradients of point p's unit (dS_k/dx at [0..3], dS_k/dy at
- * [4..7]), or its own gradients when it is outside the mesh. */
-static void bbar_gradient(const mpm_sim *s, size_t p, double gx[4], double gy[4])
+/* The B-bar gradients of point p's unit: dS_k/dx at gx[0..3], dS_k/dy at
+ * gy[0..3] (its own gradients when it is outside the mesh). */
+static void bbar_gradient(const mpm_sim *s, size_t p, const double **gx, const double **gy)
 {
-  int i, j;
-  const double *u = NULL;
-  if (mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j) == MPM_OK)
-    u = s->ug + 9 * ((size_t)i + (size_t)s->mesh.nx * (size_t)j);
-  for (int k = 0; k < 4; k++) {
-    gx[k] = u ? u[1 + k] : s->st->dSx[p * MPM_STENCIL_W + k];
-    gy[k] = u ? u[5 + k] : s->st->dSy[p * MPM_STENCIL_W + k];
+  if (s->uof[p] < 0) {
+    *gx = s->st->dSx + p * MPM_STENCIL_W;
+    *gy = s->st->dSy + p * MPM_STENCIL_W;
+  } else {
+    *gx = s->ug + 9 * s->uof[p] + 1;
+    *gy = s->ug + 9 * s->uof[p] + 5;
   }
 }
 
@@ -365,9 +375,9 @@ static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
     const double mvx = m * P->vx[p], mvy = m * P->vy[p];
     const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
     const double sm = bbar ? 0.5 * (sxx + syy) : 0.0;   /* in-plane mean stress */
-    double cgx[4] = {0}, cgy[4] = {0};
+    const double *cgx = gx, *cgy = gy;                /* no B-bar: no correction */
     if (bbar)
-      bbar_gradient(s, p, cgx, cgy);
+      bbar_gradient(s, p, &cgx, &cgy);
     for (; k < c; k++) {
       const int i = node[k];
       if ((unsigned)(i - lo) >= width)
@@ -482,8 +492,9 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
      * mean of its points' tr L, i.e. its rate of area change (the in-plane
      * mean stress does work on it in point_to_grid, so the pair conserves
      * energy). */
-    double cgx[4], cgy[4], div = 0.0;
-    bbar_gradient(s, p, cgx, cgy);
+    const double *cgx, *cgy;
+    double div = 0.0;
+    bbar_gradient(s, p, &cgx, &cgy);
     for (int k = 0; k < st->count[p]; k++)
       div += s->nvx[node[k]] * cgx[k] + s->nvy[node[k]] * cgy[k];
     const double corr = 0.5 * (div - lxx - lyy);
@@ -736,8 +747,8 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
     mpm_bc_open_outlet(&s->bc);                              /* the orifice opens */
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
-  if (s->ug)
-    unit_gradients(s);
+  if (s->ug && (rc = unit_gradients(s, err)) != MPM_OK)
+    return rc;
   grid_phase(s, bx, by);
   const mpm_material_type *mat = seeding(s);
   long bad;
