@@ -46,7 +46,7 @@ static void column_config(mpm_config *c, const char *topology, int ngf, int dens
     c->material.g_average = MPM_NONLOCAL_EXTENT;
   }
   c->material.state_density = density;
-  if (density == MPM_DENSITY_UNIT) {   /* with the B-bar dilatation, as the slug uses it */
+  if (density == MPM_DENSITY_UNIT) {   /* with the B-bar dilatation, as the V6 inputs use it */
     strcpy(c->mesh.shape, "delta");
     c->mesh.dilatation = MPM_DILATATION_UNIT;
   }

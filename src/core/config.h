@@ -29,7 +29,8 @@ enum mpm_outlet_edge {
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
 /* Where the volumetric strain rate is sampled: at the point (standard MPM) or
- * at the centre of the point's unit for every point in it (B-bar, delta/q4). */
+ * per unit, the volume-weighted mean over its points, for every point in it
+ * (B-bar, delta/q4). */
 enum mpm_dilatation { MPM_DILATATION_POINT = 0, MPM_DILATATION_UNIT };
 
 typedef struct mpm_fill_config {
