@@ -378,6 +378,37 @@ START_TEST(t_time_plan_substeps)
 }
 END_TEST
 
+/* A light node takes the body force only. One point of a free 3 x 3 mesh
+ * (0.1 m units, no gravity) under sxx = -1000 Pa sits 1e-8 m left of the
+ * right edge of the centre unit, so the left nodes of that unit weigh
+ * S = 1e-7 * 1/2 of it: mass 7.5e-7 kg each, below 1e-3 of the point mass.
+ * Their share of the internal force, -V sxx dS/dx = -50 N, does not shrink
+ * with S; taken, it gives them -6.7e7 m/s^2, and after one step (dt 1e-4 s)
+ * L_xx = sum v_i dS_i/dx ~ 6.7e4 1/s and V_1 / V_0 = e^6.7. Left out, only
+ * the right nodes move (+50 N on 7.5 kg each): L_xx = 2 (6.7e-4 m/s)(5 1/m)
+ * = 6.7e-3 1/s and V_1 / V_0 - 1 = 6.7e-7. */
+START_TEST(t_light_node_body_force_only)
+{
+  mpm_config c;
+  free_block_config(&c, 3, 0.1, 0.2);
+  c.fill[0].ppu = 1;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  ck_assert_uint_eq(s->pts->n, 1);
+  s->pts->x[0] = 0.2 - 1e-8;
+  s->pts->y[0] = 0.15;
+  s->pts->sxx[0] = -1000.0;
+  const double v0 = s->pts->vol[0];
+  ck_assert_double_eq_tol(v0, 0.01, 1e-15);
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  const double r = s->pts->vol[0] / v0 - 1.0;
+  ck_assert_double_gt(r, 5e-7);                 /* the right nodes' 6.7e-7 */
+  ck_assert_double_lt(r, 9e-7);
+  mpm_sim_free(s);
+}
+END_TEST
+
 /* A nonlocal run whose point leaves the mesh while the units are frozen is an
  * error naming the point, where it went and when: one stress-free point at
  * 2000 m/s crosses the free top edge (0.1 m above it) within the first step. */
@@ -413,6 +444,7 @@ int main(void)
   tcase_add_test(tc, t_ngf_thread_count);
   tcase_add_test(tc, t_time_plan_substeps);
   tcase_add_test(tc, t_ngf_point_leaves_mesh);
+  tcase_add_test(tc, t_light_node_body_force_only);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

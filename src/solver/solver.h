@@ -59,6 +59,7 @@ typedef struct mpm_sim {
                                    * ended, MPM_STOP_NONE while it runs */
   double stop_value;              /* the measured value that fired the stop test */
   double mtiny;                   /* nodes lighter than this are skipped */
+  double mlight;                  /* nodes lighter than this take the body force only */
   double mass_removed;            /* mass of the points removed so far [kg/m] */
   long nremoved;                  /* their number */
 } mpm_sim;

@@ -207,6 +207,8 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   for (size_t p = 0; p < s->pts->n; p++)
     s->mass0 += s->pts->mass[p];
   s->mtiny = 1e-12 * s->mass0 / (double)s->pts->n;          /* skip nodes lighter than this */
+  if (s->shape == &mpm_shape_delta)                          /* body force only below this */
+    s->mlight = 1e-3 * s->mass0 / (double)s->pts->n;
   *out = s;
   return MPM_OK;
 }
@@ -418,14 +420,25 @@ static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double 
  * ones. With a_i = f_i/m_i = 0 there instead, a point stopped by a wall would
  * keep its velocity for ever (FLIP only adds increments): its position
  * follows the grid and stays put, but it reports kinetic energy it does not
- * have, and a kinetic-energy stop test never fires. */
-static void grid_update(mpm_sim *s, int lo, int hi)
+ * have, and a kinetic-energy stop test never fires.
+ * With delta shape functions a node lighter than mlight (1e-3 of the mean
+ * point mass: the points near it lie within about a thousandth of a unit of
+ * its far edge) takes the body force only. Its internal force
+ * -V sigma.gradS does not shrink with its weight S, so f_i/m_i grows as 1/S
+ * when a stressed point crosses into an empty unit, and that velocity, times
+ * gradS, enters L_p: a point's volume overflowed (1e111 m^2) this way at a
+ * heap's surface. uGIMP gradients vanish with the weights (mlight = 0). */
+static void grid_update(mpm_sim *s, int lo, int hi, double bx, double by)
 {
-  const double dt = s->dt, idt = 1.0 / s->dt, mt = s->mtiny;
+  const double dt = s->dt, idt = 1.0 / s->dt, mt = s->mtiny, ml = s->mlight;
   for (int i = lo; i < hi; i++) {                       /* v_i^n, before the wall */
     double m = s->nm[i];
     s->nvx[i] = m > mt ? s->nmvx[i] / m : 0.0;
     s->nvy[i] = m > mt ? s->nmvy[i] / m : 0.0;
+    if (m < ml) {                                       /* light node: body force only */
+      s->nfx[i] = m * bx;
+      s->nfy[i] = m * by;
+    }
   }
   bc_apply_range(&s->bc, lo, hi, s->nmvx, s->nmvy);
   bc_apply_range(&s->bc, lo, hi, s->nfx, s->nfy);
@@ -459,7 +472,7 @@ static void grid_phase(mpm_sim *s, double bx, double by)
 #endif
     const int lo = range_start(s, t, nt), hi = range_start(s, t + 1, nt);
     point_to_grid(s, lo, hi, bx, by);
-    grid_update(s, lo, hi);
+    grid_update(s, lo, hi, bx, by);
   }
 }
 
