@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/config.h"
+#include "material/material.h"
 
 /* Material of the given model with the [DK15] Table 1 values (nu = 0.3,
  * mu_s = 0.3819, mu_2 = 0.6435, I0 = 0.279, d = 5 mm, rho_s = 2450,
@@ -14,14 +15,8 @@
 static inline void sim_config_material(mpm_config *c, const char *model, double E)
 {
   strcpy(c->material.model, model);
+  mpm_material_config_dk15(c);
   c->material.E = E;
-  c->material.nu = 0.3;
-  c->material.rho_s = 2450;
-  c->material.rho_c = 1500;
-  c->material.mu_s = 0.3819;
-  c->material.mu_2 = 0.6435;
-  c->material.I0 = 0.279;
-  c->material.d = 0.005;
   c->material.t0 = 1e-3;
 }
 

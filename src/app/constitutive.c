@@ -219,14 +219,8 @@ static int parse_args(int argc, char **argv, opts *o)
 static void dk15_material(mpm_config *cfg)
 {
   snprintf(cfg->material.model, sizeof cfg->material.model, "%s", "mu_i");
+  mpm_material_config_dk15(cfg);
   cfg->material.E = 1e4;
-  cfg->material.nu = 0.3;
-  cfg->material.mu_s = 0.3819;
-  cfg->material.mu_2 = 0.6435;
-  cfg->material.I0 = 0.279;
-  cfg->material.d = 0.005;
-  cfg->material.rho_s = 2450.0;
-  cfg->material.rho_c = 1500.0;
   cfg->material.A = 0.48;
   cfg->material.t0 = 1e-3;
 }
@@ -247,8 +241,13 @@ static int apply_set(const char *s, mpm_config *cfg)
   const char *key = s + 9, *val = eq + 1;
   size_t klen = (size_t)(eq - key);
   if (klen == 5 && strncmp(key, "model", 5) == 0) {
-    if (!mpm_material_lookup(val) || strlen(val) >= sizeof cfg->material.model)
-      return usage("--set '%s': unknown model (allowed: elastic, mu_i)", s);
+    if (!mpm_material_lookup(val) || strlen(val) >= sizeof cfg->material.model) {
+      fprintf(stderr, "granmpm constitutive: --set '%s': unknown model (allowed:", s);
+      for (int k = 0; mpm_material_table[k]; k++)
+        fprintf(stderr, "%s %s", k ? "," : "", mpm_material_table[k]->name);
+      fputs(") (see 'granmpm constitutive --help')\n", stderr);
+      return EXIT_USAGE;
+    }
     snprintf(cfg->material.model, sizeof cfg->material.model, "%s", val);
     return 0;
   }
@@ -284,11 +283,7 @@ static int load_material(const opts *o, const mpm_material_type **mt, mpm_materi
   *mt = mpm_material_lookup(cfg.material.model);
   if (!*mt)
     return usage("unknown material model '%s'", cfg.material.model);
-  *par = (mpm_material_params){
-    .E = cfg.material.E, .nu = cfg.material.nu, .rho_s = cfg.material.rho_s,
-    .rho_c = cfg.material.rho_c, .mu_s = cfg.material.mu_s, .mu_2 = cfg.material.mu_2,
-    .I0 = cfg.material.I0, .d = cfg.material.d, .A = cfg.material.A, .t0 = cfg.material.t0};
-  mpm_material_params_derive(par);
+  mpm_material_params_from_config(par, &cfg);
   mpm_err err = {0};
   if ((*mt)->check && (*mt)->check(par, &err) != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s%s%s\n", o->file ? o->file : "",

@@ -81,19 +81,7 @@ int mpm_app_state(int argc, char **argv)
   if (mpm_input_load(input, NULL, 0, &cfg, &err) != MPM_OK)
     return fail(err.msg);
   mpm_mesh m;
-  memset(&m, 0, sizeof m);
-  m.nx = cfg.mesh.nx;
-  m.ny = cfg.mesh.ny;
-  m.x0 = cfg.mesh.x0;
-  m.y0 = cfg.mesh.y0;
-  m.dx = cfg.mesh.dx;
-  m.dy = cfg.mesh.dy;
-  m.topology = mpm_mesh_topology_from_name(cfg.mesh.topology);
-  m.diagonal = mpm_mesh_diagonal_from_name(cfg.mesh.diagonal);
-  m.mirror_x = cfg.mesh.mirror_x;
-  m.periodic_x = cfg.bc.left == MPM_BC_PERIODIC;
-  m.periodic_y = cfg.bc.bottom == MPM_BC_PERIODIC;
-  if (mpm_mesh_setup(&m, &err) != MPM_OK)
+  if (mpm_mesh_from_config(&m, &cfg, &err) != MPM_OK)
     return fail(err.msg);
   char *text = NULL;
   size_t len = 0;

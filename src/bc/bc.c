@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/config.h"
+#include "core/names.h"
 
 static const char *const bc_names[] = {
   [MPM_BC_FREE] = "free",
@@ -15,21 +16,17 @@ static const char *const bc_names[] = {
   [MPM_BC_SYMMETRY] = "symmetry",
   [MPM_BC_PERIODIC] = "periodic",
 };
-#define NBC ((int)(sizeof bc_names / sizeof bc_names[0]))
 
 static const char *const edge_names[] = {"left", "right", "bottom", "top"};
 
 int mpm_bc_kind_from_name(const char *name)
 {
-  for (int k = 0; k < NBC; k++)
-    if (strcmp(bc_names[k], name) == 0)
-      return k;
-  return -1;
+  return mpm_names_index(bc_names, MPM_NAMES_COUNT(bc_names), name);
 }
 
 const char *mpm_bc_kind_name(int kind)
 {
-  return (kind >= 0 && kind < NBC) ? bc_names[kind] : "unknown";
+  return mpm_names_at(bc_names, MPM_NAMES_COUNT(bc_names), kind);
 }
 
 /* Mask bits an edge of a given kind sets; the normal of left/right edges is x. */
@@ -47,7 +44,7 @@ static unsigned char edge_bits(int kind, int edge)
 int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
 {
   for (int e = 0; e < 4; e++)
-    if (edge[e] < 0 || edge[e] >= NBC)
+    if (!mpm_bc_kind_name(edge[e]))
       return mpm_err_set(err, MPM_EINVAL, "boundary '%s': unknown kind %d", edge_names[e], edge[e]);
   int px = edge[MPM_EDGE_LEFT] == MPM_BC_PERIODIC, px2 = edge[MPM_EDGE_RIGHT] == MPM_BC_PERIODIC;
   int py = edge[MPM_EDGE_BOTTOM] == MPM_BC_PERIODIC, py2 = edge[MPM_EDGE_TOP] == MPM_BC_PERIODIC;

@@ -128,13 +128,13 @@ static const key_def keys[] = {
 
   NAMED(S_MATERIAL, KT_NAME, "model", C_(material.model), NK_MODEL, "mu_i"),
   NUM(S_MATERIAL, KT_REAL, "E", C_(material.E), 1e9, 0, 1e13, KF_LO_OPEN, "Pa"),
-  NUM(S_MATERIAL, KT_REAL, "nu", C_(material.nu), 0.3, -1, 0.5, KF_LO_OPEN | KF_HI_OPEN, "-"),
-  NUM(S_MATERIAL, KT_REAL, "rho_s", C_(material.rho_s), 2450, 0, 1e5, KF_LO_OPEN, "kg/m^3"),
-  NUM(S_MATERIAL, KT_REAL, "rho_c", C_(material.rho_c), 1500, 0, 1e5, KF_LO_OPEN, "kg/m^3"),
-  NUM(S_MATERIAL, KT_REAL, "mu_s", C_(material.mu_s), 0.3819, 0, 10, 0, "-"),
-  NUM(S_MATERIAL, KT_REAL, "mu_2", C_(material.mu_2), 0.6435, 0, 10, KF_LO_OPEN, "-"),
-  NUM(S_MATERIAL, KT_REAL, "I0", C_(material.I0), 0.279, 0, 10, KF_LO_OPEN, "-"),
-  NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), 0.005, 0, 1, KF_LO_OPEN, "m"),
+  NUM(S_MATERIAL, KT_REAL, "nu", C_(material.nu), MPM_DK15_NU, -1, 0.5, KF_LO_OPEN | KF_HI_OPEN, "-"),
+  NUM(S_MATERIAL, KT_REAL, "rho_s", C_(material.rho_s), MPM_DK15_RHO_S, 0, 1e5, KF_LO_OPEN, "kg/m^3"),
+  NUM(S_MATERIAL, KT_REAL, "rho_c", C_(material.rho_c), MPM_DK15_RHO_C, 0, 1e5, KF_LO_OPEN, "kg/m^3"),
+  NUM(S_MATERIAL, KT_REAL, "mu_s", C_(material.mu_s), MPM_DK15_MU_S, 0, 10, 0, "-"),
+  NUM(S_MATERIAL, KT_REAL, "mu_2", C_(material.mu_2), MPM_DK15_MU_2, 0, 10, KF_LO_OPEN, "-"),
+  NUM(S_MATERIAL, KT_REAL, "I0", C_(material.I0), MPM_DK15_I0, 0, 10, KF_LO_OPEN, "-"),
+  NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), MPM_DK15_D, 0, 1, KF_LO_OPEN, "m"),
   NUM(S_MATERIAL, KT_REAL, "A", C_(material.A), 0.48, 0, 100, 0, "-"),
   NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
   NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
@@ -199,8 +199,6 @@ static const key_def keys[] = {
 
 /* ------------------------------------------------------------- name tables */
 
-static const char *const topology_names[] = {"q4", "t3", NULL};
-static const char *const diagonal_names[] = {"/", "\\", "mirror", NULL};
 static const char *const fill_shape_names[] = {
   [MPM_FILL_RECTANGLE] = "rectangle", [MPM_FILL_DISC] = "disc",
   [MPM_FILL_POLYGON] = "polygon", [MPM_FILL_POLYGON + 1] = NULL
@@ -229,12 +227,12 @@ static const char *name_at(int kind, int i)
 {
   int j = 0;
   switch (kind) {
-  case NK_TOPOLOGY: return i < 2 ? topology_names[i] : NULL;
-  case NK_DIAGONAL: return i < 3 ? diagonal_names[i] : NULL;
+  case NK_TOPOLOGY: return mpm_mesh_topology_name(i);
+  case NK_DIAGONAL: return mpm_mesh_diagonal_name(i);
   case NK_FILL_SHAPE: return i >= 0 && i <= MPM_FILL_POLYGON ? fill_shape_names[i] : NULL;
   case NK_EDGE: return i >= 0 && i <= MPM_OUTLET_TOP ? edge_names[i] : NULL;
   case NK_DILATATION: return i >= 0 && i <= MPM_DILATATION_UNIT ? dilatation_names[i] : NULL;
-  case NK_BC: return i >= 0 && i <= MPM_BC_PERIODIC ? mpm_bc_kind_name(i) : NULL;
+  case NK_BC: return mpm_bc_kind_name(i);
   case NK_NGF_FORM: return mpm_ngf_form_name(i);
   case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_name(i);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_name(i);

@@ -71,8 +71,6 @@ static const field_spec output_fields[] = {
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define NFIELDS COUNT(output_fields)
 
-static const char *const topology_names[] = {"q4", "t3"};
-static const char *const diagonal_names[] = {"/", "\\", "mirror"};
 
 static const char xdmf_head[] =
     "<?xml version=\"1.0\" ?>\n"
@@ -296,9 +294,9 @@ static hid_t create_h5(const char *path)
   return file;
 }
 
-static const char *name_of(const char *const *names, size_t n, int i)
+static const char *known(const char *name)
 {
-  return (i >= 0 && (size_t)i < n) ? names[i] : "unknown";
+  return name ? name : "unknown";
 }
 
 /* Coordinates of the n+1 mesh lines x0 + i dx. */
@@ -325,8 +323,8 @@ static herr_t write_mesh(hid_t file, const mpm_mesh *m)
     rc = attr_int(g, "nx", m->nx) | attr_int(g, "ny", m->ny) | attr_double(g, "x0", m->x0) |
          attr_double(g, "y0", m->y0) | attr_double(g, "dx", m->dx) |
          attr_double(g, "dy", m->dy) |
-         attr_string(g, "topology", name_of(topology_names, COUNT(topology_names), m->topology)) |
-         attr_string(g, "diagonal", name_of(diagonal_names, COUNT(diagonal_names), m->diagonal)) |
+         attr_string(g, "topology", known(mpm_mesh_topology_name(m->topology))) |
+         attr_string(g, "diagonal", known(mpm_mesh_diagonal_name(m->diagonal))) |
          attr_double(g, "mirror_x", m->mirror_x) | attr_int(g, "periodic_x", m->periodic_x) |
          attr_int(g, "periodic_y", m->periodic_y);
   if (rc >= 0)

@@ -8,6 +8,7 @@
 #ifndef MPM_MATERIAL_MATERIAL_H
 #define MPM_MATERIAL_MATERIAL_H
 
+#include "core/config.h"
 #include "core/error.h"
 #include "core/tensor3.h"
 
@@ -31,6 +32,23 @@ typedef struct mpm_material_params {
 
 /* Fill G, K, dmu, b, xi from the input values. */
 void mpm_material_params_derive(mpm_material_params *par);
+
+/* [DK15] Table 1 (glass beads, d = 5 mm): the input defaults, the
+ * constitutive driver's built-in material and the tests' material. */
+#define MPM_DK15_NU 0.3
+#define MPM_DK15_RHO_S 2450.0
+#define MPM_DK15_RHO_C 1500.0
+#define MPM_DK15_MU_S 0.3819
+#define MPM_DK15_MU_2 0.6435
+#define MPM_DK15_I0 0.279
+#define MPM_DK15_D 0.005
+
+/* Set nu, rho_s, rho_c, mu_s, mu_2, I0 and d of cfg->material to Table 1. */
+void mpm_material_config_dk15(mpm_config *cfg);
+
+/* The parameters of a resolved input's material section, derived constants
+ * filled (the model itself is looked up by name: mpm_material_lookup). */
+void mpm_material_params_from_config(mpm_material_params *par, const mpm_config *cfg);
 
 /* Constitutive state of one point, gathered from the point store. */
 typedef struct mpm_mpoint {

@@ -32,37 +32,30 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/names.h"
 #include "core/points.h"
 
 static const char *const form_names[] = {"dk", "hs21"};
-#define NGF_NFORMS ((int)(sizeof form_names / sizeof form_names[0]))
 static const char *const p_sample_names[] = {"point", "unit"};
-#define NGF_NSAMPLES ((int)(sizeof p_sample_names / sizeof p_sample_names[0]))
 
 int mpm_ngf_form_from_name(const char *name)
 {
-  for (int f = 0; f < NGF_NFORMS; f++)
-    if (strcmp(name, form_names[f]) == 0)
-      return f;
-  return -1;
+  return mpm_names_index(form_names, MPM_NAMES_COUNT(form_names), name);
 }
 
 const char *mpm_ngf_form_name(int form)
 {
-  return form >= 0 && form < NGF_NFORMS ? form_names[form] : NULL;
+  return mpm_names_at(form_names, MPM_NAMES_COUNT(form_names), form);
 }
 
 int mpm_ngf_p_sample_from_name(const char *name)
 {
-  for (int k = 0; k < NGF_NSAMPLES; k++)
-    if (strcmp(name, p_sample_names[k]) == 0)
-      return k;
-  return -1;
+  return mpm_names_index(p_sample_names, MPM_NAMES_COUNT(p_sample_names), name);
 }
 
 const char *mpm_ngf_p_sample_name(int sample)
 {
-  return sample >= 0 && sample < NGF_NSAMPLES ? p_sample_names[sample] : NULL;
+  return mpm_names_at(p_sample_names, MPM_NAMES_COUNT(p_sample_names), sample);
 }
 
 int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho)

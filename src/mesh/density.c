@@ -24,6 +24,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/names.h"
+
 static const char *const rule_names[] = {
   [MPM_DENSITY_POINT] = "point", [MPM_DENSITY_ELEMENT] = "element",
   [MPM_DENSITY_HYBRID] = "hybrid", [MPM_DENSITY_UNIT] = "unit"
@@ -31,15 +33,12 @@ static const char *const rule_names[] = {
 
 int mpm_density_rule_from_name(const char *name)
 {
-  for (int r = MPM_DENSITY_POINT; r <= MPM_DENSITY_UNIT; r++)
-    if (strcmp(name, rule_names[r]) == 0)
-      return r;
-  return -1;
+  return mpm_names_index(rule_names, MPM_NAMES_COUNT(rule_names), name);
 }
 
 const char *mpm_density_rule_name(int rule)
 {
-  return rule >= MPM_DENSITY_POINT && rule <= MPM_DENSITY_UNIT ? rule_names[rule] : NULL;
+  return mpm_names_at(rule_names, MPM_NAMES_COUNT(rule_names), rule);
 }
 
 void mpm_density_free(mpm_density *ws)

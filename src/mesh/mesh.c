@@ -11,6 +11,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/names.h"
+
 /* ---------------------------------------------------------------- setup */
 
 /* Units along one axis: n >= 1, periodic flag 0/1, n >= 2 when periodic. */
@@ -97,28 +99,50 @@ int mpm_mesh_setup(mpm_mesh *m, mpm_err *err)
 
 /* ---------------------------------------------------------------- names */
 
+static const char *const topology_names[] = {[MPM_TOPO_Q4] = "q4", [MPM_TOPO_T3] = "t3"};
+static const char *const diagonal_names[] = {
+  [MPM_DIAG_SLASH] = "/", [MPM_DIAG_BACKSLASH] = "\\", [MPM_DIAG_MIRROR] = "mirror"
+};
+
 int mpm_mesh_topology_from_name(const char *name)
 {
-  if (!name)
-    return -1;
-  if (strcmp(name, "q4") == 0)
-    return MPM_TOPO_Q4;
-  if (strcmp(name, "t3") == 0)
-    return MPM_TOPO_T3;
-  return -1;
+  return mpm_names_index(topology_names, MPM_NAMES_COUNT(topology_names), name);
+}
+
+const char *mpm_mesh_topology_name(int topology)
+{
+  return mpm_names_at(topology_names, MPM_NAMES_COUNT(topology_names), topology);
 }
 
 int mpm_mesh_diagonal_from_name(const char *name)
 {
-  if (!name)
-    return -1;
-  if (strcmp(name, "/") == 0)
-    return MPM_DIAG_SLASH;
-  if (strcmp(name, "\\") == 0)
-    return MPM_DIAG_BACKSLASH;
-  if (strcmp(name, "mirror") == 0)
-    return MPM_DIAG_MIRROR;
-  return -1;
+  return mpm_names_index(diagonal_names, MPM_NAMES_COUNT(diagonal_names), name);
+}
+
+const char *mpm_mesh_diagonal_name(int diagonal)
+{
+  return mpm_names_at(diagonal_names, MPM_NAMES_COUNT(diagonal_names), diagonal);
+}
+
+int mpm_mesh_from_config(mpm_mesh *m, const mpm_config *cfg, mpm_err *err)
+{
+  memset(m, 0, sizeof *m);
+  m->nx = cfg->mesh.nx;
+  m->ny = cfg->mesh.ny;
+  m->x0 = cfg->mesh.x0;
+  m->y0 = cfg->mesh.y0;
+  m->dx = cfg->mesh.dx;
+  m->dy = cfg->mesh.dy;
+  m->topology = mpm_mesh_topology_from_name(cfg->mesh.topology);
+  m->diagonal = mpm_mesh_diagonal_from_name(cfg->mesh.diagonal);
+  m->mirror_x = cfg->mesh.mirror_x;
+  m->periodic_x = cfg->bc.left == MPM_BC_PERIODIC;
+  m->periodic_y = cfg->bc.bottom == MPM_BC_PERIODIC;
+  if (m->topology < 0)
+    return mpm_err_set(err, MPM_EINPUT, "mesh.topology '%s' unknown", cfg->mesh.topology);
+  if (m->diagonal < 0)
+    return mpm_err_set(err, MPM_EINPUT, "mesh.diagonal '%s' unknown", cfg->mesh.diagonal);
+  return mpm_mesh_setup(m, err);
 }
 
 /* ---------------------------------------------------------------- nodes */

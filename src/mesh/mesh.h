@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 
+#include "core/config.h"
 #include "core/error.h"
 
 enum mpm_topology { MPM_TOPO_Q4 = 0, MPM_TOPO_T3 };
@@ -34,9 +35,15 @@ typedef struct mpm_mesh {
 /* Validate the caller's fields and fill the derived ones. */
 int mpm_mesh_setup(mpm_mesh *m, mpm_err *err);
 
-/* Name <-> enum ("q4", "t3"; "/", "\\", "mirror"). Return -1 if unknown. */
+/* Name <-> enum ("q4", "t3"; "/", "\\", "mirror"): -1 / NULL if unknown. */
 int mpm_mesh_topology_from_name(const char *name);
+const char *mpm_mesh_topology_name(int topology);
 int mpm_mesh_diagonal_from_name(const char *name);
+const char *mpm_mesh_diagonal_name(int diagonal);
+
+/* The mesh of a resolved input (mesh section, periodic from the bc section),
+ * set up; MPM_EINPUT names an unknown topology or diagonal. */
+int mpm_mesh_from_config(mpm_mesh *m, const mpm_config *cfg, mpm_err *err);
 
 /* Storage index of logical node (i, j), 0 <= i <= nx, 0 <= j <= ny, with
  * periodic aliasing. */

@@ -20,21 +20,18 @@
 #include <string.h>
 
 #include "core/config.h"
+#include "core/names.h"
 
 static const char *const rule_names[] = {"centre", "extent"};
-#define NRULES ((int)(sizeof rule_names / sizeof rule_names[0]))
 
 int mpm_nonlocal_rule_from_name(const char *name)
 {
-  for (int k = 0; name && k < NRULES; k++)
-    if (strcmp(name, rule_names[k]) == 0)
-      return k;
-  return -1;
+  return mpm_names_index(rule_names, MPM_NAMES_COUNT(rule_names), name);
 }
 
 const char *mpm_nonlocal_rule_name(int rule)
 {
-  return rule >= 0 && rule < NRULES ? rule_names[rule] : NULL;
+  return mpm_names_at(rule_names, MPM_NAMES_COUNT(rule_names), rule);
 }
 
 int mpm_nonlocal_ghost_of_bc(int bc_kind)

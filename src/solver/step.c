@@ -32,46 +32,6 @@
 
 /* ---- set-up -------------------------------------------------------------- */
 
-static int mesh_from_config(mpm_mesh *m, const mpm_config *cfg, mpm_err *err)
-{
-  memset(m, 0, sizeof *m);
-  m->nx = cfg->mesh.nx;
-  m->ny = cfg->mesh.ny;
-  m->x0 = cfg->mesh.x0;
-  m->y0 = cfg->mesh.y0;
-  m->dx = cfg->mesh.dx;
-  m->dy = cfg->mesh.dy;
-  m->topology = mpm_mesh_topology_from_name(cfg->mesh.topology);
-  m->diagonal = mpm_mesh_diagonal_from_name(cfg->mesh.diagonal);
-  m->mirror_x = cfg->mesh.mirror_x;
-  m->periodic_x = cfg->bc.left == MPM_BC_PERIODIC;
-  m->periodic_y = cfg->bc.bottom == MPM_BC_PERIODIC;
-  if (m->topology < 0)
-    return mpm_err_set(err, MPM_EINPUT, "mesh.topology '%s' unknown", cfg->mesh.topology);
-  if (m->diagonal < 0)
-    return mpm_err_set(err, MPM_EINPUT, "mesh.diagonal '%s' unknown", cfg->mesh.diagonal);
-  return mpm_mesh_setup(m, err);
-}
-
-static void params_from_config(mpm_material_params *par, const mpm_config *cfg)
-{
-  memset(par, 0, sizeof *par);
-  par->E = cfg->material.E;
-  par->nu = cfg->material.nu;
-  par->rho_s = cfg->material.rho_s;
-  par->rho_c = cfg->material.rho_c;
-  par->mu_s = cfg->material.mu_s;
-  par->mu_2 = cfg->material.mu_2;
-  par->I0 = cfg->material.I0;
-  par->d = cfg->material.d;
-  par->A = cfg->material.A;
-  par->t0 = cfg->material.t0;
-  par->form = cfg->material.form;
-  par->p_sample = cfg->material.p_sample;
-  par->t_seed = cfg->material.t_seed;
-  mpm_material_params_derive(par);
-}
-
 static int nodal_alloc(mpm_sim *s)
 {
   size_t n = (size_t)s->mesh.nnodes;
@@ -102,7 +62,7 @@ static double stable_dt(const mpm_config *cfg, const mpm_material_params *par)
 void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
 {
   mpm_material_params par;
-  params_from_config(&par, cfg);
+  mpm_material_params_from_config(&par, cfg);
   *dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(cfg, &par);
   *n_sub = cfg->material.n_sub > 0 ? cfg->material.n_sub : 1;
   if (cfg->material.dt_sub > 0.0) {
@@ -166,7 +126,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   if (!s)
     return mpm_err_set(err, MPM_ENOMEM, "simulation: out of memory");
   s->cfg = *cfg;
-  int rc = mesh_from_config(&s->mesh, cfg, err);
+  int rc = mpm_mesh_from_config(&s->mesh, cfg, err);
   if (rc == MPM_OK) {
     int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
     rc = mpm_bc_setup(&s->bc, &s->mesh, edge, err);
@@ -182,7 +142,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   if (rc == MPM_OK && !(s->mat = mpm_material_lookup(cfg->material.model)))
     rc = mpm_err_set(err, MPM_EINPUT, "material.model '%s' unknown", cfg->material.model);
   if (rc == MPM_OK) {
-    params_from_config(&s->par, cfg);
+    mpm_material_params_from_config(&s->par, cfg);
     rc = s->mat->check(&s->par, err);
   }
   if (rc == MPM_OK && !(s->pts = mpm_points_alloc(1024)))
