@@ -1636,12 +1636,8 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
   const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
   if (!t || !t->check)
     return MPM_OK;
-  mpm_material_params par = {
-    .E = cfg->material.E, .nu = cfg->material.nu, .rho_s = cfg->material.rho_s,
-    .rho_c = cfg->material.rho_c, .mu_s = cfg->material.mu_s, .mu_2 = cfg->material.mu_2,
-    .I0 = cfg->material.I0, .d = cfg->material.d, .A = cfg->material.A, .t0 = cfg->material.t0,
-    .form = cfg->material.form, .p_sample = cfg->material.p_sample, .t_seed = cfg->material.t_seed};
-  mpm_material_params_derive(&par);
+  mpm_material_params par;
+  mpm_material_params_from_config(&par, cfg);
   mpm_err e = {0};
   if (t->check(&par, &e) == MPM_OK)
     return MPM_OK;
