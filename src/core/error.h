@@ -17,8 +17,7 @@
   X(MPM_EIO,      "input/output error")                     \
   X(MPM_EOUTSIDE, "material point left the mesh")           \
   X(MPM_ENONFINITE, "non-finite value")                     \
-  X(MPM_ESOLVE,   "linear solve failed")                    \
-  X(MPM_EUNSTABLE, "numerical instability")
+  X(MPM_ESOLVE,   "linear solve failed")
 
 #define MPM_ERROR_ENUM_(name, msg) name,
 enum mpm_status { MPM_ERROR_LIST(MPM_ERROR_ENUM_) MPM_NSTATUS };
