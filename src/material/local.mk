@@ -18,3 +18,9 @@ tests_test_reference_LDADD = libmpm_material.la libmpm_core.la $(GSL_LIBS) $(CHE
 tests_test_ngf_SOURCES = tests/test_ngf.c
 tests_test_ngf_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_ngf_LDADD = libmpm_material.la libmpm_core.la $(GSL_LIBS) $(CHECK_LIBS) -lm
+
+check_PROGRAMS += tests/test_material
+TESTS += tests/test_material
+tests_test_material_SOURCES = tests/test_material.c
+tests_test_material_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_material_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm
