@@ -200,9 +200,11 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
   if (!(par->t0 > 0.0 && isfinite(par->t0)))
     return mpm_err_set(err, MPM_EINPUT, "key 'material.t0' = %g: must be > 0 s", par->t0);
   if (!mpm_ngf_form_name(par->form))
-    return mpm_err_set(err, MPM_EINPUT, "NGF form %d unknown (\"dk\" or \"hs21\")", par->form);
+    return mpm_err_set(err, MPM_EINPUT,
+                       "key 'material.form' = %d: unknown (allowed: \"dk\", \"hs21\")", par->form);
   if (!mpm_ngf_p_sample_name(par->p_sample))
-    return mpm_err_set(err, MPM_EINPUT, "NGF p sampling %d unknown (\"point\" or \"unit\")",
+    return mpm_err_set(err, MPM_EINPUT,
+                       "key 'material.p_sample' = %d: unknown (allowed: \"point\", \"unit\")",
                        par->p_sample);
   if (!(par->t_seed >= 0.0 && isfinite(par->t_seed)))
     return mpm_err_set(err, MPM_EINPUT, "key 'material.t_seed' = %g: must be >= 0 s",
