@@ -1,4 +1,4 @@
-/* test_input.c: the input reader (src/io/input.c): defaults, every key parsed,
+/* test_input.c: the input reader (src/io/input*.c): defaults, every key parsed,
  * --set overrides, write -> load round trips, one exact message for every
  * class of bad input (each file in tests/inputs/bad carries its message on an
  * "# expect:" line; one ending in "..." is a prefix, for lists of names that
