@@ -1,4 +1,4 @@
-/* test_input.c: the input reader (src/io/input.c): defaults, every key parsed,
+/* test_input.c: the input reader (src/io/input*.c): defaults, every key parsed,
  * --set overrides, write -> load round trips, one exact message for every
  * class of bad input (each file in tests/inputs/bad carries its message on an
  * "# expect:" line; one ending in "..." is a prefix, for lists of names that
@@ -425,6 +425,23 @@ START_TEST(t_bad_override)
 }
 END_TEST
 
+/* A list longer than a polygon holds, given with --set (the argument is cut
+ * in the message), and a fill title asked for when the file has no fill. */
+START_TEST(t_bad_override_list)
+{
+  char set[400] = "fill.a.x={0";
+  for (int i = 1; i <= 64; i++)
+    snprintf(set + strlen(set), sizeof set - strlen(set), ",%d", i % 10);
+  strcat(set, "}");
+  expect_error(BASE, set, "--set 'fill.a.x={0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,"
+                          "...': key 'fill.a.x': more than 64 values (allowed: 3 ... 64 "
+                          "vertices)");
+  expect_error("mesh {\n  nx = 1\n}\n", "fill.b.ppu=3",
+               "--set 'fill.b.ppu=3': no fill titled 'b' (allowed: the file has no fill "
+               "section)");
+}
+END_TEST
+
 /* ------------------------------------------------------------- round trips */
 
 START_TEST(t_round_trip_files)
@@ -548,6 +565,16 @@ START_TEST(t_file_errors)
     ck_assert_str_eq(err.msg, CASE ": cannot open input file: Permission denied");
     chmod(CASE, 0644);
   }
+  /* one byte over the size limit (16 MiB of blanks): refused before parsing */
+  size_t big = ((size_t)16 << 20) + 1;
+  char *blanks = malloc(big);
+  ck_assert_ptr_nonnull(blanks);
+  memset(blanks, ' ', big);
+  write_bytes(CASE, blanks, big);
+  free(blanks);
+  ck_assert_int_eq(mpm_input_load(CASE, NULL, 0, &c, &err), MPM_EINPUT);
+  ck_assert_str_eq(err.msg, CASE ": input file larger than 16777216 bytes (allowed: at most "
+                   "16777216)");
   /* a path with a newline still gives one line */
   ck_assert_int_eq(mpm_input_load(TMP_DIR "/a\nb.conf", NULL, 0, &c, &err), MPM_EIO);
   ck_assert_ptr_null(strchr(err.msg, '\n'));
@@ -563,7 +590,9 @@ START_TEST(t_bad_arguments)
   ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, -1, &c, &err), MPM_EINVAL);
   ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, 1, &c, &err), MPM_EINVAL);
   ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", sets, 1, &c, &err), MPM_EINVAL);
+  ck_assert_str_eq(err.msg, "--set number 1 is missing");
   ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, 0, NULL, &err), MPM_EINVAL);
+  ck_assert_str_eq(err.msg, "mpm_input_load: invalid arguments");
   ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, 0, &c, NULL), MPM_OK);
   ck_assert_int_eq(mpm_input_load(TMP_DIR "/missing.conf", NULL, 0, &c, NULL), MPM_EIO);
 }
@@ -797,6 +826,7 @@ static Suite *input_suite(void)
   tcase_add_loop_test(bad, t_bad_file, 0, count_bad_files());
   tcase_add_test(bad, t_bad_file_count);
   tcase_add_loop_test(bad, t_bad_override, 0, (int)(sizeof bad_sets / sizeof bad_sets[0]));
+  tcase_add_test(bad, t_bad_override_list);
   tcase_add_test(bad, t_file_errors);
   tcase_add_test(bad, t_bad_arguments);
   tcase_add_test(bad, t_error_lines);

@@ -12,12 +12,19 @@ tests_test_output_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LIBS) \
 	$(CHECK_LIBS) -lm
 
+# The input reader is input.c (above) and the parts it is split into by
+# concern; src/io/input_internal.h says which file holds what.
+INPUT_PARTS = src/io/input_internal.h src/io/input_keys.c src/io/input_text.c \
+	src/io/input_parse.c src/io/input_value.c src/io/input_override.c src/io/input_check.c \
+	src/io/input_write.c
+libmpm_io_la_SOURCES += $(INPUT_PARTS)
+
 # test_input compiles the input parser directly, so it needs libconfuse and the
 # name tables (material, shape, bc, mesh, nonlocal) but not HDF5. cli-input.sh runs
 # `granmpm check` on every file under tests/inputs/bad and on the good inputs.
 check_PROGRAMS += tests/test_input
 TESTS += tests/test_input tests/cli-input.sh tests/cli-extract.sh
-tests_test_input_SOURCES = tests/test_input.c src/io/input.c
+tests_test_input_SOURCES = tests/test_input.c src/io/input.c $(INPUT_PARTS)
 tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
 tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \

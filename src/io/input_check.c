@@ -1,0 +1,427 @@
+/* input_check.c: the relations between keys that no single range can state
+ * (mesh size, time, gravity given one way, material parameters in order,
+ * periodic edges in pairs, each fill inside the mesh with its shape's keys,
+ * outlet, wall, region), the defaults that follow other keys (t_seed, fill
+ * density, stop.t_min, gravity from an angle), and the model's own parameter
+ * check. A relation between two keys is reported at the one set last. */
+#include <math.h>
+#include <string.h>
+
+#include "bc/bc.h"
+#include "io/input_internal.h"
+#include "material/material.h"
+
+#define MAX_NODES 1e8  /* (nx + 1)(ny + 1) */
+#define GEOM_TOL 1e-9  /* fills may overshoot the mesh by this many units */
+
+static int is_set(const in_ctx *c, int key, int fill)
+{
+  const loc *l = &c->at[fill < 0 ? 0 : fill][key];
+  return l->line > 0 || l->ovr > 0;
+}
+
+/* 1 if a was set after b (a --set counts after the file). */
+static int later(loc a, loc b)
+{
+  if (a.ovr != b.ovr)
+    return a.ovr > b.ovr;
+  return a.line > b.line;
+}
+
+/* Where to report a relation between keys a and b: the one set last. */
+static where blame(const in_ctx *c, const mpm_config *cfg, int fill, int a, int b)
+{
+  const loc *la = &c->at[fill < 0 ? 0 : fill][a], *lb = &c->at[fill < 0 ? 0 : fill][b];
+  int k = later(*lb, *la) ? b : a;
+  where w = {.at = k == a ? *la : *lb, .sec = in_keys[k].sec, .key = k, .fill = fill,
+             .title = fill >= 0 ? cfg->fill[fill].name : NULL};
+  return w;
+}
+
+static int key_index(int sec, const char *name)
+{
+  return in_find_key(sec, name);  /* the table is fixed: names used here exist */
+}
+
+static int check_required(in_ctx *c)
+{
+  for (int k = 0; k < NKEYS; k++) {
+    if (in_keys[k].sec == S_FILL || !(in_keys[k].flags & KF_REQUIRED) || is_set(c, k, -1))
+      continue;
+    where w = {.sec = in_keys[k].sec, .key = k, .fill = -1};
+    return in_fail_key(c, &w, "required, not set (allowed: %s)", in_allowed_text(&in_keys[k]).s);
+  }
+  return MPM_OK;
+}
+
+static int check_mesh(in_ctx *c, const mpm_config *cfg)
+{
+  double nodes = (cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0);
+  if (nodes > MAX_NODES) {
+    where w = blame(c, cfg, -1, key_index(S_MESH, "nx"), key_index(S_MESH, "ny"));
+    return in_fail_key(c, &w, "%d x %d units make %s nodes (allowed: (nx+1)(ny+1) <= %s)",
+                       cfg->mesh.nx, cfg->mesh.ny, in_num(nodes).s, in_num(MAX_NODES).s);
+  }
+  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
+      (strcmp(cfg->mesh.shape, "delta") != 0 || strcmp(cfg->mesh.topology, "q4") != 0)) {
+    const int ks = key_index(S_MESH, "shape"), kt = key_index(S_MESH, "topology");
+    where w = blame(c, cfg, -1, key_index(S_MESH, "dilatation"),
+                    strcmp(cfg->mesh.shape, "delta") != 0 ? ks : kt);
+    return in_fail_key(c, &w, "dilatation = \"unit\" with shape = \"%s\", topology = \"%s\" "
+                       "(allowed: shape = \"delta\" and topology = \"q4\")",
+                       cfg->mesh.shape, cfg->mesh.topology);
+  }
+  double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
+  double m = cfg->mesh.mirror_x;
+  if (strcmp(cfg->mesh.diagonal, "mirror") == 0 && (m < cfg->mesh.x0 - tol || m > x1 + tol)) {
+    where w = blame(c, cfg, -1, key_index(S_MESH, "mirror_x"), key_index(S_MESH, "diagonal"));
+    return in_fail_key(c, &w, "mirror_x = %s lies outside the mesh (allowed: %s ... %s m)",
+                       in_num(m).s, in_approx(cfg->mesh.x0).s, in_approx(x1).s);
+  }
+  return MPM_OK;
+}
+
+static int check_time(in_ctx *c, const mpm_config *cfg)
+{
+  if (cfg->time.frame_dt > cfg->time.t_end) {
+    where w = blame(c, cfg, -1, key_index(S_TIME, "frame_dt"), key_index(S_TIME, "t_end"));
+    return in_fail_key(c, &w, "frame_dt = %s > t_end = %s (allowed: frame_dt <= t_end)",
+                       in_num(cfg->time.frame_dt).s, in_num(cfg->time.t_end).s);
+  }
+  return MPM_OK;
+}
+
+/* Gravity is either the vector (gx, gy) or an incline angle with a magnitude
+ * g: gx = g sin(angle), gy = -g cos(angle), so material flows towards +x on a
+ * base along x. The two ways cannot be mixed. */
+static int check_gravity(in_ctx *c, mpm_config *cfg)
+{
+  const int ka = key_index(S_GRAVITY, "angle"), kg = key_index(S_GRAVITY, "g");
+  const int kx = key_index(S_GRAVITY, "gx"), ky = key_index(S_GRAVITY, "gy");
+  const int polar = is_set(c, ka, -1) ? ka : is_set(c, kg, -1) ? kg : -1;
+  const int cart = is_set(c, kx, -1) ? kx : is_set(c, ky, -1) ? ky : -1;
+  cfg->gravity.use_angle = polar >= 0;
+  if (polar < 0)
+    return MPM_OK;
+  if (cart >= 0) {
+    where w = blame(c, cfg, -1, polar, cart);
+    return in_fail_key(c, &w, "gravity given both as gx, gy and as angle, g "
+                       "(allowed: one of the two)");
+  }
+  const double a = cfg->gravity.angle * (3.14159265358979323846 / 180.0);  /* deg -> rad */
+  cfg->gravity.gx = cfg->gravity.g * sin(a);
+  cfg->gravity.gy = -cfg->gravity.g * cos(a);
+  return MPM_OK;
+}
+
+/* The kinetic-energy stop test starts after the gravity ramp unless told
+ * otherwise: material loaded from rest has no kinetic energy at first. */
+static void resolve_stop(in_ctx *c, mpm_config *cfg)
+{
+  if (!is_set(c, key_index(S_STOP, "t_min"), -1))
+    cfg->stop.t_min = cfg->gravity.t_ramp;
+}
+
+static int check_material(in_ctx *c, mpm_config *cfg)
+{
+  for (int k = 0; k < NKEYS; k++)  /* NGF seeding time: 10 t0 unless given ([DK-silo] 6) */
+    if ((in_keys[k].flags & KF_T0X10) && !is_set(c, k, -1))
+      *(double *)(void *)((char *)cfg + in_keys[k].off) = 10.0 * cfg->material.t0;
+  if (cfg->material.rho_c > cfg->material.rho_s) {
+    where w = blame(c, cfg, -1, key_index(S_MATERIAL, "rho_c"), key_index(S_MATERIAL, "rho_s"));
+    return in_fail_key(c, &w, "rho_c = %s > rho_s = %s (allowed: rho_c <= rho_s)",
+                       in_num(cfg->material.rho_c).s, in_num(cfg->material.rho_s).s);
+  }
+  const int kn = key_index(S_MATERIAL, "n_sub"), kd = key_index(S_MATERIAL, "dt_sub");
+  if (cfg->material.n_sub > 1 && cfg->material.dt_sub > 0.0) {  /* two ways to say it */
+    where w = blame(c, cfg, -1, kd, kn);
+    return in_fail_key(c, &w, "n_sub = %d with dt_sub = %s s (allowed: n_sub = 1 or dt_sub = 0)",
+                       cfg->material.n_sub, in_num(cfg->material.dt_sub).s);
+  }
+  if (cfg->material.mu_s >= cfg->material.mu_2) {
+    where w = blame(c, cfg, -1, key_index(S_MATERIAL, "mu_s"), key_index(S_MATERIAL, "mu_2"));
+    return in_fail_key(c, &w, "mu_s = %s >= mu_2 = %s (allowed: mu_s < mu_2)",
+                       in_num(cfg->material.mu_s).s, in_num(cfg->material.mu_2).s);
+  }
+  return MPM_OK;
+}
+
+static int check_periodic_pair(in_ctx *c, const mpm_config *cfg, const char *a, const char *b,
+                               int ka, int kb)
+{
+  int pa = ka == MPM_BC_PERIODIC, pb = kb == MPM_BC_PERIODIC;
+  if (pa == pb)
+    return MPM_OK;
+  where w = blame(c, cfg, -1, key_index(S_BOUNDARY, a), key_index(S_BOUNDARY, b));
+  return in_fail_key(c, &w,
+                     "%s = \"%s\" but %s = \"%s\" (allowed: %s and %s both \"periodic\" or neither)",
+                     a, mpm_bc_kind_name(ka), b, mpm_bc_kind_name(kb), a, b);
+}
+
+static int check_boundary(in_ctx *c, const mpm_config *cfg)
+{
+  if (check_periodic_pair(c, cfg, "left", "right", cfg->bc.left, cfg->bc.right) != MPM_OK)
+    return MPM_EINPUT;
+  return check_periodic_pair(c, cfg, "bottom", "top", cfg->bc.bottom, cfg->bc.top);
+}
+
+/* Keys of another shape must not be set; the shape's own required keys must. */
+static int check_fill_keys(in_ctx *c, const mpm_config *cfg, int i)
+{
+  const mpm_fill_config *f = &cfg->fill[i];
+  int mask = 1 << f->shape;
+  const char *shape = in_name_at(NK_FILL_SHAPE, f->shape);
+  for (int k = 0; k < NKEYS; k++) {
+    if (in_keys[k].sec != S_FILL || !in_keys[k].shapes)
+      continue;
+    where w = {.at = c->at[i][k], .sec = S_FILL, .key = k, .fill = i, .title = f->name};
+    if (!(in_keys[k].shapes & mask) && is_set(c, k, i))
+      return in_fail_key(c, &w, "not used by shape \"%s\" (allowed keys for \"%s\": %s)", shape,
+                         shape, in_key_list(S_FILL, mask).s);
+    if ((in_keys[k].shapes & mask) && !is_set(c, k, i))
+      return in_fail_key(c, &w, "required for shape \"%s\", not set (allowed: %s)", shape,
+                         in_allowed_text(&in_keys[k]).s);
+  }
+  return MPM_OK;
+}
+
+static int check_span(in_ctx *c, const mpm_config *cfg, int i, int ka, int kb, double lo,
+                      double hi, int along_x)
+{
+  double m0 = along_x ? cfg->mesh.x0 : cfg->mesh.y0;
+  double d = along_x ? cfg->mesh.dx : cfg->mesh.dy;
+  double m1 = m0 + (along_x ? cfg->mesh.nx : cfg->mesh.ny) * d, tol = GEOM_TOL * d;
+  if (lo >= m0 - tol && hi <= m1 + tol)
+    return MPM_OK;
+  where w = blame(c, cfg, i, ka, kb);
+  return in_fail_key(c, &w, "the fill spans %s %s ... %s, outside the mesh (allowed: %s ... %s m)",
+                     along_x ? "x" : "y", in_approx(lo).s, in_approx(hi).s, in_approx(m0).s,
+                     in_approx(m1).s);
+}
+
+static int check_rectangle(in_ctx *c, const mpm_config *cfg, int i)
+{
+  const mpm_fill_config *f = &cfg->fill[i];
+  int kx0 = key_index(S_FILL, "xmin"), kx1 = key_index(S_FILL, "xmax");
+  int ky0 = key_index(S_FILL, "ymin"), ky1 = key_index(S_FILL, "ymax");
+  if (!(f->xmin < f->xmax)) {
+    where w = blame(c, cfg, i, kx1, kx0);
+    return in_fail_key(c, &w, "xmin = %s >= xmax = %s (allowed: xmin < xmax)", in_num(f->xmin).s,
+                       in_num(f->xmax).s);
+  }
+  if (!(f->ymin < f->ymax)) {
+    where w = blame(c, cfg, i, ky1, ky0);
+    return in_fail_key(c, &w, "ymin = %s >= ymax = %s (allowed: ymin < ymax)", in_num(f->ymin).s,
+                       in_num(f->ymax).s);
+  }
+  if (check_span(c, cfg, i, kx1, kx0, f->xmin, f->xmax, 1) != MPM_OK)
+    return MPM_EINPUT;
+  return check_span(c, cfg, i, ky1, ky0, f->ymin, f->ymax, 0);
+}
+
+static int check_disc(in_ctx *c, const mpm_config *cfg, int i)
+{
+  const mpm_fill_config *f = &cfg->fill[i];
+  int kr = key_index(S_FILL, "radius");
+  if (check_span(c, cfg, i, key_index(S_FILL, "cx"), kr, f->cx - f->radius, f->cx + f->radius,
+                 1) != MPM_OK)
+    return MPM_EINPUT;
+  return check_span(c, cfg, i, key_index(S_FILL, "cy"), kr, f->cy - f->radius,
+                    f->cy + f->radius, 0);
+}
+
+static void bounds(const double *v, int n, double *lo, double *hi)
+{
+  *lo = *hi = v[0];
+  for (int j = 1; j < n; j++) {
+    *lo = v[j] < *lo ? v[j] : *lo;
+    *hi = v[j] > *hi ? v[j] : *hi;
+  }
+}
+
+static int check_polygon(in_ctx *c, mpm_config *cfg, int i)
+{
+  mpm_fill_config *f = &cfg->fill[i];
+  int kx = key_index(S_FILL, "x"), ky = key_index(S_FILL, "y");
+  int nx = c->nlist[i][0], ny = c->nlist[i][1];
+  where w = blame(c, cfg, i, ky, kx);
+  if (nx != ny)
+    return in_fail_key(c, &w, "x has %d values, y has %d (allowed: as many x values as y values)",
+                       nx, ny);
+  if (nx < 3)
+    return in_fail_key(c, &w, "%d vertices (allowed: 3 ... %d vertices)", nx, MPM_MAX_POLY);
+  f->nvert = nx;
+  double area = 0, x0, x1, y0, y1;
+  for (int a = 0, b = nx - 1; a < nx; b = a++)
+    area += f->px[b] * f->py[a] - f->px[a] * f->py[b];  /* 2A = sum x_b y_a - x_a y_b */
+  bounds(f->px, nx, &x0, &x1);
+  bounds(f->py, nx, &y0, &y1);
+  if (!(fabs(area) > 1e-12 * (x1 - x0) * (y1 - y0)))
+    return in_fail_key(c, &w,
+                       "the polygon encloses no area (allowed: 3 ... %d vertices around a region)",
+                       MPM_MAX_POLY);
+  if (check_span(c, cfg, i, kx, ky, x0, x1, 1) != MPM_OK)
+    return MPM_EINPUT;
+  return check_span(c, cfg, i, ky, kx, y0, y1, 0);
+}
+
+static int check_fill(in_ctx *c, mpm_config *cfg, int i)
+{
+  mpm_fill_config *f = &cfg->fill[i];
+  int rc = check_fill_keys(c, cfg, i);
+  if (rc == MPM_OK && f->shape == MPM_FILL_RECTANGLE)
+    rc = check_rectangle(c, cfg, i);
+  else if (rc == MPM_OK && f->shape == MPM_FILL_DISC)
+    rc = check_disc(c, cfg, i);
+  else if (rc == MPM_OK)
+    rc = check_polygon(c, cfg, i);
+  if (rc != MPM_OK)
+    return rc;
+  for (int k = 0; k < NKEYS; k++)  /* defaults taken from the material */
+    if ((in_keys[k].flags & KF_RHO_C) && !is_set(c, k, i))
+      *(double *)(void *)((char *)f + in_keys[k].off) = cfg->material.rho_c;
+  int kd = key_index(S_FILL, "density");
+  if (is_set(c, kd, i) && f->density > cfg->material.rho_s) {
+    where w = {.at = c->at[i][kd], .sec = S_FILL, .key = kd, .fill = i, .title = f->name};
+    return in_fail_key(c, &w, "density = %s > material.rho_s = %s (allowed: density <= rho_s)",
+                       in_num(f->density).s, in_num(cfg->material.rho_s).s);
+  }
+  /* The pre-stress is the weight under the full gravity, which a ramp only
+   * reaches at t_ramp: at t = 0 nothing would hold it, and the fill would
+   * spring apart into tension and disconnect. */
+  int kl = key_index(S_FILL, "lithostatic");
+  if (f->lithostatic && cfg->gravity.t_ramp > 0.0) {
+    where w = {.at = c->at[i][kl], .sec = S_FILL, .key = kl, .fill = i, .title = f->name};
+    return in_fail_key(c, &w, "lithostatic = true with gravity.t_ramp = %s s: the pre-stress "
+                       "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
+                       "lithostatic = false)", in_num(cfg->gravity.t_ramp).s);
+  }
+  return MPM_OK;
+}
+
+/* The model's own parameter check; its message names the key. */
+static int check_model(in_ctx *c, const mpm_config *cfg)
+{
+  const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
+  if (!t || !t->check)
+    return MPM_OK;
+  mpm_material_params par;
+  mpm_material_params_from_config(&par, cfg);
+  mpm_err e = {0};
+  if (t->check(&par, &e) == MPM_OK)
+    return MPM_OK;
+  int k = key_index(S_MATERIAL, "model");
+  const char *named = strstr(e.msg, "key 'material.");
+  if (named) {
+    char key[MPM_NAME_MAX] = {0};
+    const char *q = named + strlen("key 'material.");
+    size_t n = strcspn(q, "'");
+    memcpy(key, q, n < sizeof key ? n : sizeof key - 1);
+    if (in_find_key(S_MATERIAL, key) >= 0)
+      k = in_find_key(S_MATERIAL, key);
+  }
+  where w = {.at = c->at[0][k], .sec = S_MATERIAL, .key = k, .fill = -1};
+  if (named)
+    return in_fail_at(c, &w, "%s", e.msg);
+  return in_fail_key(c, &w, "model \"%s\": %s", in_show(cfg->material.model).s, e.msg);
+}
+
+/* Outlet: an extent on a non-periodic edge, inside it; closed by a wall. */
+static int check_outlet(in_ctx *c, const mpm_config *cfg)
+{
+  const int e = cfg->outlet.edge;
+  if (e == MPM_OUTLET_NONE)
+    return MPM_OK;
+  const int kf = key_index(S_OUTLET, "from"), kt = key_index(S_OUTLET, "to");
+  const int ke = key_index(S_OUTLET, "edge"), kc = key_index(S_OUTLET, "closed");
+  if (cfg->outlet.closed != MPM_BC_NOSLIP && cfg->outlet.closed != MPM_BC_FRICTIONLESS) {
+    where w = blame(c, cfg, -1, kc, kc);
+    return in_fail_key(c, &w, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
+                       mpm_bc_kind_name(cfg->outlet.closed));
+  }
+  const int kinds[] = {0, cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
+  if (kinds[e] == MPM_BC_PERIODIC) {
+    where w = blame(c, cfg, -1, ke, ke);
+    return in_fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic edge)",
+                       in_name_at(NK_EDGE, e));
+  }
+  const int vert = e == MPM_OUTLET_LEFT || e == MPM_OUTLET_RIGHT;
+  const double d = vert ? cfg->mesh.dy : cfg->mesh.dx;
+  const double m0 = vert ? cfg->mesh.y0 : cfg->mesh.x0;
+  const double m1 = m0 + (vert ? cfg->mesh.ny : cfg->mesh.nx) * d, tol = GEOM_TOL * d;
+  if (!(cfg->outlet.to > cfg->outlet.from)) {
+    where w = blame(c, cfg, -1, kt, kf);
+    return in_fail_key(c, &w, "to = %s <= from = %s (allowed: to > from)", in_num(cfg->outlet.to).s,
+                       in_num(cfg->outlet.from).s);
+  }
+  if (cfg->outlet.from < m0 - tol || cfg->outlet.to > m1 + tol) {
+    where w = blame(c, cfg, -1, kt, kf);
+    return in_fail_key(c, &w,
+                       "the outlet spans %s ... %s, outside the %s edge (allowed: %s ... %s m)",
+                       in_approx(cfg->outlet.from).s, in_approx(cfg->outlet.to).s,
+                       in_name_at(NK_EDGE, e), in_approx(m0).s, in_approx(m1).s);
+  }
+  return MPM_OK;
+}
+
+/* Wall polygon: as many x as y values, none or 3 ... MPM_MAX_POLY; a wall kind. */
+static int check_wall(in_ctx *c, mpm_config *cfg)
+{
+  const int kx = key_index(S_WALL, "x"), ky = key_index(S_WALL, "y");
+  const int nx = c->wall_nlist[0], ny = c->wall_nlist[1];
+  where w = blame(c, cfg, -1, ky, kx);
+  if (nx != ny)
+    return in_fail_key(c, &w, "x has %d values, y has %d (allowed: as many x values as y values)",
+                       nx, ny);
+  if (nx > 0 && nx < 3)
+    return in_fail_key(c, &w, "%d vertices (allowed: none, or 3 ... %d vertices)", nx,
+                       MPM_MAX_POLY);
+  cfg->wall.nvert = nx;
+  const int kk = key_index(S_WALL, "kind");
+  if (cfg->wall.kind != MPM_BC_NOSLIP && cfg->wall.kind != MPM_BC_FRICTIONLESS) {
+    where wk = blame(c, cfg, -1, kk, kk);
+    return in_fail_key(c, &wk, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
+                       mpm_bc_kind_name(cfg->wall.kind));
+  }
+  return MPM_OK;
+}
+
+/* Region: a non-empty box; the flow-rate levels, if given, in order. */
+static int check_region(in_ctx *c, const mpm_config *cfg)
+{
+  const char *pairs[][2] = {{"xmax", "xmin"}, {"ymax", "ymin"}};
+  const double v[][2] = {{cfg->region.xmax, cfg->region.xmin}, {cfg->region.ymax, cfg->region.ymin}};
+  for (int i = 0; i < 2; i++)
+    if (!(v[i][0] > v[i][1])) {
+      where w = blame(c, cfg, -1, key_index(S_REGION, pairs[i][0]), key_index(S_REGION, pairs[i][1]));
+      return in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)", pairs[i][0],
+                         in_num(v[i][0]).s, pairs[i][1], in_num(v[i][1]).s, pairs[i][0],
+                         pairs[i][1]);
+    }
+  if (cfg->region.m_hi > 0.0 && !(cfg->region.m_hi > cfg->region.m_lo)) {
+    where w = blame(c, cfg, -1, key_index(S_REGION, "m_hi"), key_index(S_REGION, "m_lo"));
+    return in_fail_key(c, &w, "m_hi = %s <= m_lo = %s (allowed: m_hi > m_lo, or m_hi = 0: no fit)",
+                       in_num(cfg->region.m_hi).s, in_num(cfg->region.m_lo).s);
+  }
+  return MPM_OK;
+}
+
+int in_validate(in_ctx *c, mpm_config *cfg)
+{
+  if (check_required(c) != MPM_OK)
+    return MPM_EINPUT;
+  if (cfg->nfill == 0) {
+    where w = {.sec = S_FILL, .key = -1, .fill = -1};
+    return in_fail_at(c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')",
+                      MPM_MAX_FILLS);
+  }
+  if (check_mesh(c, cfg) || check_time(c, cfg) || check_gravity(c, cfg) ||
+      check_material(c, cfg) || check_boundary(c, cfg) || check_outlet(c, cfg) ||
+      check_wall(c, cfg) || check_region(c, cfg))
+    return MPM_EINPUT;
+  resolve_stop(c, cfg);
+  for (int i = 0; i < cfg->nfill; i++)
+    if (check_fill(c, cfg, i) != MPM_OK)
+      return MPM_EINPUT;
+  return check_model(c, cfg);
+}

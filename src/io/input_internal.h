@@ -1,0 +1,185 @@
+/* input_internal.h: what the files of the input reader share (not part of
+ * the io.h API): input files (libconfuse) -> mpm_config: defaults, typed and
+ * range-checked values, --set overrides, cross-field checks, and the writer
+ * of the fully resolved input (docs/input-reference.md).
+ *
+ * One table, in_keys[], lists every key with its section, type, default,
+ * allowed range, unit and offset into mpm_config (or mpm_fill_config for fill
+ * keys). Defaults, parsing, overrides, the required-key check and the writer
+ * are all driven by it; tests/test_input.c checks the reference page against
+ * it.
+ *
+ * libconfuse does the syntax (sections, titles, lists, quoting, comments,
+ * ${ENV} substitution). Every key is a user-defined (CFGT_PTR) option whose
+ * parse callback keeps the raw text and the line it was read on, so typing
+ * and range checks happen here, with one message shape:
+ *     FILE:LINE: key 'section.key': what is wrong (allowed: ...)
+ * A key left at its default is reported at the line where its section opens
+ * (the last line of the file if the section is absent); a value from --set
+ * is reported as "--set 'section.key=value'". libconfuse's own complaints (syntax, unknown
+ * keys) reach an error callback that rewrites them in the same shape. The
+ * library has no user-data pointer, so the callback finds its context through
+ * a hidden option present in every section; a value given to that option in a
+ * file is rejected as an unknown key. Only the first error is kept.
+ *
+ * The files (a load runs parse, override, check; keys and text serve all):
+ *     input.c           the public entry points: defaults, load
+ *     input_keys.c      the key table, sections and the names each key allows
+ *     input_text.c      message pieces and the recording of the first error
+ *     input_parse.c     reading the file, libconfuse glue, collecting values
+ *     input_value.c     typed values: parse, range-check and store one key
+ *     input_override.c  --set section.key=value
+ *     input_check.c     cross-field checks, derived defaults
+ *     input_write.c     the fully resolved input, as an input file
+ * Functions and tables shared between them are declared here and named in_*;
+ * everything else in them is static. */
+#ifndef MPM_IO_INPUT_INTERNAL_H
+#define MPM_IO_INPUT_INTERNAL_H
+
+#include <confuse.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "io/io.h"
+
+#define SHOW_MAX 60  /* user text longer than this is cut in messages */
+
+/* ------------------------------------------------------------ the key table */
+
+enum section {
+  S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_STOP, S_OUTPUT,
+  S_OUTLET, S_WALL, S_REMOVE, S_REGION, NSEC
+};
+
+enum key_type {
+  KT_INT,   /* int */
+  KT_REAL,  /* double */
+  KT_BOOL,  /* int 0/1, written true/false */
+  KT_NAME,  /* char[MPM_NAME_MAX], one of a name table */
+  KT_ENUM,  /* int, the index of a name in a name table */
+  KT_PATH,  /* char[MPM_PATH_MAX] */
+  KT_LIST   /* double[MPM_MAX_POLY], polygon coordinates */
+};
+
+enum name_kind {
+  NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
+  NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE, NK_DILATATION
+};
+
+enum key_flag {
+  KF_REQUIRED = 1,  /* no default (fill keys: required by the shapes that use it) */
+  KF_LO_OPEN = 2,   /* value > lo rather than >= lo */
+  KF_HI_OPEN = 4,   /* value < hi rather than <= hi */
+  KF_RHO_C = 8,     /* default: material.rho_c */
+  KF_T0X10 = 16     /* default: 10 material.t0 */
+};
+
+/* Fill shapes that use a key (0: every shape). */
+#define SH_RECT (1 << MPM_FILL_RECTANGLE)
+#define SH_DISC (1 << MPM_FILL_DISC)
+#define SH_POLY (1 << MPM_FILL_POLYGON)
+
+typedef struct key_def {
+  const char *name;
+  unsigned char sec, type, kind, flags, shapes;
+  size_t off;         /* into mpm_config, or mpm_fill_config for fill keys */
+  double def, lo, hi; /* numeric default and range (list: range of each value) */
+  const char *sdef;   /* default of names and paths */
+  const char *unit;   /* "-": dimensionless */
+} key_def;
+
+/* The number of rows of in_keys; input_keys.c asserts that it is right. */
+#define NKEYS 78
+
+extern const key_def in_keys[];
+extern const char *const in_sec_names[NSEC];
+
+const char *in_name_at(int kind, int i);
+int in_name_value(int kind, const char *s);
+int in_find_section(const char *name);
+int in_find_key(int sec, const char *name);
+
+/* --------------------------------------------------------- message pieces */
+
+/* Texts returned by value, usable inline in a printf argument list: a word
+ * (one number, name or cut user text) and a text (lists, messages). */
+typedef struct word { char s[SHOW_MAX + 12]; } word;
+typedef struct text { char s[MPM_ERR_MSG]; } text;
+
+void in_addf(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+word in_show(const char *s);
+word in_num(double v);
+word in_approx(double v);
+word in_quoted(const char *s);
+text in_name_list(int kind);
+text in_range_text(const key_def *kd);
+text in_allowed_text(const key_def *kd);
+text in_key_list(int sec, int shapes);
+text in_section_list(void);
+text in_unknown_key_text(int sec, const char *title, const char *name);
+void in_one_line(mpm_err *err);
+
+/* --------------------------------------------------------- parse context */
+
+/* Where a value came from: a file line, a --set (1 + its index), or neither
+ * (the default). */
+typedef struct loc {
+  int line;
+  int ovr;
+} loc;
+
+/* What an error is about. key < 0: a section as a whole; fill < 0: no fill. */
+typedef struct where {
+  loc at;
+  int sec, key, fill;
+  const char *title;  /* fill title in the key name; NULL: "fill.key" */
+} where;
+
+enum { SCAN_DEPTH = 64, MAX_BRACES = 128 };
+
+typedef struct in_ctx {
+  void *self;                    /* this context, read by the error callback */
+  const char *path;
+  const char *const *ovr;
+  mpm_err *err;
+  int failed;                    /* an error is recorded: keep the first */
+  int eof_line;                  /* last line of the file */
+  int sec_line[NSEC];            /* line of the section, 0: absent */
+  int fill_line[MPM_MAX_FILLS];
+  int sec_open[NSEC];            /* opening lines found by the comment scan */
+  int fill_open[MPM_MAX_FILLS + 1];
+  int nbrace;                    /* top-level '{' seen by the comment scan */
+  size_t brace_pos[MAX_BRACES];
+  int brace_line[MAX_BRACES];
+  loc at[MPM_MAX_FILLS][NKEYS];  /* where each key was set (row 0: non-fill keys) */
+  int nlist[MPM_MAX_FILLS][2];   /* number of polygon x and y values */
+  int wall_nlist[2];             /* the same for the wall polygon */
+  cfg_opt_t opts[NSEC + 1][NKEYS + 2];  /* libconfuse options: sections, root last */
+} in_ctx;
+
+/* Record "LOCATION: key 'NAME': message" (fail_key) or "LOCATION: message"
+ * (fail_at); only the first error is kept. Both return MPM_EINPUT. */
+int in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+int in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+int in_fail_range(in_ctx *c, const where *w, const char *value);
+
+/* ------------------------------------------------------------ typed values */
+
+void in_copy_text(char *dst, size_t cap, const char *s);
+int in_store_value(in_ctx *c, void *rec, const where *w, const char *s);
+int in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
+                  const loc *locs, int n);
+void in_store_default(void *rec, const key_def *kd);
+
+/* ------------------------------------------------- the steps of a load */
+
+int in_read_text(const char *path, char **out, size_t *len, mpm_err *err);
+int in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root);
+int in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg);
+int in_valid_title(const char *t);
+int in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
+int in_validate(in_ctx *c, mpm_config *cfg);
+
+#endif

@@ -1,0 +1,466 @@
+/* input_parse.c: an input file to values in mpm_config. The text is read
+ * whole (at most INPUT_MAX_BYTES), its comments are blanked and the lines
+ * where sections open are noted, then libconfuse parses it with one CFGT_PTR
+ * option per key of the key table, whose callback keeps each value's raw text
+ * and line; the values are then collected section by section, fill by fill,
+ * and stored through input_value.c. libconfuse's own complaints are rewritten
+ * in the shape of the other input messages (input_internal.h). */
+#include <ctype.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/input_internal.h"
+
+#define INPUT_MAX_BYTES (16L << 20)  /* larger input files are refused */
+#define CTX_KEY "granmpm-input-context"
+
+/* ------------------------------------------------------- libconfuse glue */
+
+/* A value as read: its text and the line it was on. */
+typedef struct raw_value {
+  int line;
+  char text[];
+} raw_value;
+
+static int keep_raw(cfg_t *cfg, cfg_opt_t *opt, const char *value, void *result)
+{
+  if (cfg->name && strcmp(cfg->name, "root") == 0) {
+    /* libconfuse reads "mesh|nx = 1" at the top level as mesh.nx: refuse */
+    cfg_error(cfg, "no such option '%s'", opt->name);
+    return -1;
+  }
+  size_t n = strlen(value);
+  raw_value *r = malloc(sizeof *r + n + 1);
+  if (!r) {
+    cfg_error(cfg, "out of memory");
+    return -1;
+  }
+  r->line = cfg->line;
+  memcpy(r->text, value, n + 1);
+  *(void **)result = r;
+  return 0;
+}
+
+static int reject_value(cfg_t *cfg, cfg_opt_t *opt, const char *value, void *result)
+{
+  (void)value;
+  (void)result;
+  cfg_error(cfg, "no such option '%s'", opt->name);
+  return -1;
+}
+
+static in_ctx *ctx_of(cfg_t *cfg)
+{
+  if (!cfg || !cfg->opts)
+    return NULL;
+  for (cfg_opt_t *o = cfg->opts; o->name; o++)
+    if (strcmp(o->name, CTX_KEY) == 0 && o->simple_value.ptr)
+      return *o->simple_value.ptr;
+  return NULL;
+}
+
+static void unknown_option(in_ctx *c, const where *w, int sec, const char *title,
+                           const char *name)
+{
+  if (sec >= 0) {
+    in_fail_at(c, w, "%s", in_unknown_key_text(sec, title, name).s);
+    return;
+  }
+  for (int k = 0; k < NKEYS; k++)
+    if (strcmp(in_keys[k].name, name) == 0) {
+      in_fail_at(c, w, "key '%s' outside a section (allowed: inside '%s { ... }')", in_show(name).s,
+                 in_sec_names[in_keys[k].sec]);
+      return;
+    }
+  in_fail_at(c, w, "unknown section '%s' (allowed: %s)", in_show(name).s, in_section_list().s);
+}
+
+/* libconfuse's messages, rewritten; the formats are those of libconfuse 3.3. */
+static void on_confuse_error(cfg_t *cfg, const char *fmt, va_list ap)
+{
+  in_ctx *c = ctx_of(cfg);
+  if (!c || c->failed)
+    return;
+  int sec = cfg->name ? in_find_section(cfg->name) : -1;
+  where w = {.at = {cfg->line > 0 ? cfg->line : 1, 0}, .sec = sec, .key = -1, .fill = -1};
+  char msg[MPM_ERR_MSG];
+  if (strcmp(fmt, "no such option '%s'") == 0) {
+    unknown_option(c, &w, sec, cfg->title, va_arg(ap, const char *));
+  } else if (strcmp(fmt, "missing title for section '%s'") == 0) {
+    in_fail_at(c, &w, "section '%s' needs a title (allowed: %s NAME { ... })",
+               in_show(va_arg(ap, const char *)).s, in_sec_names[S_FILL]);
+  } else if (strcmp(fmt, "found duplicate title '%s'") == 0) {
+    in_fail_at(c, &w, "a second fill titled '%s' (allowed: a different title for each fill)",
+               in_show(va_arg(ap, const char *)).s);
+  } else if (strcmp(fmt, "missing equal sign after option '%s'") == 0) {
+    const char *k = va_arg(ap, const char *);
+    w.key = sec >= 0 ? in_find_key(sec, k) : -1;
+    w.title = cfg->title;
+    in_fail_key(c, &w, "missing '=' (allowed: %s = value)", in_show(k).s);
+  } else if (strcmp(fmt, "attempt to append to non-list option '%s'") == 0) {
+    const char *k = va_arg(ap, const char *);
+    w.key = sec >= 0 ? in_find_key(sec, k) : -1;
+    w.title = cfg->title;
+    in_fail_key(c, &w, "'+=' appends to lists only (allowed: %s = value)", in_show(k).s);
+  } else {
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    if (sec >= 0)
+      in_fail_at(c, &w, "syntax error in section '%s': %s", in_sec_names[sec], msg);
+    else
+      in_fail_at(c, &w, "syntax error: %s", msg);
+  }
+}
+
+static cfg_opt_t ptr_option(const char *name, int flags, cfg_callback_t parse)
+{
+  cfg_opt_t o;
+  memset(&o, 0, sizeof o);
+  o.name = name;
+  o.type = CFGT_PTR;
+  o.flags = flags;
+  o.parsecb = parse;
+  o.freecb = free;
+  return o;
+}
+
+/* The hidden option through which on_confuse_error finds the context. */
+static cfg_opt_t ctx_option(in_ctx *c)
+{
+  cfg_opt_t o = ptr_option(CTX_KEY, CFGF_NONE, reject_value);
+  o.freecb = NULL;
+  o.simple_value.ptr = &c->self;
+  return o;
+}
+
+static void build_options(in_ctx *c)
+{
+  cfg_opt_t *root = c->opts[NSEC];
+  for (int s = 0; s < NSEC; s++) {
+    cfg_opt_t *o = c->opts[s];
+    int n = 0;
+    for (int k = 0; k < NKEYS; k++)
+      if (in_keys[k].sec == s)
+        o[n++] = ptr_option(in_keys[k].name, in_keys[k].type == KT_LIST ? CFGF_LIST : CFGF_NONE,
+                            keep_raw);
+    o[n++] = ctx_option(c);
+    memset(&o[n], 0, sizeof o[n]);
+    memset(&root[s], 0, sizeof root[s]);
+    root[s].name = in_sec_names[s];
+    root[s].type = CFGT_SEC;
+    root[s].subopts = o;
+    root[s].flags = s == S_FILL ? CFGF_MULTI | CFGF_TITLE | CFGF_NO_TITLE_DUPES : CFGF_NONE;
+  }
+  root[NSEC] = ctx_option(c);
+  memset(&root[NSEC + 1], 0, sizeof root[NSEC + 1]);
+}
+
+/* ------------------------------------------------------------ reading text */
+
+static int io_fail(mpm_err *err, int code, const char *path, const char *what, int e)
+{
+  mpm_err_set(err, code, "%s: %s: %s", path, what, strerror(e));
+  in_one_line(err);
+  return code;
+}
+
+int in_read_text(const char *path, char **out, size_t *len, mpm_err *err)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return io_fail(err, MPM_EIO, path, "cannot open input file", errno);
+  size_t cap = 4096, n = 0, got;
+  char *buf = malloc(cap);
+  while (buf && (got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
+    n += got;
+    if (n + 1 == cap && (long)cap <= INPUT_MAX_BYTES) {
+      char *bigger = realloc(buf, cap * 2);
+      if (!bigger)
+        free(buf);
+      buf = bigger;
+      cap *= 2;
+    } else if (n + 1 == cap) {
+      break;
+    }
+  }
+  int e = errno, bad = ferror(f);
+  fclose(f);
+  if (!buf)
+    return mpm_err_set(err, MPM_ENOMEM, "%s: out of memory reading the input file", path);
+  if (bad) {
+    free(buf);
+    return io_fail(err, MPM_EIO, path, "cannot read input file", e);
+  }
+  if ((long)n > INPUT_MAX_BYTES) {
+    free(buf);
+    mpm_err_set(err, MPM_EINPUT, "%s: input file larger than %ld bytes (allowed: at most %ld)",
+                path, INPUT_MAX_BYTES, INPUT_MAX_BYTES);
+    in_one_line(err);
+    return MPM_EINPUT;
+  }
+  buf[n] = '\0';
+  *out = buf;
+  *len = n;
+  return MPM_OK;
+}
+
+static int line_at(const char *s, size_t pos)
+{
+  int line = 1;
+  for (size_t i = 0; i < pos; i++)
+    line += s[i] == '\n';
+  return line;
+}
+
+enum scan_state { SC_CODE, SC_DQ, SC_SQ, SC_LINE, SC_BLOCK };
+
+typedef struct scan {
+  int state, line, from, depth;
+  int open_line[SCAN_DEPTH];  /* line of each open '{' */
+} scan;
+
+/* A top-level '{': where sections open. */
+static void note_section_brace(in_ctx *c, const char *s, const char *p, int line)
+{
+  if (c->nbrace < MAX_BRACES) {
+    c->brace_pos[c->nbrace] = (size_t)(p - s);
+    c->brace_line[c->nbrace++] = line;
+  }
+}
+
+/* One character of code outside strings and comments; p may advance. A
+ * comment opener is blanked here, the rest of the comment by the caller. */
+static void scan_code(in_ctx *c, scan *sc, const char *s, char **pp)
+{
+  char *p = *pp;
+  if (*p == '"' || *p == '\'') {
+    sc->state = *p == '"' ? SC_DQ : SC_SQ;
+    sc->from = sc->line;
+  } else if (*p == '#' || (*p == '/' && p[1] == '/')) {
+    sc->state = SC_LINE;
+    *p = ' ';
+  } else if (*p == '/' && p[1] == '*') {
+    sc->state = SC_BLOCK;
+    sc->from = sc->line;
+    *p++ = ' ';
+    *p = ' ';
+  } else if (*p == '$' && p[1] == '{' && strchr(p, '}')) {
+    for (const char *q = strchr(p, '}'); p < q; p++)  /* ${NAME}: one token */
+      sc->line += *p == '\n';
+  } else if (*p == '{') {
+    if (sc->depth == 0)
+      note_section_brace(c, s, p, sc->line);
+    sc->open_line[sc->depth < SCAN_DEPTH ? sc->depth : SCAN_DEPTH - 1] = sc->line;
+    sc->depth++;
+  } else if (*p == '}' && sc->depth > 0) {
+    sc->depth--;
+  }
+  *pp = p;
+}
+
+/* Comments are blanked (newlines kept) before libconfuse sees the text: its
+ * 3.3 lexer counts the newline of a comment twice, so every later line number
+ * would be off, and it rejects a comment inside a list. Outside quotes, '#',
+ * '//' and slash-star start a comment anywhere. The same scan catches what
+ * libconfuse 3.3 accepts silently: a section left open, and a comment left
+ * open that hides the rest of the file (and open quotes, with their line). */
+static int blank_comments(in_ctx *c, char *s)
+{
+  scan sc = {.state = SC_CODE, .line = 1};
+  for (char *p = s; *p; p++) {
+    if (sc.state == SC_CODE) {
+      scan_code(c, &sc, s, &p);
+    } else if (sc.state == SC_DQ || sc.state == SC_SQ) {
+      if (*p == '\\' && p[1])
+        p++;  /* an escaped character */
+      else if (*p == (sc.state == SC_DQ ? '"' : '\''))
+        sc.state = SC_CODE;
+    } else if (*p == '\n') {
+      sc.state = sc.state == SC_LINE ? SC_CODE : sc.state;
+    } else if (sc.state == SC_BLOCK && *p == '*' && p[1] == '/') {
+      sc.state = SC_CODE;
+      *p++ = ' ';
+      *p = ' ';
+    } else {
+      *p = ' ';
+    }
+    sc.line += *p == '\n';  /* a skipped first character is never a newline */
+  }
+  where w = {.at = {sc.from, 0}, .sec = -1, .key = -1, .fill = -1};
+  if (sc.state == SC_BLOCK)
+    return in_fail_at(c, &w, "comment '/*' is not closed (allowed: /* ... */)");
+  if (sc.state == SC_DQ || sc.state == SC_SQ)
+    return in_fail_at(c, &w, "quoted text is not closed (allowed: \"...\" or '...')");
+  if (sc.depth > 0) {
+    w.at.line = sc.open_line[sc.depth <= SCAN_DEPTH ? sc.depth - 1 : SCAN_DEPTH - 1];
+    return in_fail_at(c, &w, "'{' is not closed (allowed: a matching '}')");
+  }
+  return MPM_OK;
+}
+
+static int is_word_char(char ch)
+{
+  return ch && !isspace((unsigned char)ch) && !strchr("#\"'={}()+,*", ch);
+}
+
+/* The word that ends before p (blanks skipped), as [start, *end); a quoted
+ * word includes its quotes. */
+static const char *word_before(const char *s, const char *p, const char **end)
+{
+  while (p > s && isspace((unsigned char)p[-1]))
+    p--;
+  *end = p;
+  if (p > s && (p[-1] == '"' || p[-1] == '\'')) {
+    char q = *--p;
+    while (p > s && p[-1] != q)
+      p--;
+    return p > s ? p - 1 : p;
+  }
+  while (p > s && is_word_char(p[-1]))
+    p--;
+  return p;
+}
+
+static int word_is(const char *w, const char *end, const char *name)
+{
+  return (size_t)(end - w) == strlen(name) && strncmp(w, name, strlen(name)) == 0;
+}
+
+/* The opening lines of the sections ("NAME {" or "fill TITLE {"), in the order
+ * libconfuse keeps them: the first of a repeated section, every fill. */
+static void find_section_lines(in_ctx *c, const char *s)
+{
+  int nfill = 0;
+  for (int b = 0; b < c->nbrace; b++) {
+    const char *e1, *e2, *w1 = word_before(s, s + c->brace_pos[b], &e1);
+    const char *w2 = word_before(s, w1, &e2);
+    if (word_is(w2, e2, in_sec_names[S_FILL])) {
+      if (nfill < MPM_MAX_FILLS + 1)
+        c->fill_open[nfill++] = c->brace_line[b];
+      continue;
+    }
+    for (int k = 0; k < NSEC; k++)
+      if (k != S_FILL && word_is(w1, e1, in_sec_names[k]) && !c->sec_open[k])
+        c->sec_open[k] = c->brace_line[b];
+  }
+}
+
+int in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
+{
+  const char *nul = memchr(s, '\0', len);
+  if (nul) {
+    where w = {.at = {line_at(s, (size_t)(nul - s)), 0}, .sec = -1, .key = -1, .fill = -1};
+    return in_fail_at(c, &w, "NUL byte in the input file (allowed: text)");
+  }
+  int lines = line_at(s, len) - (len > 0 && s[len - 1] == '\n');
+  c->eof_line = lines > 0 ? lines : 1;
+  if (blank_comments(c, s) != MPM_OK)
+    return MPM_EINPUT;
+  find_section_lines(c, s);
+  build_options(c);
+  *root = cfg_init(c->opts[NSEC], CFGF_NONE);
+  if (!*root)
+    return mpm_err_set(c->err, MPM_ENOMEM, "%s: out of memory", c->path);
+  cfg_set_error_function(*root, on_confuse_error);
+  if (cfg_parse_buf(*root, s) != CFG_SUCCESS) {
+    where w = {.at = {c->eof_line, 0}, .sec = -1, .key = -1, .fill = -1};
+    return in_fail_at(c, &w, "syntax error");  /* kept only if nothing was said */
+  }
+  return MPM_OK;
+}
+
+/* ------------------------------------------------------ values from files */
+
+static int collect_list(in_ctx *c, void *rec, const where *w, cfg_opt_t *o)
+{
+  const char *vals[MPM_MAX_POLY + 1];
+  loc locs[MPM_MAX_POLY + 1];
+  int n = (int)cfg_opt_size(o);
+  for (int i = 0; i < n && i <= MPM_MAX_POLY; i++) {
+    const raw_value *r = cfg_opt_getnptr(o, (unsigned)i);
+    vals[i] = r->text;
+    locs[i] = (loc){r->line, 0};
+  }
+  return in_store_list(c, rec, w, vals, locs, n);
+}
+
+static int collect_section(in_ctx *c, cfg_t *sec, int s, int fill, void *rec, const char *title)
+{
+  for (int k = 0; k < NKEYS; k++) {
+    if (in_keys[k].sec != s)
+      continue;
+    cfg_opt_t *o = cfg_getopt(sec, in_keys[k].name);
+    if (cfg_opt_size(o) == 0)
+      continue;
+    where w = {.sec = s, .key = k, .fill = fill, .title = title};
+    int rc;
+    if (in_keys[k].type == KT_LIST) {
+      rc = collect_list(c, rec, &w, o);
+    } else {
+      const raw_value *r = cfg_opt_getnptr(o, 0);
+      w.at.line = r->line;
+      rc = in_store_value(c, rec, &w, r->text);
+    }
+    if (rc != MPM_OK)
+      return rc;
+  }
+  return MPM_OK;
+}
+
+int in_valid_title(const char *t)
+{
+  size_t n = strlen(t);
+  if (n == 0 || n >= MPM_NAME_MAX)
+    return 0;
+  for (; *t; t++)
+    if (!isalnum((unsigned char)*t) && *t != '_' && *t != '-')
+      return 0;
+  return 1;
+}
+
+static void fill_defaults(mpm_fill_config *f)
+{
+  memset(f, 0, sizeof *f);
+  for (int k = 0; k < NKEYS; k++)
+    if (in_keys[k].sec == S_FILL)
+      in_store_default(f, &in_keys[k]);
+}
+
+static int collect_fills(in_ctx *c, cfg_t *root, mpm_config *cfg)
+{
+  unsigned n = cfg_size(root, in_sec_names[S_FILL]);
+  for (unsigned i = 0; i < n; i++) {
+    cfg_t *sec = cfg_getnsec(root, in_sec_names[S_FILL], i);
+    const char *title = cfg_title(sec) ? cfg_title(sec) : "";
+    int line = i <= MPM_MAX_FILLS && c->fill_open[i] ? c->fill_open[i] : sec->line;
+    where w = {.at = {line, 0}, .sec = S_FILL, .key = -1, .fill = -1};
+    if (i == MPM_MAX_FILLS)
+      return in_fail_at(c, &w, "fill '%s' is fill number %u (allowed: at most %d fill sections)",
+                        in_show(title).s, i + 1, MPM_MAX_FILLS);
+    if (!in_valid_title(title))
+      return in_fail_at(c, &w, "fill title '%s' (allowed: 1 ... %d letters, digits, '_' or '-')",
+                        in_show(title).s, MPM_NAME_MAX - 1);
+    c->fill_line[i] = line;
+    fill_defaults(&cfg->fill[i]);
+    in_copy_text(cfg->fill[i].name, MPM_NAME_MAX, title);
+    cfg->nfill = (int)i + 1;
+    if (collect_section(c, sec, S_FILL, (int)i, &cfg->fill[i], cfg->fill[i].name) != MPM_OK)
+      return MPM_EINPUT;
+  }
+  return MPM_OK;
+}
+
+int in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg)
+{
+  for (int s = 0; s < NSEC; s++) {
+    if (s == S_FILL)
+      continue;
+    cfg_t *sec = cfg_getsec(root, in_sec_names[s]);
+    c->sec_line[s] = c->sec_open[s] ? c->sec_open[s] : sec ? sec->line : 0;
+    if (sec && collect_section(c, sec, s, -1, cfg, NULL) != MPM_OK)
+      return MPM_EINPUT;
+  }
+  return collect_fills(c, root, cfg);
+}

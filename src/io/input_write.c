@@ -1,0 +1,111 @@
+/* input_write.c: the fully resolved input (every key, defaults included) in
+ * input-file syntax, as stored with a run; reading it back gives the same
+ * mpm_config. Numbers are written as in messages (the shortest text that reads
+ * back exactly), names and paths quoted. */
+#include <ctype.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "io/input_internal.h"
+
+static void write_list(FILE *f, const double *v, int n)
+{
+  fputc('{', f);
+  for (int i = 0; i < n; i++)
+    fprintf(f, "%s%s", i ? ", " : "", in_num(v[i]).s);
+  fputc('}', f);
+}
+
+static void write_key(FILE *f, const void *rec, const key_def *kd, int nvert)
+{
+  const char *p = (const char *)rec + kd->off;
+  const char *name;
+  fprintf(f, "  %s = ", kd->name);
+  switch (kd->type) {
+  case KT_INT: fprintf(f, "%d", *(const int *)(const void *)p); break;
+  case KT_REAL: fputs(in_num(*(const double *)(const void *)p).s, f); break;
+  case KT_BOOL: fputs(*(const int *)(const void *)p ? "true" : "false", f); break;
+  case KT_ENUM:
+    name = in_name_at(kd->kind, *(const int *)(const void *)p);
+    fputs(in_quoted(name ? name : "?").s, f);
+    break;
+  case KT_LIST: write_list(f, (const double *)(const void *)p, nvert); break;
+  default: fputs(in_quoted(p).s, f); break;  /* names and paths */
+  }
+  fputc('\n', f);
+}
+
+/* Paths can be longer than a text: written directly, escaped the same way. */
+static void write_path(FILE *f, const char *s)
+{
+  fputc('"', f);
+  for (; *s; s++) {
+    if (*s == '"' || *s == '\\' || *s == '$')
+      fputc('\\', f);
+    fputc(*s, f);
+  }
+  fputc('"', f);
+}
+
+/* 1 for the gravity keys that the resolved input leaves out: gx, gy when
+ * gravity came as angle and g (they are derived), angle and g otherwise. */
+static int derived_key(const mpm_config *cfg, const key_def *kd)
+{
+  if (kd->sec != S_GRAVITY)
+    return 0;
+  const int polar = strcmp(kd->name, "angle") == 0 || strcmp(kd->name, "g") == 0;
+  const int cart = strcmp(kd->name, "gx") == 0 || strcmp(kd->name, "gy") == 0;
+  return cfg->gravity.use_angle ? cart : polar;
+}
+
+static void write_section(FILE *f, const mpm_config *cfg, int s)
+{
+  fprintf(f, "%s {\n", in_sec_names[s]);
+  for (int k = 0; k < NKEYS; k++) {
+    if (in_keys[k].sec != s || derived_key(cfg, &in_keys[k]))
+      continue;
+    if (in_keys[k].type == KT_PATH) {
+      fprintf(f, "  %s = ", in_keys[k].name);
+      write_path(f, (const char *)cfg + in_keys[k].off);
+      fputc('\n', f);
+    } else {
+      write_key(f, cfg, &in_keys[k], s == S_WALL ? cfg->wall.nvert : 0);
+    }
+  }
+  fputs("}\n", f);
+}
+
+static void write_fill(FILE *f, const mpm_fill_config *fc, int i)
+{
+  if (in_valid_title(fc->name))
+    fprintf(f, "fill %s {\n", fc->name);
+  else
+    fprintf(f, "fill fill%d {\n", i + 1);
+  int mask = fc->shape >= 0 && fc->shape <= MPM_FILL_POLYGON ? 1 << fc->shape : 0;
+  int nvert = fc->nvert < 0 ? 0 : fc->nvert > MPM_MAX_POLY ? MPM_MAX_POLY : fc->nvert;
+  for (int k = 0; k < NKEYS; k++)
+    if (in_keys[k].sec == S_FILL && (!in_keys[k].shapes || (in_keys[k].shapes & mask)))
+      write_key(f, fc, &in_keys[k], nvert);
+  fputs("}\n", f);
+}
+
+int mpm_input_write(FILE *f, const mpm_config *cfg)
+{
+  if (!f || !cfg)
+    return MPM_EINVAL;
+  fputs("# granmpm input, fully resolved", f);
+  if (cfg->source[0]) {
+    fputs(" from ", f);
+    for (const char *p = cfg->source; *p && p < cfg->source + MPM_PATH_MAX; p++)
+      fputc(iscntrl((unsigned char)*p) ? '?' : *p, f);
+  }
+  fputc('\n', f);
+  for (int s = 0; s < NSEC; s++) {
+    if (s != S_FILL)
+      write_section(f, cfg, s);
+    else
+      for (int i = 0; i < cfg->nfill && i < MPM_MAX_FILLS; i++)
+        write_fill(f, &cfg->fill[i], i);
+  }
+  return ferror(f) ? MPM_EIO : MPM_OK;
+}
