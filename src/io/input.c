@@ -11,11 +11,11 @@ void mpm_input_defaults(mpm_config *cfg)
 {
   memset(cfg, 0, sizeof *cfg);
   for (int k = 0; k < NKEYS; k++)
-    if (in_keys[k].sec != S_FILL)
-      in_store_default(cfg, &in_keys[k]);
+    if (mpm_in_keys[k].sec != S_FILL)
+      mpm_in_store_default(cfg, &mpm_in_keys[k]);
   for (int k = 0; k < NKEYS; k++)  /* defaults that follow another key */
-    if (in_keys[k].flags & KF_T0X10)
-      *(double *)(void *)((char *)cfg + in_keys[k].off) = 10.0 * cfg->material.t0;
+    if (mpm_in_keys[k].flags & KF_T0X10)
+      *(double *)(void *)((char *)cfg + mpm_in_keys[k].off) = 10.0 * cfg->material.t0;
 }
 
 static int load(in_ctx *c, const char *path, int noverrides, mpm_config *cfg)
@@ -23,15 +23,15 @@ static int load(in_ctx *c, const char *path, int noverrides, mpm_config *cfg)
   char *buf = NULL;
   size_t len = 0;
   cfg_t *root = NULL;
-  int rc = in_read_text(path, &buf, &len, c->err);
+  int rc = mpm_in_read_text(path, &buf, &len, c->err);
   if (rc == MPM_OK)
-    rc = in_parse_text(c, buf, len, &root);
+    rc = mpm_in_parse_text(c, buf, len, &root);
   if (rc == MPM_OK)
-    rc = in_collect(c, root, cfg);
+    rc = mpm_in_collect(c, root, cfg);
   if (rc == MPM_OK)
-    rc = in_apply_overrides(c, cfg, noverrides);
+    rc = mpm_in_apply_overrides(c, cfg, noverrides);
   if (rc == MPM_OK)
-    rc = in_validate(c, cfg);
+    rc = mpm_in_validate(c, cfg);
   if (root)
     cfg_free(root);
   free(buf);
@@ -45,7 +45,7 @@ int mpm_input_load(const char *path, const char *const *overrides, int noverride
   if (!cfg || !path || noverrides < 0 || (noverrides > 0 && !overrides))
     return mpm_err_set(err, MPM_EINVAL, "mpm_input_load: invalid arguments");
   mpm_input_defaults(cfg);
-  in_copy_text(cfg->source, sizeof cfg->source, path);
+  mpm_in_copy_text(cfg->source, sizeof cfg->source, path);
   in_ctx *c = calloc(1, sizeof *c);
   if (!c)
     return mpm_err_set(err, MPM_ENOMEM, "%s: out of memory", path);
@@ -57,7 +57,7 @@ int mpm_input_load(const char *path, const char *const *overrides, int noverride
   free(c);
   if (rc != MPM_OK) {
     mpm_input_defaults(cfg);
-    in_copy_text(cfg->source, sizeof cfg->source, path);
+    mpm_in_copy_text(cfg->source, sizeof cfg->source, path);
   }
   return rc;
 }

@@ -3,7 +3,7 @@
  * range-checked values, --set overrides, cross-field checks, and the writer
  * of the fully resolved input (docs/input-reference.md).
  *
- * One table, in_keys[], lists every key with its section, type, default,
+ * One table, mpm_in_keys[], lists every key with its section, type, default,
  * allowed range, unit and offset into mpm_config (or mpm_fill_config for fill
  * keys). Defaults, parsing, overrides, the required-key check and the writer
  * are all driven by it; tests/test_input.c checks the reference page against
@@ -31,8 +31,9 @@
  *     input_override.c  --set section.key=value
  *     input_check.c     cross-field checks, derived defaults
  *     input_write.c     the fully resolved input, as an input file
- * Functions and tables shared between them are declared here and named in_*;
- * everything else in them is static. */
+ * Functions and tables shared between them are declared here and named mpm_in_*;
+ * everything else in them is static. The mpm_in_* names are hidden: they link the
+ * parts together but are not exported from libgranmpm. */
 #ifndef MPM_IO_INPUT_INTERNAL_H
 #define MPM_IO_INPUT_INTERNAL_H
 
@@ -41,6 +42,8 @@
 #include <stddef.h>
 
 #include "io/io.h"
+
+#pragma GCC visibility push(hidden)
 
 #define SHOW_MAX 60  /* user text longer than this is cut in messages */
 
@@ -88,16 +91,16 @@ typedef struct key_def {
   const char *unit;   /* "-": dimensionless */
 } key_def;
 
-/* The number of rows of in_keys; input_keys.c asserts that it is right. */
+/* The number of rows of mpm_in_keys; input_keys.c asserts that it is right. */
 #define NKEYS 78
 
-extern const key_def in_keys[];
-extern const char *const in_sec_names[NSEC];
+extern const key_def mpm_in_keys[];
+extern const char *const mpm_in_sec_names[NSEC];
 
-const char *in_name_at(int kind, int i);
-int in_name_value(int kind, const char *s);
-int in_find_section(const char *name);
-int in_find_key(int sec, const char *name);
+const char *mpm_in_name_at(int kind, int i);
+int mpm_in_name_value(int kind, const char *s);
+int mpm_in_find_section(const char *name);
+int mpm_in_find_key(int sec, const char *name);
 
 /* --------------------------------------------------------- message pieces */
 
@@ -106,18 +109,18 @@ int in_find_key(int sec, const char *name);
 typedef struct word { char s[SHOW_MAX + 12]; } word;
 typedef struct text { char s[MPM_ERR_MSG]; } text;
 
-void in_addf(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-word in_show(const char *s);
-word in_num(double v);
-word in_approx(double v);
-word in_quoted(const char *s);
-text in_name_list(int kind);
-text in_range_text(const key_def *kd);
-text in_allowed_text(const key_def *kd);
-text in_key_list(int sec, int shapes);
-text in_section_list(void);
-text in_unknown_key_text(int sec, const char *title, const char *name);
-void in_one_line(mpm_err *err);
+void mpm_in_addf(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+word mpm_in_show(const char *s);
+word mpm_in_num(double v);
+word mpm_in_approx(double v);
+word mpm_in_quoted(const char *s);
+text mpm_in_name_list(int kind);
+text mpm_in_range_text(const key_def *kd);
+text mpm_in_allowed_text(const key_def *kd);
+text mpm_in_key_list(int sec, int shapes);
+text mpm_in_section_list(void);
+text mpm_in_unknown_key_text(int sec, const char *title, const char *name);
+void mpm_in_one_line(mpm_err *err);
 
 /* --------------------------------------------------------- parse context */
 
@@ -159,27 +162,29 @@ typedef struct in_ctx {
 
 /* Record "LOCATION: key 'NAME': message" (fail_key) or "LOCATION: message"
  * (fail_at); only the first error is kept. Both return MPM_EINPUT. */
-int in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
+int mpm_in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
-int in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
+int mpm_in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
-int in_fail_range(in_ctx *c, const where *w, const char *value);
+int mpm_in_fail_range(in_ctx *c, const where *w, const char *value);
 
 /* ------------------------------------------------------------ typed values */
 
-void in_copy_text(char *dst, size_t cap, const char *s);
-int in_store_value(in_ctx *c, void *rec, const where *w, const char *s);
-int in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
+void mpm_in_copy_text(char *dst, size_t cap, const char *s);
+int mpm_in_store_value(in_ctx *c, void *rec, const where *w, const char *s);
+int mpm_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
                   const loc *locs, int n);
-void in_store_default(void *rec, const key_def *kd);
+void mpm_in_store_default(void *rec, const key_def *kd);
 
 /* ------------------------------------------------- the steps of a load */
 
-int in_read_text(const char *path, char **out, size_t *len, mpm_err *err);
-int in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root);
-int in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg);
-int in_valid_title(const char *t);
-int in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
-int in_validate(in_ctx *c, mpm_config *cfg);
+int mpm_in_read_text(const char *path, char **out, size_t *len, mpm_err *err);
+int mpm_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root);
+int mpm_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg);
+int mpm_in_valid_title(const char *t);
+int mpm_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
+int mpm_in_validate(in_ctx *c, mpm_config *cfg);
+
+#pragma GCC visibility pop
 
 #endif

@@ -15,7 +15,7 @@
 
 /* ------------------------------------------------------------ the key table */
 
-const char *const in_sec_names[NSEC] = {
+const char *const mpm_in_sec_names[NSEC] = {
   "mesh", "time", "gravity", "material", "boundary", "fill", "stop", "output",
   "outlet", "wall", "remove", "region"
 };
@@ -29,7 +29,7 @@ const char *const in_sec_names[NSEC] = {
   {.name = n, .sec = S_FILL, .type = t, .off = o, .lo = l, .hi = h, \
    .flags = KF_REQUIRED | (f), .shapes = sh, .unit = "m"}
 
-const key_def in_keys[] = {
+const key_def mpm_in_keys[] = {
   NUM(S_MESH, KT_INT, "nx", C_(mesh.nx), 0, 1, 100000, KF_REQUIRED, "-"),
   NUM(S_MESH, KT_INT, "ny", C_(mesh.ny), 0, 1, 100000, KF_REQUIRED, "-"),
   NUM(S_MESH, KT_REAL, "x0", C_(mesh.x0), 0, -1e9, 1e9, 0, "m"),
@@ -123,8 +123,8 @@ const key_def in_keys[] = {
   NUM(S_REGION, KT_REAL, "m_lo", C_(region.m_lo), 0, 0, 1e9, 0, "kg/m"),
 };
 
-_Static_assert(sizeof in_keys / sizeof in_keys[0] == NKEYS,
-               "NKEYS (input_internal.h) must count the rows of in_keys");
+_Static_assert(sizeof mpm_in_keys / sizeof mpm_in_keys[0] == NKEYS,
+               "NKEYS (input_internal.h) must count the rows of mpm_in_keys");
 
 /* ------------------------------------------------------------- name tables */
 
@@ -152,7 +152,7 @@ static int list_index(const char *const *list, const char *s)
 }
 
 /* The i-th allowed name of a kind, NULL past the end. */
-const char *in_name_at(int kind, int i)
+const char *mpm_in_name_at(int kind, int i)
 {
   int j = 0;
   switch (kind) {
@@ -180,7 +180,7 @@ const char *in_name_at(int kind, int i)
 
 /* Enum value of a name (0 for table names without one); -1 if not allowed.
  * The owning modules decide what is valid. */
-int in_name_value(int kind, const char *s)
+int mpm_in_name_value(int kind, const char *s)
 {
   switch (kind) {
   case NK_TOPOLOGY: return mpm_mesh_topology_from_name(s);
@@ -199,18 +199,18 @@ int in_name_value(int kind, const char *s)
   }
 }
 
-int in_find_section(const char *name)
+int mpm_in_find_section(const char *name)
 {
   for (int s = 0; s < NSEC; s++)
-    if (strcmp(in_sec_names[s], name) == 0)
+    if (strcmp(mpm_in_sec_names[s], name) == 0)
       return s;
   return -1;
 }
 
-int in_find_key(int sec, const char *name)
+int mpm_in_find_key(int sec, const char *name)
 {
   for (int k = 0; k < NKEYS; k++)
-    if (in_keys[k].sec == sec && strcmp(in_keys[k].name, name) == 0)
+    if (mpm_in_keys[k].sec == sec && strcmp(mpm_in_keys[k].name, name) == 0)
       return k;
   return -1;
 }

@@ -52,7 +52,7 @@ static int override_list(in_ctx *c, void *rec, const where *w, char *v)
   }
   if (count == 1 && vals[0][0] == '\0')
     count = 0;
-  return in_store_list(c, rec, w, vals, locs, count);
+  return mpm_in_store_list(c, rec, w, vals, locs, count);
 }
 
 static int override_value(in_ctx *c, void *rec, const where *w, char *v)
@@ -61,8 +61,8 @@ static int override_value(in_ctx *c, void *rec, const where *w, char *v)
   if (!copy)
     return mpm_err_set(c->err, MPM_ENOMEM, "--set: out of memory");
   strcpy(copy, v);
-  int rc = in_keys[w->key].type == KT_LIST ? override_list(c, rec, w, copy)
-                                        : in_store_value(c, rec, w, unquote(copy));
+  int rc = mpm_in_keys[w->key].type == KT_LIST ? override_list(c, rec, w, copy)
+                                        : mpm_in_store_value(c, rec, w, unquote(copy));
   free(copy);
   return rc;
 }
@@ -79,9 +79,9 @@ static text fill_titles(const mpm_config *cfg)
 {
   text t = {{0}};
   for (int i = 0; i < cfg->nfill; i++)
-    in_addf(&t, "%s%s", i ? ", " : "", cfg->fill[i].name);
+    mpm_in_addf(&t, "%s%s", i ? ", " : "", cfg->fill[i].name);
   if (cfg->nfill == 0)
-    in_addf(&t, "the file has no fill section");
+    mpm_in_addf(&t, "the file has no fill section");
   return t;
 }
 
@@ -91,14 +91,14 @@ static int override_fill(in_ctx *c, mpm_config *cfg, where *w, char *rest, char 
   char *dot = strrchr(rest, '.'), *key = dot ? dot + 1 : rest;
   if (dot)
     *dot = '\0';
-  w->key = in_find_key(S_FILL, key);
+  w->key = mpm_in_find_key(S_FILL, key);
   w->title = dot ? rest : NULL;
   if (w->key < 0)
-    return in_fail_at(c, w, "%s", in_unknown_key_text(S_FILL, w->title, key).s);
+    return mpm_in_fail_at(c, w, "%s", mpm_in_unknown_key_text(S_FILL, w->title, key).s);
   if (dot) {
     w->fill = fill_index(cfg, rest);
     if (w->fill < 0)
-      return in_fail_at(c, w, "no fill titled '%s' (allowed: %s)", in_show(rest).s,
+      return mpm_in_fail_at(c, w, "no fill titled '%s' (allowed: %s)", mpm_in_show(rest).s,
                         fill_titles(cfg).s);
     return override_value(c, &cfg->fill[w->fill], w, v);
   }
@@ -113,26 +113,26 @@ static int apply_override(in_ctx *c, mpm_config *cfg, int i, char *arg)
   where w = {.at = {0, i + 1}, .sec = -1, .key = -1, .fill = -1};
   char *eq = strchr(arg, '=');
   if (!eq)
-    return in_fail_at(c, &w, "expected section.key=value");
+    return mpm_in_fail_at(c, &w, "expected section.key=value");
   *eq = '\0';
   char *name = trim(arg), *v = trim(eq + 1), *dot = strchr(name, '.');
   if (!dot)
-    return in_fail_at(c, &w, "'%s' is not section.key (allowed sections: %s)", in_show(name).s,
-                      in_section_list().s);
+    return mpm_in_fail_at(c, &w, "'%s' is not section.key (allowed sections: %s)", mpm_in_show(name).s,
+                      mpm_in_section_list().s);
   *dot = '\0';
-  w.sec = in_find_section(name);
+  w.sec = mpm_in_find_section(name);
   if (w.sec < 0)
-    return in_fail_at(c, &w, "unknown section '%s' (allowed: %s)", in_show(name).s,
-                      in_section_list().s);
+    return mpm_in_fail_at(c, &w, "unknown section '%s' (allowed: %s)", mpm_in_show(name).s,
+                      mpm_in_section_list().s);
   if (w.sec == S_FILL)
     return override_fill(c, cfg, &w, dot + 1, v);
-  w.key = in_find_key(w.sec, dot + 1);
+  w.key = mpm_in_find_key(w.sec, dot + 1);
   if (w.key < 0)
-    return in_fail_at(c, &w, "%s", in_unknown_key_text(w.sec, NULL, dot + 1).s);
+    return mpm_in_fail_at(c, &w, "%s", mpm_in_unknown_key_text(w.sec, NULL, dot + 1).s);
   return override_value(c, cfg, &w, v);
 }
 
-int in_apply_overrides(in_ctx *c, mpm_config *cfg, int n)
+int mpm_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n)
 {
   for (int i = 0; i < n; i++) {
     if (!c->ovr[i])
