@@ -85,23 +85,6 @@ void mpm_series_record(mpm_series *s, size_t k, const mpm_point_rec *r)
     s->v[(size_t)f * s->n + k] = val[f];
 }
 
-double mpm_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm_sym3 D, int state)
-{
-  if (state == MPM_STATE_DISCONNECTED) {
-    mpm_sym3 D0 = mpm_sym3_dev(D);
-    return sqrt(2.0 * mpm_sym3_ddot(D0, D0));                  /* sqrt(2 D0:D0) */
-  }
-  double p = mpm_sym3_pressure(sigma), tau = mpm_sym3_tau(sigma);
-  if (!(p > 0.0))
-    return 0.0;
-  double mu = tau / p;
-  if (mu <= par->mu_s)
-    return 0.0;
-  if (mu >= par->mu_2)
-    return INFINITY;
-  return par->xi * sqrt(p) * (mu - par->mu_s) / (par->mu_2 - mu);  /* mu(I) inverted */
-}
-
 /* ------------------------------------------------------- the discrete run */
 
 size_t mpm_pointrun_steps(const mpm_history *h, double dt)
@@ -152,8 +135,8 @@ int mpm_pointrun_update(const mpm_material_type *mt, const mpm_material_params *
   mpm_mat3 L0 = mpm_history_eval(h, mpm_history_t_begin(h));
   mpm_sym3 D = mpm_mat3_sym(&L0);
   s->t[0] = mpm_history_t_begin(h);
-  mpm_series_record(s, 0, &(mpm_point_rec){init->sigma, init->rho,
-                                           mpm_mu_i_gdp(par, init->sigma, D, st0), st0, D});
+  double gdp0 = mpm_material_mu_i_gdp(par, init->sigma, D, st0);
+  mpm_series_record(s, 0, &(mpm_point_rec){init->sigma, init->rho, gdp0, st0, D});
   for (size_t k = 0; k < nsteps; k++) {
     double a = row_time(h, dt, k, nsteps), b = row_time(h, dt, k + 1, nsteps);
     mpm_mat3 L = sample_L(h, a, b, sample);

@@ -271,8 +271,8 @@ static void record(const ref_ctx *c, mpm_series *out, size_t k)
   mpm_mat3 L = mpm_history_eval(c->h, c->t);
   mpm_sym3 D = mpm_mat3_sym(&L), sigma = y_sigma(c->y);
   int state = c->mode == REF_DISC ? MPM_STATE_DISCONNECTED : MPM_STATE_DENSE;
-  double gdp = c->mode == REF_DENSE ? mpm_mu_i_gdp(c->par, sigma, D, state)
-                                    : mpm_mu_i_gdp(c->par, sigma, D, MPM_STATE_DISCONNECTED);
+  int gdp_state = c->mode == REF_DENSE ? state : MPM_STATE_DISCONNECTED;  /* LAYER: D0 */
+  double gdp = mpm_material_mu_i_gdp(c->par, sigma, D, gdp_state);
   mpm_series_record(out, k, &(mpm_point_rec){sigma, c->y[4], gdp, state, D});
 }
 

@@ -120,11 +120,6 @@ typedef struct mpm_point_rec {
 /* Fill row k of s from r (p, tau, mu and Dp derived as described above). */
 void mpm_series_record(mpm_series *s, size_t k, const mpm_point_rec *r);
 
-/* gdot_p of the mu(I) law at stress sigma: 0 if mu <= mu_s, else
- * xi sqrt(p) (mu - mu_s) / (mu_2 - mu) (+inf if mu >= mu_2); sqrt(2 D0:D0) if
- * state is disconnected. */
-double mpm_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm_sym3 D, int state);
-
 /* Initial state flag: dense iff rho >= rho_c and p > 0. */
 int mpm_point_init_state(const mpm_material_params *par, const mpm_point_init *init);
 
