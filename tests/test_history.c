@@ -1,6 +1,6 @@
 /* test_history.c: velocity-gradient histories: the [DK15] App. B table against
- * eq. B1-B2, linear evaluation and exact step means, and the CSV reader
- * (accepted forms and line-numbered errors). */
+ * eq. B1-B2, linear evaluation and exact step means, and the CSV reader and
+ * writer of io/ (accepted forms, line-numbered errors, round trip, trim). */
 #define _POSIX_C_SOURCE 200809L
 #include <check.h>
 #include <math.h>
@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/history.h"
+#include "io/text.h"
 #include "material/history.h"
 
 /* eq. B1-B2 evaluated directly: Lxx = Lyy = [H(t-.25) - H(t-.5)] (|8t-3| - 1)
@@ -24,7 +26,7 @@ static mpm_history *parse_text(const char *text, mpm_err *err, int *rc)
   FILE *f = fmemopen((void *)text, strlen(text), "r");
   ck_assert_ptr_nonnull(f);
   mpm_history *h = NULL;
-  *rc = mpm_history_parse(f, "h.csv", &h, err);
+  *rc = mpm_io_history_parse(f, "h.csv", &h, err);
   fclose(f);
   return h;
 }
@@ -135,7 +137,7 @@ START_TEST(t_write_parse_roundtrip)
   char *buf = NULL;
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
-  ck_assert_int_eq(mpm_history_write(f, h), MPM_OK);
+  ck_assert_int_eq(mpm_io_history_write(f, h), MPM_OK);
   fclose(f);
   int rc;
   g = parse_text(buf, &err, &rc);
@@ -186,9 +188,22 @@ START_TEST(t_read_missing_file)
 {
   mpm_err err = {0};
   mpm_history *h = NULL;
-  ck_assert_int_eq(mpm_history_read("/nonexistent/dir/h.csv", &h, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_history_read("/nonexistent/dir/h.csv", &h, &err), MPM_EIO);
   ck_assert_ptr_null(h);
   ck_assert_ptr_nonnull(strstr(err.msg, "/nonexistent/dir/h.csv: cannot open"));
+}
+END_TEST
+
+/* The reader's trim: leading blanks skipped, trailing ones cut in place. */
+START_TEST(t_text_trim)
+{
+  char a[] = " \t x, y \r\n", b[] = "   ", c[] = "z";
+  char *s = mpm_io_text_trim(a);
+  ck_assert_str_eq(s, "x, y");
+  ck_assert_ptr_eq(s, a + 3);
+  ck_assert_str_eq(mpm_io_text_trim(b), "");
+  ck_assert_ptr_eq(mpm_io_text_trim(c), c);
+  ck_assert_str_eq(c, "z");
 }
 END_TEST
 
@@ -203,6 +218,7 @@ int main(void)
   tcase_add_test(tc, t_write_parse_roundtrip);
   tcase_add_test(tc, t_parse_errors);
   tcase_add_test(tc, t_read_missing_file);
+  tcase_add_test(tc, t_text_trim);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

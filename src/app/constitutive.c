@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "core/config.h"
+#include "io/history.h"
 #include "io/io.h"
 #include "material/history.h"
 #include "material/material.h"
@@ -466,7 +467,7 @@ static int load_history(const opts *o, mpm_history **h)
 {
   mpm_err err = {0};
   int rc = (!o->history || strcmp(o->history, "dk15") == 0)
-               ? mpm_history_dk15(h, &err) : mpm_history_read(o->history, h, &err);
+               ? mpm_history_dk15(h, &err) : mpm_io_history_read(o->history, h, &err);
   if (rc != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
     return rc == MPM_ENOMEM ? EXIT_RUNTIME : EXIT_USAGE;
@@ -481,7 +482,7 @@ static int write_history_file(const char *path, const mpm_history *h)
     fprintf(stderr, "granmpm constitutive: %s: cannot open for writing\n", path);
     return EXIT_RUNTIME;
   }
-  int bad = mpm_history_write(f, h) != MPM_OK;
+  int bad = mpm_io_history_write(f, h) != MPM_OK;
   bad |= (f == stdout ? fflush(f) : fclose(f)) != 0;
   if (bad)
     fprintf(stderr, "granmpm constitutive: %s: write error\n", path);

@@ -1,6 +1,7 @@
 noinst_LTLIBRARIES += libmpm_io.la
 libmpm_io_la_SOURCES = src/io/input.c src/io/output.c src/io/extract.c src/io/frame.c \
 	src/io/io.h src/io/h5err.c src/io/h5err.h
+libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/text.h
 
 # test_output compiles the output and extract sources directly, so it does not
 # need the input parser (libconfuse, name tables) that libmpm_io.la carries.

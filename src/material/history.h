@@ -6,21 +6,17 @@
  * linear in t between nodes; only the in-plane components Lxx, Lxy, Lyx, Lyy
  * are nonzero (plane strain, L_ij = d v_i / d x_j). The [DK15] Appendix B
  * history is such a table (its Heaviside factors multiply ramps that vanish
- * where they switch, so it is continuous and piecewise linear).
- *
- * File format (CSV): one row per node, "t, Lxx, Lxy, Lyx, Lyy"; an optional
- * header row with exactly these names; '#' starts a comment; blank lines are
- * skipped; at least two rows. Errors name the file and line. */
+ * where they switch, so it is continuous and piecewise linear). Histories are
+ * read from and written to CSV files by io/history.h. */
 #ifndef MPM_MATERIAL_HISTORY_H
 #define MPM_MATERIAL_HISTORY_H
 
 #include <stddef.h>
-#include <stdio.h>
 
 #include "core/error.h"
 #include "core/tensor3.h"
 
-enum { MPM_HISTORY_NCOL = 5 };  /* t, Lxx, Lxy, Lyx, Lyy */
+enum { MPM_HISTORY_NCOL = 5 };  /* values of a node: t, Lxx, Lxy, Lyx, Lyy */
 
 typedef struct mpm_history {
   size_t n;      /* nodes (>= 2) */
@@ -32,20 +28,11 @@ typedef struct mpm_history {
 mpm_history *mpm_history_alloc(size_t n);
 void mpm_history_free(mpm_history *h);  /* accepts NULL */
 
-/* Read a CSV history from path ("-" reads stdin). */
-int mpm_history_read(const char *path, mpm_history **out, mpm_err *err);
-
-/* Parse a CSV history from f; name is used in messages ("name:LINE: ..."). */
-int mpm_history_parse(FILE *f, const char *name, mpm_history **out, mpm_err *err);
-
 /* The [DK15] App. B history on [0, 1.25] s:
  *   L = L_shear + [H(t-.25) - H(t-.5)] L_com + [H(t-.75) - H(t-1)] L_ext,
  *   L_shear = 0.05 e_x(x)e_y, L_com = (|8t-3| - 1)(e_x e_x + e_y e_y),
  *   L_ext = (1 - |8t-7|)(e_x e_x + e_y e_y). */
 int mpm_history_dk15(mpm_history **out, mpm_err *err);
-
-/* Write h as CSV with a header row (readable by mpm_history_parse). */
-int mpm_history_write(FILE *f, const mpm_history *h);
 
 static inline double mpm_history_t_begin(const mpm_history *h) { return h->t[0]; }
 static inline double mpm_history_t_end(const mpm_history *h) { return h->t[h->n - 1]; }
