@@ -1,7 +1,7 @@
 /* history.c (io): velocity-gradient histories as CSV: the reader, with
  * line-numbered errors, and the writer (io/history.h). The history itself,
  * its evaluation and the built-in [DK15] App. B table are numerical code and
- * live outside io/ (material/history.h).
+ * live in pointrun/history.h.
  *
  * A row is "t, Lxx, Lxy, Lyx, Lyy"; node k of the history gets t_k = t and
  * L[4k .. 4k+3] = (Lxx, Lxy, Lyx, Lyy). Numbers are written with %.17g, so
@@ -135,7 +135,7 @@ static int rows_to_history(const rows *r, const char *name, mpm_history **out, m
     return mpm_err_set(err, MPM_EINPUT,
                        "%s: %zu data row%s; a history needs at least 2 rows "
                        "(t, Lxx, Lxy, Lyx, Lyy)", name, r->n, r->n == 1 ? "" : "s");
-  mpm_history *h = mpm_history_alloc(r->n);
+  mpm_history *h = mpm_pointrun_history_alloc(r->n);
   if (!h)
     return mpm_err_set(err, MPM_ENOMEM, "%s: out of memory", name);
   for (size_t k = 0; k < r->n; k++) {

@@ -1,4 +1,4 @@
-/* history.h (io): velocity-gradient histories (material/history.h) read from
+/* history.h (io): velocity-gradient histories (pointrun/history.h) read from
  * and written to CSV files.
  *
  * File format: one row per node, "t, Lxx, Lxy, Lyx, Lyy"; an optional header
@@ -11,7 +11,7 @@
 #include <stdio.h>
 
 #include "core/error.h"
-#include "material/history.h"
+#include "pointrun/history.h"
 
 /* Read a CSV history from path ("-" reads stdin). */
 int mpm_io_history_read(const char *path, mpm_history **out, mpm_err *err);
