@@ -10,7 +10,6 @@
  * parses arguments and prints. */
 #include "app/constitutive.h"
 
-#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -522,7 +521,6 @@ int mpm_app_constitutive(int argc, char **argv)
   if (rc == 0)
     rc = load_material(&o, &pb.mt, &pb.par);
   if (rc == 0) {
-    gsl_set_error_handler_off();  /* failures come back as codes with context */
     set_initial(&o, &pb);
     rc = o.nconv ? run_convergence(&o, &pb) : run_single(&o, &pb);
   }
