@@ -99,9 +99,10 @@ START_TEST(t_steady_shear_matches_update)
   ck_assert_double_gt(tau, par.mu_s * p0);  /* flowing */
   /* both sit at the steady state to round-off / the ODE tolerance */
   for (int f = MPM_SER_SXX; f <= MPM_SER_SXY; f++)
-    ck_assert_double_eq_tol(mpm_pointrun_series_at(ours, f, k), mpm_pointrun_series_at(ref, f, k), 1e-8 * tau);
-  ck_assert_double_eq_tol(mpm_pointrun_series_at(ours, MPM_SER_GDP, k), mpm_pointrun_series_at(ref, MPM_SER_GDP, k),
-                          1e-7);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(ours, f, k),
+                            mpm_pointrun_series_at(ref, f, k), 1e-8 * tau);
+  ck_assert_double_eq_tol(mpm_pointrun_series_at(ours, MPM_SER_GDP, k),
+                          mpm_pointrun_series_at(ref, MPM_SER_GDP, k), 1e-7);
   mpm_pointrun_series_free(ours);
   mpm_pointrun_series_free(ref);
   mpm_pointrun_history_free(h);
