@@ -406,6 +406,33 @@ START_TEST(t_limit_mu_to_mu2)
 }
 END_TEST
 
+/* gdot_p from a stress inverts mu(I): mu(I(gdot_p)) = tau / p between mu_s and
+ * mu_2; 0 at or below mu_s and for p <= 0, +inf from mu_2 on; sqrt(2 D0:D0)
+ * for a disconnected point whatever its stress. */
+START_TEST(t_gdp_of_stress)
+{
+  mpm_material_params par = dk15_params(1e4);
+  mpm_sym3 D = {0.3, -0.1, 0.0, 0.2, 0.0, 0.0};
+  double p = 250.0;
+  for (int i = 1; i < 20; i++) {
+    double mu = par.mu_s + par.dmu * i / 20.0;
+    double gdp = mpm_material_mu_i_gdp(&par, stress(p, 0.0, mu * p, 0.0), D, MPM_STATE_DENSE);
+    ck_assert(gdp > 0.0 && isfinite(gdp));
+    ck_assert_double_eq_tol(mu_of_rate(&par, gdp, p), mu, 1e-13);
+  }
+  ck_assert_double_eq(mpm_material_mu_i_gdp(&par, stress(p, 0.0, par.mu_s * p, 0.0), D,
+                                            MPM_STATE_DENSE), 0.0);
+  ck_assert(isinf(mpm_material_mu_i_gdp(&par, stress(p, 0.0, par.mu_2 * p, 0.0), D,
+                                        MPM_STATE_DENSE)));
+  ck_assert_double_eq(mpm_material_mu_i_gdp(&par, stress(-1.0, 0.0, 1.0, 0.0), D,
+                                            MPM_STATE_DENSE), 0.0);
+  mpm_sym3 D0 = mpm_sym3_dev(D);
+  ck_assert_double_eq(mpm_material_mu_i_gdp(&par, stress(p, 0.0, par.mu_2 * p, 0.0), D,
+                                            MPM_STATE_DISCONNECTED),
+                      sqrt(2.0 * mpm_sym3_ddot(D0, D0)));
+}
+END_TEST
+
 /* The parameter check names the key that is out of range. */
 START_TEST(t_check_params)
 {
@@ -445,6 +472,7 @@ int main(void)
   tcase_add_test(tc, t_limit_p_to_zero);
   tcase_add_test(tc, t_limit_tau_to_zero);
   tcase_add_test(tc, t_limit_mu_to_mu2);
+  tcase_add_test(tc, t_gdp_of_stress);
   tcase_add_test(tc, t_check_params);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

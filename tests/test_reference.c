@@ -8,9 +8,11 @@
 #include <string.h>
 
 #include "core/points.h"
-#include "material/history.h"
 #include "material/material.h"
-#include "material/reference.h"
+#include "pointrun/history.h"
+#include "pointrun/pointrun.h"
+#include "pointrun/reference.h"
+#include "pointrun/series.h"
 
 static mpm_material_params params(double E)
 {
@@ -23,7 +25,7 @@ static mpm_material_params params(double E)
 /* Two-node history with constant or linear L. */
 static mpm_history *line_history(double t1, const double L0[4], const double L1[4])
 {
-  mpm_history *h = mpm_history_alloc(2);
+  mpm_history *h = mpm_pointrun_history_alloc(2);
   ck_assert_ptr_nonnull(h);
   h->t[0] = 0.0;
   h->t[1] = t1;
@@ -34,7 +36,7 @@ static mpm_history *line_history(double t1, const double L0[4], const double L1[
 
 static mpm_series *times(size_t n, double t1)
 {
-  mpm_series *s = mpm_series_alloc(n + 1);
+  mpm_series *s = mpm_pointrun_series_alloc(n + 1);
   ck_assert_ptr_nonnull(s);
   for (size_t k = 0; k <= n; k++)
     s->t[k] = t1 * (double)k / (double)n;
@@ -45,10 +47,10 @@ static mpm_series *reference(const mpm_material_params *par, const mpm_history *
                              mpm_point_init init, size_t n)
 {
   mpm_reference_opts o;
-  mpm_reference_defaults(par, &o);
-  mpm_series *s = times(n, mpm_history_t_end(h));
+  mpm_pointrun_reference_defaults(par, &o);
+  mpm_series *s = times(n, mpm_pointrun_history_t_end(h));
   mpm_err err = {0};
-  int rc = mpm_reference_run(par, h, &init, &o, s, &err);
+  int rc = mpm_pointrun_reference_run(par, h, &init, &o, s, &err);
   ck_assert_msg(rc == MPM_OK, "%s", err.msg);
   return s;
 }
@@ -67,15 +69,15 @@ START_TEST(t_elastic_jaumann_shear)
     double g = gdot * s->t[k], G = par.G;
     /* rtol 1e-10 per step over a smooth solution: 1e-9 of the scale is ample */
     double tol = 1e-9 * p0;
-    ck_assert_double_eq_tol(mpm_series_at(s, MPM_SER_SXY, k), G * sin(g), tol);
-    ck_assert_double_eq_tol(mpm_series_at(s, MPM_SER_SXX, k), -p0 + G * (1 - cos(g)), tol);
-    ck_assert_double_eq_tol(mpm_series_at(s, MPM_SER_SYY, k), -p0 - G * (1 - cos(g)), tol);
-    ck_assert_double_eq_tol(mpm_series_at(s, MPM_SER_SZZ, k), -p0, tol);
-    ck_assert_double_eq(mpm_series_at(s, MPM_SER_GDP, k), 0.0);
-    ck_assert_double_eq(mpm_series_at(s, MPM_SER_STATE, k), MPM_STATE_DENSE);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(s, MPM_SER_SXY, k), G * sin(g), tol);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(s, MPM_SER_SXX, k), -p0 + G * (1 - cos(g)), tol);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(s, MPM_SER_SYY, k), -p0 - G * (1 - cos(g)), tol);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(s, MPM_SER_SZZ, k), -p0, tol);
+    ck_assert_double_eq(mpm_pointrun_series_at(s, MPM_SER_GDP, k), 0.0);
+    ck_assert_double_eq(mpm_pointrun_series_at(s, MPM_SER_STATE, k), MPM_STATE_DENSE);
   }
-  mpm_series_free(s);
-  mpm_history_free(h);
+  mpm_pointrun_series_free(s);
+  mpm_pointrun_history_free(h);
 }
 END_TEST
 
@@ -93,16 +95,17 @@ START_TEST(t_steady_shear_matches_update)
                                        MPM_SAMPLE_MEAN, &ours, &err), MPM_OK);
   mpm_series *ref = reference(&par, h, init, 1000);
   size_t k = ours->n - 1;
-  double tau = mpm_series_at(ref, MPM_SER_TAU, k);
+  double tau = mpm_pointrun_series_at(ref, MPM_SER_TAU, k);
   ck_assert_double_gt(tau, par.mu_s * p0);  /* flowing */
   /* both sit at the steady state to round-off / the ODE tolerance */
   for (int f = MPM_SER_SXX; f <= MPM_SER_SXY; f++)
-    ck_assert_double_eq_tol(mpm_series_at(ours, f, k), mpm_series_at(ref, f, k), 1e-8 * tau);
-  ck_assert_double_eq_tol(mpm_series_at(ours, MPM_SER_GDP, k), mpm_series_at(ref, MPM_SER_GDP, k),
-                          1e-7);
-  mpm_series_free(ours);
-  mpm_series_free(ref);
-  mpm_history_free(h);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(ours, f, k),
+                            mpm_pointrun_series_at(ref, f, k), 1e-8 * tau);
+  ck_assert_double_eq_tol(mpm_pointrun_series_at(ours, MPM_SER_GDP, k),
+                          mpm_pointrun_series_at(ref, MPM_SER_GDP, k), 1e-7);
+  mpm_pointrun_series_free(ours);
+  mpm_pointrun_series_free(ref);
+  mpm_pointrun_history_free(h);
 }
 END_TEST
 
@@ -124,29 +127,29 @@ START_TEST(t_disconnect_reconnect)
   for (size_t k = 0; k < s->n; k++) {
     double t = s->t[k], I = 0.2 * (t - 0.5 * t * t);
     double rho = rho0 * exp(-I);
-    ck_assert_double_eq_tol(mpm_series_at(s, MPM_SER_RHO, k), rho, 1e-9 * rho);
-    int st = (int)mpm_series_at(s, MPM_SER_STATE, k);
-    double p = mpm_series_at(s, MPM_SER_P, k);
+    ck_assert_double_eq_tol(mpm_pointrun_series_at(s, MPM_SER_RHO, k), rho, 1e-9 * rho);
+    int st = (int)mpm_pointrun_series_at(s, MPM_SER_STATE, k);
+    double p = mpm_pointrun_series_at(s, MPM_SER_P, k);
     if (t < ts - 1e-9) {
       ck_assert_int_eq(st, MPM_STATE_DENSE);
       ck_assert_double_eq_tol(p, p0 - par.K * I, 1e-8 * p0);
     } else if (t > ts + 1e-9 && t < 2.0 - ts - 1e-9) {
       ck_assert_int_eq(st, MPM_STATE_DISCONNECTED);
       ck_assert_double_eq(p, 0.0);
-      ck_assert_double_eq(mpm_series_at(s, MPM_SER_TAU, k), 0.0);
+      ck_assert_double_eq(mpm_pointrun_series_at(s, MPM_SER_TAU, k), 0.0);
     } else if (t > 2.0 - ts + 1e-9) {
       ck_assert_int_eq(st, MPM_STATE_DENSE);
       ck_assert_double_eq_tol(p, par.K * log(rho / par.rho_c), 1e-8 * p0);
     }
     seen[st]++;
-    ck_assert(isfinite(mpm_series_at(s, MPM_SER_GDP, k)));
+    ck_assert(isfinite(mpm_pointrun_series_at(s, MPM_SER_GDP, k)));
   }
   ck_assert_int_gt(seen[0], 5);
   ck_assert_int_gt(seen[1], 5);
   /* back to p0 at t = 2 (the history is symmetric about t = 1) */
-  ck_assert_double_eq_tol(mpm_series_at(s, MPM_SER_P, s->n - 1), p0, 1e-7 * p0);
-  mpm_series_free(s);
-  mpm_history_free(h);
+  ck_assert_double_eq_tol(mpm_pointrun_series_at(s, MPM_SER_P, s->n - 1), p0, 1e-7 * p0);
+  mpm_pointrun_series_free(s);
+  mpm_pointrun_history_free(h);
 }
 END_TEST
 
@@ -160,7 +163,7 @@ START_TEST(t_switches_between_outputs)
     {0, -0.5, 0.3, -0.1, -0.2},   {0.3, -0.5, 0.3, -0.1, -0.2}, {0.3001, 0.8, 0.1, 0.2, 0.4},
     {0.7, 0.8, -0.4, 0.2, 0.4},   {0.7001, -1.2, 0.5, 0, -0.3}, {1.2, 0, 0.5, 0, 0},
   };
-  mpm_history *h = mpm_history_alloc(6);
+  mpm_history *h = mpm_pointrun_history_alloc(6);
   for (size_t k = 0; k < 6; k++) {
     h->t[k] = node[k][0];
     memcpy(h->L + 4 * k, &node[k][1], 4 * sizeof(double));
@@ -171,21 +174,21 @@ START_TEST(t_switches_between_outputs)
     mpm_series *s = reference(&par, h, init, ns[i]);
     int seen[2] = {0, 0};
     for (size_t k = 0; k < s->n; k++) {
-      int st = (int)mpm_series_at(s, MPM_SER_STATE, k);
+      int st = (int)mpm_pointrun_series_at(s, MPM_SER_STATE, k);
       seen[st]++;
       for (int f = 0; f < MPM_SER_N; f++)
-        ck_assert(isfinite(mpm_series_at(s, f, k)));
+        ck_assert(isfinite(mpm_pointrun_series_at(s, f, k)));
       if (st == MPM_STATE_DISCONNECTED)
-        ck_assert_double_eq(mpm_series_at(s, MPM_SER_TAU, k), 0.0);
+        ck_assert_double_eq(mpm_pointrun_series_at(s, MPM_SER_TAU, k), 0.0);
       else  /* dense: never above mu_2 */
-        ck_assert_double_le(mpm_series_at(s, MPM_SER_TAU, k),
-                            par.mu_2 * mpm_series_at(s, MPM_SER_P, k));
+        ck_assert_double_le(mpm_pointrun_series_at(s, MPM_SER_TAU, k),
+                            par.mu_2 * mpm_pointrun_series_at(s, MPM_SER_P, k));
     }
     ck_assert_int_gt(seen[0], 10);
     ck_assert_int_gt(seen[1], 10);
-    mpm_series_free(s);
+    mpm_pointrun_series_free(s);
   }
-  mpm_history_free(h);
+  mpm_pointrun_history_free(h);
 }
 END_TEST
 
@@ -195,35 +198,35 @@ START_TEST(t_dk15_first_order)
   mpm_material_params par = params(1e4);
   mpm_history *h = NULL;
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_history_dk15(&h, &err), MPM_OK);
+  ck_assert_int_eq(mpm_pointrun_history_dk15(&h, &err), MPM_OK);
   mpm_point_init init = {{0, 0, 0, 0, 0, 0}, par.rho_c};
   mpm_reference_opts o;
-  mpm_reference_defaults(&par, &o);
+  mpm_pointrun_reference_defaults(&par, &o);
   double e[2][MPM_SER_N];
   const double dts[2] = {1e-3, 5e-4};
   for (int i = 0; i < 2; i++) {
     mpm_series *a = NULL;
     ck_assert_int_eq(mpm_pointrun_update(&mpm_material_mu_i, &par, h, &init, dts[i],
                                          MPM_SAMPLE_MEAN, &a, &err), MPM_OK);
-    mpm_series *r = mpm_series_alloc(a->n);
+    mpm_series *r = mpm_pointrun_series_alloc(a->n);
     memcpy(r->t, a->t, a->n * sizeof(double));
-    ck_assert_int_eq(mpm_reference_run(&par, h, &init, &o, r, &err), MPM_OK);
+    ck_assert_int_eq(mpm_pointrun_reference_run(&par, h, &init, &o, r, &err), MPM_OK);
     for (int f = 0; f < MPM_SER_N; f++)
-      e[i][f] = mpm_series_relerr(a, r, f);
-    mpm_series_free(a);
-    mpm_series_free(r);
+      e[i][f] = mpm_pointrun_series_relerr(a, r, f);
+    mpm_pointrun_series_free(a);
+    mpm_pointrun_series_free(r);
   }
   const int fields[] = {MPM_SER_SXX, MPM_SER_SYY, MPM_SER_SZZ, MPM_SER_SXY, MPM_SER_TAU,
                         MPM_SER_GDP};
   for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
     double ratio = e[0][fields[i]] / e[1][fields[i]];
     ck_assert_msg(ratio > 1.8 && ratio < 2.2, "%s: error ratio %g",
-                  mpm_series_name(fields[i]), ratio);
+                  mpm_pointrun_series_name(fields[i]), ratio);
   }
   /* exact step means keep p (and rho) exact at the output times */
   ck_assert_double_lt(e[1][MPM_SER_P], 1e-12);
   ck_assert_double_lt(e[1][MPM_SER_RHO], 1e-12);  /* round-off of 2500 exp factors */
-  mpm_history_free(h);
+  mpm_pointrun_history_free(h);
 }
 END_TEST
 
@@ -244,12 +247,12 @@ START_TEST(t_steps_and_times)
   ck_assert_uint_eq(a->n, 6);
   ck_assert_double_eq(a->t[5], 1.25);
   ck_assert_double_eq_tol(a->t[4], 1.2, 1e-15);
-  mpm_series_free(a);
+  mpm_pointrun_series_free(a);
   ck_assert_int_eq(mpm_pointrun_update(&mpm_material_mu_i, &par, h, &init, 0.0,
                                        MPM_SAMPLE_MEAN, &a, &err), MPM_EINVAL);
-  ck_assert_int_eq(mpm_sample_lookup("end"), MPM_SAMPLE_END);
-  ck_assert_int_eq(mpm_sample_lookup("bogus"), -1);
-  mpm_history_free(h);
+  ck_assert_int_eq(mpm_pointrun_sample_from_name("end"), MPM_SAMPLE_END);
+  ck_assert_int_eq(mpm_pointrun_sample_from_name("bogus"), -1);
+  mpm_pointrun_history_free(h);
 }
 END_TEST
 
@@ -261,19 +264,19 @@ START_TEST(t_norm_and_order)
     a->v[MPM_SER_SXX * a->n + k] = k == 0 ? 100.0 : 2.1;  /* row 0 is not counted */
   }
   /* sqrt(int 0.1^2) / sqrt(int 2^2) = 0.05 */
-  ck_assert_double_eq_tol(mpm_series_relerr(a, r, MPM_SER_SXX), 0.05, 1e-14);
-  ck_assert_double_eq(mpm_series_relerr(r, r, MPM_SER_SXX), 0.0);
-  ck_assert_double_eq(mpm_series_relerr(a, r, MPM_SER_SYY), 0.0);  /* both zero */
+  ck_assert_double_eq_tol(mpm_pointrun_series_relerr(a, r, MPM_SER_SXX), 0.05, 1e-14);
+  ck_assert_double_eq(mpm_pointrun_series_relerr(r, r, MPM_SER_SXX), 0.0);
+  ck_assert_double_eq(mpm_pointrun_series_relerr(a, r, MPM_SER_SYY), 0.0);  /* both zero */
   a->v[MPM_SER_SYY * a->n + 3] = 1.0;
-  ck_assert(isinf(mpm_series_relerr(a, r, MPM_SER_SYY)));
+  ck_assert(isinf(mpm_pointrun_series_relerr(a, r, MPM_SER_SYY)));
   const double dt[3] = {1e-3, 1e-4, 1e-5}, e1[3] = {3e-3, 3e-4, 3e-5},
                e2[3] = {1e-6, 1e-8, 1e-10}, bad[3] = {1e-3, 0.0, 1e-5};
-  ck_assert_double_eq_tol(mpm_observed_order(dt, e1, 3), 1.0, 1e-12);
-  ck_assert_double_eq_tol(mpm_observed_order(dt, e2, 3), 2.0, 1e-12);
-  ck_assert(isnan(mpm_observed_order(dt, bad, 3)));
-  ck_assert(isnan(mpm_observed_order(dt, e1, 1)));
-  mpm_series_free(a);
-  mpm_series_free(r);
+  ck_assert_double_eq_tol(mpm_pointrun_order(dt, e1, 3), 1.0, 1e-12);
+  ck_assert_double_eq_tol(mpm_pointrun_order(dt, e2, 3), 2.0, 1e-12);
+  ck_assert(isnan(mpm_pointrun_order(dt, bad, 3)));
+  ck_assert(isnan(mpm_pointrun_order(dt, e1, 1)));
+  mpm_pointrun_series_free(a);
+  mpm_pointrun_series_free(r);
 }
 END_TEST
 

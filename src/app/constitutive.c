@@ -5,11 +5,11 @@
  * ODE reference (GSL rkf45) at the same times, and writes both as CSV; or, with
  * --converge, runs the update over a dt sequence and prints for every field
  * "order NAME VALUE" and "error NAME VALUE" (relative time-integrated L2 error
- * at the finest dt). The numerics live in src/material/ (history.h,
- * reference.h); this file parses arguments and prints. */
+ * at the finest dt). The numerics live in src/pointrun/ (history.h, series.h,
+ * pointrun.h, reference.h), the history CSV in src/io/history.h; this file
+ * parses arguments and prints. */
 #include "app/constitutive.h"
 
-#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -17,10 +17,13 @@
 #include <string.h>
 
 #include "core/config.h"
+#include "io/history.h"
 #include "io/io.h"
-#include "material/history.h"
 #include "material/material.h"
-#include "material/reference.h"
+#include "pointrun/history.h"
+#include "pointrun/pointrun.h"
+#include "pointrun/reference.h"
+#include "pointrun/series.h"
 
 enum { EXIT_RUNTIME = 1, EXIT_USAGE = 2, MAX_SET = 64, MAX_DT = 32 };
 
@@ -139,7 +142,7 @@ static int parse_valued(const char *a, const char *v, opts *o)
     if (!parse_real(v, &o->dt) || !(o->dt > 0.0))
       return usage("--dt '%s': expected a time step > 0 s", v);
   } else if (strcmp(a, "--sample") == 0) {
-    if ((o->sample = mpm_sample_lookup(v)) < 0)
+    if ((o->sample = mpm_pointrun_sample_from_name(v)) < 0)
       return usage("--sample '%s': allowed: mean, start, mid, end", v);
   } else if (strcmp(a, "--sigma0") == 0) {
     if (parse_list(v, x, 4) != 4)
@@ -302,22 +305,22 @@ static void write_header(FILE *f, int with_ref)
 {
   fputs("t,Lxx,Lxy,Lyx,Lyy", f);
   for (int k = 0; k < MPM_SER_N; k++)
-    fprintf(f, ",%s", mpm_series_name(k));
+    fprintf(f, ",%s", mpm_pointrun_series_name(k));
   for (int k = 0; with_ref && k < MPM_SER_N; k++)
-    fprintf(f, ",ref_%s", mpm_series_name(k));
+    fprintf(f, ",ref_%s", mpm_pointrun_series_name(k));
   fputc('\n', f);
 }
 
 static void write_row(FILE *f, const mpm_history *h, const mpm_series *a,
                       const mpm_series *r, size_t k)
 {
-  mpm_mat3 L = mpm_history_eval(h, a->t[k]);
+  mpm_mat3 L = mpm_pointrun_history_eval(h, a->t[k]);
   fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g", a->t[k], L.m[0][0], L.m[0][1], L.m[1][0],
           L.m[1][1]);
   for (int c = 0; c < MPM_SER_N; c++)
-    fprintf(f, ",%.12g", mpm_series_at(a, c, k) + 0.0);  /* + 0.0: no "-0" */
+    fprintf(f, ",%.12g", mpm_pointrun_series_at(a, c, k) + 0.0);  /* + 0.0: no "-0" */
   for (int c = 0; r && c < MPM_SER_N; c++)
-    fprintf(f, ",%.12g", mpm_series_at(r, c, k) + 0.0);
+    fprintf(f, ",%.12g", mpm_pointrun_series_at(r, c, k) + 0.0);
   fputc('\n', f);
 }
 
@@ -367,13 +370,13 @@ static int run_pair(const problem *pb, double dt, int sample, mpm_series **ours,
   }
   if (!ref)
     return 0;
-  *ref = mpm_series_alloc((*ours)->n);
+  *ref = mpm_pointrun_series_alloc((*ours)->n);
   if (!*ref) {
     fputs("granmpm constitutive: out of memory\n", stderr);
     return EXIT_RUNTIME;
   }
   memcpy((*ref)->t, (*ours)->t, (*ours)->n * sizeof *(*ours)->t);
-  if (mpm_reference_run(&pb->par, pb->h, &pb->init, &pb->ropt, *ref, &err) != MPM_OK) {
+  if (mpm_pointrun_reference_run(&pb->par, pb->h, &pb->init, &pb->ropt, *ref, &err) != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
     return EXIT_RUNTIME;
   }
@@ -386,8 +389,8 @@ static int run_single(const opts *o, const problem *pb)
   int rc = run_pair(pb, o->dt, o->sample, &a, o->no_ref ? NULL : &r);
   if (rc == 0)
     rc = write_series(o, pb->h, a, r);
-  mpm_series_free(a);
-  mpm_series_free(r);
+  mpm_pointrun_series_free(a);
+  mpm_pointrun_series_free(r);
   return rc;
 }
 
@@ -400,7 +403,7 @@ static int write_table(const char *path, const opts *o, double err[][NCONV])
   }
   fputs("dt", f);
   for (int c = 0; c < NCONV; c++)
-    fprintf(f, ",%s", mpm_series_name(conv_fields[c]));
+    fprintf(f, ",%s", mpm_pointrun_series_name(conv_fields[c]));
   fputc('\n', f);
   for (int i = 0; i < o->nconv; i++) {
     fprintf(f, "%.6g", o->conv_dt[i]);
@@ -420,7 +423,7 @@ static void print_convergence(const opts *o, double err[][NCONV])
   int fine = 0;
   printf("# relative time-integrated L2 error against the rkf45 reference\n# %-10s", "dt");
   for (int c = 0; c < NCONV; c++)
-    printf(" %12s", mpm_series_name(conv_fields[c]));
+    printf(" %12s", mpm_pointrun_series_name(conv_fields[c]));
   putchar('\n');
   for (int i = 0; i < o->nconv; i++) {
     printf("# %-10.4g", o->conv_dt[i]);
@@ -434,11 +437,11 @@ static void print_convergence(const opts *o, double err[][NCONV])
     double e[MAX_DT];
     for (int i = 0; i < o->nconv; i++)
       e[i] = err[i][c];
-    printf("order %s %.4f\n", mpm_series_name(conv_fields[c]),
-           mpm_observed_order(o->conv_dt, e, o->nconv));
+    printf("order %s %.4f\n", mpm_pointrun_series_name(conv_fields[c]),
+           mpm_pointrun_order(o->conv_dt, e, o->nconv));
   }
   for (int c = 0; c < NCONV; c++)
-    printf("error %s %.4e\n", mpm_series_name(conv_fields[c]), err[fine][c]);
+    printf("error %s %.4e\n", mpm_pointrun_series_name(conv_fields[c]), err[fine][c]);
 }
 
 static int run_convergence(const opts *o, const problem *pb)
@@ -448,9 +451,9 @@ static int run_convergence(const opts *o, const problem *pb)
     mpm_series *a = NULL, *r = NULL;
     int rc = run_pair(pb, o->conv_dt[i], o->sample, &a, &r);
     for (int c = 0; rc == 0 && c < NCONV; c++)
-      err[i][c] = mpm_series_relerr(a, r, conv_fields[c]);
-    mpm_series_free(a);
-    mpm_series_free(r);
+      err[i][c] = mpm_pointrun_series_relerr(a, r, conv_fields[c]);
+    mpm_pointrun_series_free(a);
+    mpm_pointrun_series_free(r);
     if (rc)
       return rc;
   }
@@ -466,7 +469,7 @@ static int load_history(const opts *o, mpm_history **h)
 {
   mpm_err err = {0};
   int rc = (!o->history || strcmp(o->history, "dk15") == 0)
-               ? mpm_history_dk15(h, &err) : mpm_history_read(o->history, h, &err);
+               ? mpm_pointrun_history_dk15(h, &err) : mpm_io_history_read(o->history, h, &err);
   if (rc != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
     return rc == MPM_ENOMEM ? EXIT_RUNTIME : EXIT_USAGE;
@@ -481,7 +484,7 @@ static int write_history_file(const char *path, const mpm_history *h)
     fprintf(stderr, "granmpm constitutive: %s: cannot open for writing\n", path);
     return EXIT_RUNTIME;
   }
-  int bad = mpm_history_write(f, h) != MPM_OK;
+  int bad = mpm_io_history_write(f, h) != MPM_OK;
   bad |= (f == stdout ? fflush(f) : fclose(f)) != 0;
   if (bad)
     fprintf(stderr, "granmpm constitutive: %s: write error\n", path);
@@ -494,7 +497,7 @@ static void set_initial(const opts *o, problem *pb)
                    : o->have_p0   ? (mpm_sym3){-o->p0, -o->p0, -o->p0, 0.0, 0.0, 0.0}
                                   : mpm_sym3_zero();
   pb->init.rho = o->have_rho0 ? o->rho0 : pb->par.rho_c;
-  mpm_reference_defaults(&pb->par, &pb->ropt);
+  mpm_pointrun_reference_defaults(&pb->par, &pb->ropt);
   if (o->rtol > 0.0)
     pb->ropt.rtol = o->rtol;
   if (o->atol > 0.0)
@@ -512,16 +515,15 @@ int mpm_app_constitutive(int argc, char **argv)
   rc = load_history(&o, &pb.h);
   if (rc == 0 && o.write_history) {
     rc = write_history_file(o.write_history, pb.h);
-    mpm_history_free(pb.h);
+    mpm_pointrun_history_free(pb.h);
     return rc;
   }
   if (rc == 0)
     rc = load_material(&o, &pb.mt, &pb.par);
   if (rc == 0) {
-    gsl_set_error_handler_off();  /* failures come back as codes with context */
     set_initial(&o, &pb);
     rc = o.nconv ? run_convergence(&o, &pb) : run_single(&o, &pb);
   }
-  mpm_history_free(pb.h);
+  mpm_pointrun_history_free(pb.h);
   return rc;
 }

@@ -2,21 +2,11 @@
  * order after the file: "fill.KEY=value" sets a key in every fill,
  * "fill.TITLE.KEY=value" in one; a list is "{1, 2, 3}" or "1, 2, 3"; one
  * pair of quotes around a value is dropped. Errors name the argument. */
-#include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "io/input_internal.h"
-
-static char *trim(char *s)
-{
-  while (isspace((unsigned char)*s))
-    s++;
-  char *e = s + strlen(s);
-  while (e > s && isspace((unsigned char)e[-1]))
-    *--e = '\0';
-  return s;
-}
+#include "io/text.h"
 
 /* One pair of matching quotes around a --set value is dropped. */
 static char *unquote(char *v)
@@ -44,7 +34,7 @@ static int override_list(in_ctx *c, void *rec, const where *w, char *v)
     char *comma = strchr(p, ',');
     if (comma)
       *comma = '\0';
-    vals[count] = unquote(trim(p));
+    vals[count] = unquote(mpm_io_text_trim(p));
     locs[count++] = w->at;
     if (!comma)
       break;
@@ -115,7 +105,7 @@ static int apply_override(in_ctx *c, mpm_config *cfg, int i, char *arg)
   if (!eq)
     return mpm_in_fail_at(c, &w, "expected section.key=value");
   *eq = '\0';
-  char *name = trim(arg), *v = trim(eq + 1), *dot = strchr(name, '.');
+  char *name = mpm_io_text_trim(arg), *v = mpm_io_text_trim(eq + 1), *dot = strchr(name, '.');
   if (!dot)
     return mpm_in_fail_at(c, &w, "'%s' is not section.key (allowed sections: %s)", mpm_in_show(name).s,
                       mpm_in_section_list().s);

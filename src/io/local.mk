@@ -1,6 +1,7 @@
 noinst_LTLIBRARIES += libmpm_io.la
 libmpm_io_la_SOURCES = src/io/input.c src/io/output.c src/io/extract.c src/io/frame.c \
 	src/io/io.h src/io/h5err.c src/io/h5err.h
+libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/text.h
 
 # test_output compiles the output and extract sources directly, so it does not
 # need the input parser (libconfuse, name tables) that libmpm_io.la carries.
@@ -24,7 +25,7 @@ libmpm_io_la_SOURCES += $(INPUT_PARTS)
 # `granmpm check` on every file under tests/inputs/bad and on the good inputs.
 check_PROGRAMS += tests/test_input
 TESTS += tests/test_input tests/cli-input.sh tests/cli-extract.sh
-tests_test_input_SOURCES = tests/test_input.c src/io/input.c $(INPUT_PARTS)
+tests_test_input_SOURCES = tests/test_input.c src/io/input.c $(INPUT_PARTS) src/io/text.c
 tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
 tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \

@@ -1,23 +1,15 @@
 noinst_LTLIBRARIES += libmpm_material.la
 libmpm_material_la_SOURCES = src/material/material.c src/material/material.h \
-	src/material/elastic.c src/material/mu_i.c src/material/ngf.c \
-	src/material/history.c src/material/history.h \
-	src/material/pointrun.c src/material/reference.c src/material/reference.h
+	src/material/elastic.c src/material/mu_i.c src/material/ngf.c
 
-check_PROGRAMS += tests/test_mu_i tests/test_history tests/test_reference tests/test_ngf
-TESTS += tests/test_mu_i tests/test_history tests/test_reference tests/test_ngf
+check_PROGRAMS += tests/test_mu_i tests/test_ngf
+TESTS += tests/test_mu_i tests/test_ngf
 tests_test_mu_i_SOURCES = tests/test_mu_i.c
 tests_test_mu_i_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_mu_i_LDADD = libmpm_material.la libmpm_core.la $(GSL_LIBS) $(CHECK_LIBS) -lm
-tests_test_history_SOURCES = tests/test_history.c
-tests_test_history_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_history_LDADD = libmpm_material.la libmpm_core.la $(GSL_LIBS) $(CHECK_LIBS) -lm
-tests_test_reference_SOURCES = tests/test_reference.c
-tests_test_reference_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_reference_LDADD = libmpm_material.la libmpm_core.la $(GSL_LIBS) $(CHECK_LIBS) -lm
+tests_test_mu_i_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm
 tests_test_ngf_SOURCES = tests/test_ngf.c
 tests_test_ngf_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_ngf_LDADD = libmpm_material.la libmpm_core.la $(GSL_LIBS) $(CHECK_LIBS) -lm
+tests_test_ngf_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm
 
 check_PROGRAMS += tests/test_material
 TESTS += tests/test_material

@@ -103,6 +103,14 @@ const mpm_material_type *mpm_material_lookup(const char *name);
 /* P-wave speed sqrt((K + 4G/3) / rho) for the time-step limit. */
 double mpm_material_wave_speed(const mpm_material_params *par, double rho);
 
+/* ---- mu(I) (mu_i.c) */
+
+/* gdot_p of the mu(I) law at stress sigma (state: enum mpm_point_state):
+ * 0 if mu <= mu_s, else xi sqrt(p) (mu - mu_s) / (mu_2 - mu) (+inf if
+ * mu >= mu_2); sqrt(2 D0:D0) if state is disconnected. */
+double mpm_material_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm_sym3 D,
+                             int state);
+
 /* ---- nonlocal granular fluidity (ngf.c, MODEL.md section 5) ----------------
  * The PDE's local part, selectable:
  *   MPM_NGF_DK:   - Delta_mu (mu_s - mu)/(mu_2 - mu) g   [DK-silo] eq. 2.1 (A = 0: mu(I))

@@ -25,6 +25,8 @@
  * which is also the limit of the dense update as p -> 0+ (there tau <= mu_2 p -> 0
  * and all of G dt sqrt(2 D0:D0) is returned as plastic flow). gdot_p is therefore
  * continuous across disconnection and reconnection.
+ * mpm_material_mu_i_gdp gives gdot_p from a stress (the law inverted):
+ *   gdot_p = xi sqrt(p) (mu - mu_s) / (mu_2 - mu) for mu_s < mu < mu_2, 0 below.
  * dt <= 0 leaves the trial stress (no plastic step is defined without time). */
 #include "material/material.h"
 
@@ -32,13 +34,35 @@
 
 #include "core/points.h"
 
+/* gdot_p of a stress-free point: sqrt(2 D0:D0). */
+static double mu_i_free_gdp(mpm_sym3 D)
+{
+  mpm_sym3 D0 = mpm_sym3_dev(D);
+  return sqrt(2.0 * mpm_sym3_ddot(D0, D0));
+}
+
 /* Stress-free point: sigma = 0, gdot_p = sqrt(2 D0:D0). */
 static void mu_i_disconnect(mpm_sym3 D, mpm_mpoint *pt)
 {
-  mpm_sym3 D0 = mpm_sym3_dev(D);
   pt->sigma = mpm_sym3_zero();
-  pt->gdp = sqrt(2.0 * mpm_sym3_ddot(D0, D0));
+  pt->gdp = mu_i_free_gdp(D);
   pt->state = MPM_STATE_DISCONNECTED;
+}
+
+double mpm_material_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm_sym3 D,
+                             int state)
+{
+  if (state == MPM_STATE_DISCONNECTED)
+    return mu_i_free_gdp(D);                                       /* sqrt(2 D0:D0) */
+  double p = mpm_sym3_pressure(sigma), tau = mpm_sym3_tau(sigma);
+  if (!(p > 0.0))
+    return 0.0;
+  double mu = tau / p;
+  if (mu <= par->mu_s)
+    return 0.0;
+  if (mu >= par->mu_2)
+    return INFINITY;
+  return par->xi * sqrt(p) * (mu - par->mu_s) / (par->mu_2 - mu);  /* mu(I) inverted */
 }
 
 /* Small root of tau^2 - B tau + H = 0 for tau_tr > S0 >= 0 (see banner). The

@@ -6,4 +6,4 @@ TESTS += tests/test_nonlocal
 tests_test_nonlocal_SOURCES = tests/test_nonlocal.c
 tests_test_nonlocal_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_nonlocal_LDADD = libmpm_nonlocal.la libmpm_material.la libmpm_mesh.la libmpm_core.la \
-	$(GSL_LIBS) $(CHECK_LIBS) -lm
+	$(CHECK_LIBS) -lm

@@ -20,7 +20,7 @@
  * DENSE is integrated with gsl_odeiv2_driver_apply from output time to output
  * time; the driver is reset at every entry into DENSE. History nodes (kinks of
  * L) are always stopping points, so the right-hand side is smooth in each call. */
-#include "material/reference.h"
+#include "pointrun/reference.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -44,7 +44,7 @@ typedef struct ref_ctx {
   double hstart;            /* first step after a reset [s] */
 } ref_ctx;
 
-void mpm_reference_defaults(const mpm_material_params *par, mpm_reference_opts *o)
+void mpm_pointrun_reference_defaults(const mpm_material_params *par, mpm_reference_opts *o)
 {
   o->rtol = 1e-10;
   o->atol = 1e-9;
@@ -68,7 +68,7 @@ static int ref_rhs(double t, const double y[], double f[], void *params)
 {
   const ref_ctx *c = params;
   const mpm_material_params *par = c->par;
-  mpm_mat3 L = mpm_history_eval_seg(c->h, c->seg, t);
+  mpm_mat3 L = mpm_pointrun_history_eval_seg(c->h, c->seg, t);
   mpm_sym3 D = mpm_mat3_sym(&L), s = y_sigma(y), s0 = mpm_sym3_dev(s);
   mpm_mat3 W = mpm_mat3_skw(&L);
   double p = mpm_sym3_pressure(s), tau = sqrt(0.5 * mpm_sym3_ddot(s0, s0));
@@ -139,7 +139,7 @@ static void trD_line(const ref_ctx *c, double *c0, double *c1)
   size_t k = c->seg;
   const double *a = h->L + 4 * k, *b = a + 4;
   *c1 = ((b[0] + b[3]) - (a[0] + a[3])) / (h->t[k + 1] - h->t[k]);
-  mpm_mat3 L = mpm_history_eval_seg(h, k, c->t);
+  mpm_mat3 L = mpm_pointrun_history_eval_seg(h, k, c->t);
   *c0 = mpm_mat3_trace(&L);
 }
 
@@ -239,7 +239,7 @@ static int advance_dense(ref_ctx *c, double t1, mpm_err *err)
 /* Advance from c->t to t1, both in one history segment. */
 static int advance(ref_ctx *c, double t1, mpm_err *err)
 {
-  c->seg = mpm_history_segment(c->h, 0.5 * (c->t + t1));
+  c->seg = mpm_pointrun_history_segment(c->h, 0.5 * (c->t + t1));
   for (int guard = 0; c->t < t1; guard++) {
     if (guard > 64)
       return mpm_err_set(err, MPM_ESOLVE, "reference ODE: regime changes do not settle "
@@ -268,12 +268,12 @@ static int advance(ref_ctx *c, double t1, mpm_err *err)
 /* Record the state at the current time into row k. */
 static void record(const ref_ctx *c, mpm_series *out, size_t k)
 {
-  mpm_mat3 L = mpm_history_eval(c->h, c->t);
+  mpm_mat3 L = mpm_pointrun_history_eval(c->h, c->t);
   mpm_sym3 D = mpm_mat3_sym(&L), sigma = y_sigma(c->y);
   int state = c->mode == REF_DISC ? MPM_STATE_DISCONNECTED : MPM_STATE_DENSE;
-  double gdp = c->mode == REF_DENSE ? mpm_mu_i_gdp(c->par, sigma, D, state)
-                                    : mpm_mu_i_gdp(c->par, sigma, D, MPM_STATE_DISCONNECTED);
-  mpm_series_record(out, k, &(mpm_point_rec){sigma, c->y[4], gdp, state, D});
+  int gdp_state = c->mode == REF_DENSE ? state : MPM_STATE_DISCONNECTED;  /* LAYER: D0 */
+  double gdp = mpm_material_mu_i_gdp(c->par, sigma, D, gdp_state);
+  mpm_pointrun_series_record(out, k, &(mpm_point_rec){sigma, c->y[4], gdp, state, D});
 }
 
 static int initial_mode(ref_ctx *c, const mpm_point_init *init, mpm_err *err)
@@ -291,7 +291,7 @@ static int initial_mode(ref_ctx *c, const mpm_point_init *init, mpm_err *err)
   if (!(init->rho > 0.0))
     return mpm_err_set(err, MPM_EINVAL, "reference ODE: initial density %g must be > 0",
                        init->rho);
-  if (mpm_point_init_state(par, init) == MPM_STATE_DISCONNECTED) {
+  if (mpm_pointrun_init_state(par, init) == MPM_STATE_DISCONNECTED) {
     enter_mode(c, REF_DISC);
   } else if (p < c->o->p_floor) {
     enter_mode(c, REF_LAYER);
@@ -311,7 +311,7 @@ static int ref_sweep(ref_ctx *c, mpm_series *out, mpm_err *err)
   size_t node = 1;
   record(c, out, 0);
   for (size_t k = 1; k < out->n; k++) {
-    if (!(out->t[k] > out->t[k - 1]) || out->t[k] > mpm_history_t_end(h))
+    if (!(out->t[k] > out->t[k - 1]) || out->t[k] > mpm_pointrun_history_t_end(h))
       return mpm_err_set(err, MPM_EINVAL, "reference ODE: output time %zu (%.17g s) is not "
                          "increasing or lies beyond the history", k, out->t[k]);
     while (node < h->n && h->t[node] <= out->t[k]) {
@@ -332,14 +332,14 @@ static int ref_sweep(ref_ctx *c, mpm_series *out, mpm_err *err)
   return MPM_OK;
 }
 
-int mpm_reference_run(const mpm_material_params *par, const mpm_history *h,
-                      const mpm_point_init *init, const mpm_reference_opts *o,
-                      mpm_series *out, mpm_err *err)
+int mpm_pointrun_reference_run(const mpm_material_params *par, const mpm_history *h,
+                               const mpm_point_init *init, const mpm_reference_opts *o,
+                               mpm_series *out, mpm_err *err)
 {
-  if (out->n == 0 || out->t[0] < mpm_history_t_begin(h))
+  if (out->n == 0 || out->t[0] < mpm_pointrun_history_t_begin(h))
     return mpm_err_set(err, MPM_EINVAL, "reference ODE: no output times inside the history");
   ref_ctx c = {.par = par, .h = h, .o = o, .t = out->t[0], .mode = -1};  /* set below */
-  c.hstart = 1e-9 * (mpm_history_t_end(h) - mpm_history_t_begin(h));
+  c.hstart = 1e-9 * (mpm_pointrun_history_t_end(h) - mpm_pointrun_history_t_begin(h));
   gsl_odeiv2_system sys = {ref_rhs, NULL, REF_DIM, &c};
   c.drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rkf45, c.hstart, o->atol, o->rtol);
   if (!c.drv)
