@@ -3,8 +3,9 @@
  *
  * Reads DIR/run.h5 as written by output.c: /mesh attributes, the resolved
  * input (attribute "input", for the shape-function name) and frame groups
- * /frames/NNNNNN with attribute "time" and one dataset per point field.
- * Extents (r1x, r1y, r2x, r2y) are read when the frame has them. */
+ * /frames/NNNNNN with attribute "time" and one dataset per stored point
+ * field (MPM_POINT_FIELDS, by its output name). Extents (r1x, r1y, r2x, r2y)
+ * are read when the frame has them. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
@@ -177,6 +178,12 @@ static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *ds
   return ok ? 0 : -1;
 }
 
+/* Fields that runs written before they were output lack: the extents. */
+static int written_later(const mpm_points *pts, const void *dst)
+{
+  return dst == pts->r1x || dst == pts->r1y || dst == pts->r2x || dst == pts->r2y;
+}
+
 int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_err *err)
 {
   char name[48];
@@ -200,26 +207,24 @@ int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_e
     return mpm_err_set(err, MPM_ENOMEM, "out of memory reading frame %d of '%s'", frame, r->path);
   }
   pts->n = (size_t)n;
-  const struct { const char *name; double *dst; } real[] = {
-    {"x", pts->x}, {"y", pts->y}, {"vx", pts->vx}, {"vy", pts->vy}, {"sxx", pts->sxx},
-    {"syy", pts->syy}, {"szz", pts->szz}, {"sxy", pts->sxy}, {"mass", pts->mass},
-    {"volume", pts->vol}, {"gdot_p", pts->gdp}, {"g", pts->g},
+#define STORED_REAL_(f, nm, d, u) {nm, pts->f, sizeof *pts->f, 0},
+#define STORED_INT_(f, nm, d, u) {nm, pts->f, sizeof *pts->f, 1},
+  const struct { const char *name; void *dst; size_t size; int isint; } field[] = {
+    MPM_POINT_FIELDS(STORED_REAL_, STORED_INT_, MPM_POINT_SKIP_)
   };
+#undef STORED_REAL_
+#undef STORED_INT_
   int rc = MPM_OK;
-  for (size_t k = 0; rc == MPM_OK && k < sizeof real / sizeof real[0]; k++)
-    if (read_field(g, real[k].name, H5T_NATIVE_DOUBLE, n, real[k].dst) < 0)
+  for (size_t k = 0; rc == MPM_OK && k < sizeof field / sizeof field[0]; k++) {
+    if (read_field(g, field[k].name, field[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, n,
+                   field[k].dst) == 0)
+      continue;
+    if (written_later(pts, field[k].dst))
+      memset(field[k].dst, 0, (size_t)n * field[k].size);
+    else
       rc = mpm_err_set(err, MPM_EIO, "cannot read field '%s' of frame %d in '%s'",
-                       real[k].name, frame, r->path);
-  if (rc == MPM_OK && (read_field(g, "state", H5T_NATIVE_INT, n, pts->state) < 0 ||
-                       read_field(g, "id", H5T_NATIVE_INT, n, pts->id) < 0))
-    rc = mpm_err_set(err, MPM_EIO, "cannot read state or id of frame %d in '%s'", frame,
-                     r->path);
-  /* extents: absent in runs written before they were output */
-  double *ext[] = {pts->r1x, pts->r1y, pts->r2x, pts->r2y};
-  const char *en[] = {"r1x", "r1y", "r2x", "r2y"};
-  for (int k = 0; rc == MPM_OK && k < 4; k++)
-    if (read_field(g, en[k], H5T_NATIVE_DOUBLE, n, ext[k]) < 0)
-      memset(ext[k], 0, (size_t)n * sizeof(double));
+                       field[k].name, frame, r->path);
+  }
   H5Gclose(g);
   if (rc != MPM_OK)
     pts->n = 0;

@@ -35,7 +35,10 @@
 #include "io/io.h"
 
 /* One output field: name in run.h5, unit, where it comes from. */
-enum field_kind { FIELD_REAL, FIELD_INT, FIELD_PRESSURE };
+enum field_kind { FIELD_REAL, FIELD_INT, FIELD_DERIVED };
+
+/* A derived field's n values from the stored fields. */
+typedef void derive_fn(const mpm_points *pts, double *v);
 
 typedef struct field_spec {
   const char *name;
@@ -43,31 +46,27 @@ typedef struct field_spec {
   const char *description;
   int kind;      /* enum field_kind */
   size_t offset; /* offsetof(mpm_points, array) for FIELD_REAL / FIELD_INT */
+  derive_fn *derive; /* for FIELD_DERIVED */
 } field_spec;
 
-/* The order here is the order of the datasets in each frame group, which is
- * the default column order of mpm_extract. */
+/* p = -(sxx + syy + szz) / 3 */
+static void derive_p(const mpm_points *pts, double *v)
+{
+  for (size_t i = 0; i < pts->n; i++)
+    v[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+}
+
+/* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets in
+ * each frame group, which is the default column order of mpm_extract. */
+#define FIELD_REAL_(f, nm, d, u) {nm, u, d, FIELD_REAL, offsetof(mpm_points, f), NULL},
+#define FIELD_INT_(f, nm, d, u) {nm, u, d, FIELD_INT, offsetof(mpm_points, f), NULL},
+#define FIELD_DERIVED_(f, nm, d, u) {nm, u, d, FIELD_DERIVED, 0, derive_##f},
 static const field_spec output_fields[] = {
-  {"x", "m", "position x", FIELD_REAL, offsetof(mpm_points, x)},
-  {"y", "m", "position y", FIELD_REAL, offsetof(mpm_points, y)},
-  {"vx", "m/s", "velocity x", FIELD_REAL, offsetof(mpm_points, vx)},
-  {"vy", "m/s", "velocity y", FIELD_REAL, offsetof(mpm_points, vy)},
-  {"sxx", "Pa", "Cauchy stress xx", FIELD_REAL, offsetof(mpm_points, sxx)},
-  {"syy", "Pa", "Cauchy stress yy", FIELD_REAL, offsetof(mpm_points, syy)},
-  {"szz", "Pa", "Cauchy stress zz (out of plane)", FIELD_REAL, offsetof(mpm_points, szz)},
-  {"sxy", "Pa", "Cauchy stress xy", FIELD_REAL, offsetof(mpm_points, sxy)},
-  {"p", "Pa", "pressure -(sxx+syy+szz)/3", FIELD_PRESSURE, 0},
-  {"mass", "kg/m", "mass per unit thickness", FIELD_REAL, offsetof(mpm_points, mass)},
-  {"volume", "m^2", "true volume per unit thickness", FIELD_REAL, offsetof(mpm_points, vol)},
-  {"state", "-", "0 dense, 1 disconnected", FIELD_INT, offsetof(mpm_points, state)},
-  {"gdot_p", "1/s", "equivalent plastic shear rate", FIELD_REAL, offsetof(mpm_points, gdp)},
-  {"g", "1/s", "granular fluidity", FIELD_REAL, offsetof(mpm_points, g)},
-  {"id", "-", "persistent point id", FIELD_INT, offsetof(mpm_points, id)},
-  {"r1x", "m", "extent half-vector r1, x", FIELD_REAL, offsetof(mpm_points, r1x)},
-  {"r1y", "m", "extent half-vector r1, y", FIELD_REAL, offsetof(mpm_points, r1y)},
-  {"r2x", "m", "extent half-vector r2, x", FIELD_REAL, offsetof(mpm_points, r2x)},
-  {"r2y", "m", "extent half-vector r2, y", FIELD_REAL, offsetof(mpm_points, r2y)},
+  MPM_POINT_FIELDS(FIELD_REAL_, FIELD_INT_, FIELD_DERIVED_)
 };
+#undef FIELD_REAL_
+#undef FIELD_INT_
+#undef FIELD_DERIVED_
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define NFIELDS COUNT(output_fields)
 
@@ -423,8 +422,7 @@ static const void *field_values(mpm_output *out, const field_spec *f, const mpm_
     return *(double *const *)base;
   if (f->kind == FIELD_INT)
     return *(int *const *)base;
-  for (size_t i = 0; i < pts->n; i++)
-    out->work[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0; /* p */
+  f->derive(pts, out->work);
   return out->work;
 }
 
