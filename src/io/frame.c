@@ -39,12 +39,7 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT, "run directory name too long: '%s'", dir);
   }
   mpm_h5_quiet_begin(&r->quiet);                    /* errors become return codes */
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-#if H5_VERSION_GE(1, 10, 7)
-  H5Pset_file_locking(fapl, 0, 1);                  /* a running job may still write */
-#endif
-  r->file = H5Fopen(r->path, H5F_ACC_RDONLY, fapl);
-  H5Pclose(fapl);
+  r->file = mpm_h5_open_read(r->path);              /* a running job may still write */
   if (r->file < 0) {
     int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?): %s", r->path,
                          mpm_h5_reason(&r->quiet));
@@ -54,8 +49,7 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
   H5G_info_t info;
   hid_t g = H5Gopen2(r->file, "frames", H5P_DEFAULT);
   if (g < 0 || H5Gget_info(g, &info) < 0) {
-    if (g >= 0)
-      H5Gclose(g);
+    mpm_h5_close(g);
     int rc = fail(r, err, "no frames group");
     mpm_run_close(r);
     return rc;
@@ -70,8 +64,7 @@ void mpm_run_close(mpm_run *r)
 {
   if (!r)
     return;
-  if (r->file >= 0)
-    H5Fclose(r->file);
+  mpm_h5_close(r->file);
   mpm_h5_quiet_end(&r->quiet);
   free(r);
 }
@@ -85,8 +78,7 @@ static int read_attr(hid_t obj, const char *name, hid_t type, void *v)
 {
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   herr_t rc = a < 0 ? -1 : H5Aread(a, type, v);
-  if (a >= 0)
-    H5Aclose(a);
+  mpm_h5_close(a);
   return rc < 0 ? -1 : 0;
 }
 
@@ -127,13 +119,10 @@ int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err
     char *dst = k ? diag : topo;
     if (t < 0 || H5Tget_size(t) >= sizeof topo || H5Aread(a, t, dst) < 0)
       rc = -1;
-    if (t >= 0)
-      H5Tclose(t);
-    if (a >= 0)
-      H5Aclose(a);
+    mpm_h5_close(t);
+    mpm_h5_close(a);
   }
-  if (g >= 0)
-    H5Gclose(g);
+  mpm_h5_close(g);
   if (rc != 0)
     return fail((mpm_run *)r, err, "cannot read the mesh attributes");
   m->topology = mpm_mesh_topology_from_name(topo);
@@ -151,10 +140,8 @@ int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err
       shape_from_input(text, shape, len);
     }
     free(text);
-    if (t >= 0)
-      H5Tclose(t);
-    if (a >= 0)
-      H5Aclose(a);
+    mpm_h5_close(t);
+    mpm_h5_close(a);
   }
   return mpm_mesh_setup(m, err);
 }
@@ -171,10 +158,8 @@ static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *ds
            H5Sget_simple_extent_dims(s, dims, NULL) == 1 && dims[0] == n;
   if (ok && n > 0)
     ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, dst) >= 0;
-  if (s >= 0)
-    H5Sclose(s);
-  if (d >= 0)
-    H5Dclose(d);
+  mpm_h5_close(s);
+  mpm_h5_close(d);
   return ok ? 0 : -1;
 }
 
@@ -197,8 +182,7 @@ int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_e
   hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
   if (g < 0 || read_attr(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
       read_attr(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
-    if (g >= 0)
-      H5Gclose(g);
+    mpm_h5_close(g);
     return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s'", frame, r->path);
   }
   pts->n = 0;
