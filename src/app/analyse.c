@@ -257,9 +257,9 @@ static int auto_range(const mpm_points *pts, const mpm_mesh *m, double w, double
   return rc;
 }
 
-static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
+static int do_series(const opts *o, mpm_io_run *r, const mpm_mesh *m, mpm_err *err)
 {
-  int nf = mpm_run_nframes(r);
+  int nf = mpm_io_run_nframes(r);
   double w = o->width > 0 ? o->width : m->dx, h = o->front_cell > 0 ? o->front_cell : m->dx;
   double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
   double *a = calloc((size_t)nf + 1, sizeof *a);
@@ -273,7 +273,7 @@ static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
   if (rc == MPM_OK && o->slope)
     rc = column_count(m, w, &ncol, err);   /* a bad --width is an error, not NaN slopes */
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
-    rc = mpm_run_frame(r, k, pts, &t[k], err);
+    rc = mpm_io_run_frame(r, k, pts, &t[k], err);
     if (rc != MPM_OK)
       break;
     mpm_diag_flow(pts, o->gdot_min, &f[k]);
@@ -322,16 +322,16 @@ int mpm_app_analyse(int argc, char **argv)
   if (st != 0)
     return st;
   mpm_err err = {0};
-  mpm_run *r = NULL;
+  mpm_io_run *r = NULL;
   mpm_mesh m;
   char shape[64];
   double t = 0.0;
   mpm_points *pts = mpm_points_alloc(0);
-  int rc = pts ? mpm_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
+  int rc = pts ? mpm_io_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
   if (rc == MPM_OK)
-    rc = mpm_run_mesh(r, &m, shape, sizeof shape, &err);
+    rc = mpm_io_run_mesh(r, &m, shape, sizeof shape, &err);
   if (rc == MPM_OK && o.mode != MODE_SERIES)
-    rc = mpm_run_frame(r, o.frame, pts, &t, &err);
+    rc = mpm_io_run_frame(r, o.frame, pts, &t, &err);
   if (rc == MPM_OK) {
     switch (o.mode) {
     case MODE_PROFILE: rc = do_profile(&o, pts, &m, &err); break;
@@ -340,7 +340,7 @@ int mpm_app_analyse(int argc, char **argv)
     default: rc = do_series(&o, r, &m, &err); break;
     }
   }
-  mpm_run_close(r);
+  mpm_io_run_close(r);
   mpm_points_free(pts);
   if (rc != MPM_OK) {
     fprintf(stderr, "granmpm: %s\n", err.msg);

@@ -230,8 +230,8 @@ static int report_flow_rate(const run_ctx *c, const mpm_config *cfg, mpm_err *er
   double q = 0.0;
   size_t n = 0;
   mpm_err ferr = {0};
-  if (mpm_region_flow_rate(c->ft, c->fm, c->nf, cfg->region.m_hi, cfg->region.m_lo, &q, &n,
-                           &ferr) != MPM_OK) {
+  if (mpm_diag_region_flow_rate(c->ft, c->fm, c->nf, cfg->region.m_hi, cfg->region.m_lo, &q,
+                                &n, &ferr) != MPM_OK) {
     fprintf(stderr, "granmpm: no flow rate: %s\n", ferr.msg);
     return MPM_OK;
   }

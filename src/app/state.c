@@ -100,7 +100,7 @@ int mpm_app_state(int argc, char **argv)
   free(text);
   if (ok && n > 0 && !(rho = malloc(n * sizeof *rho)))
     ok = 0;
-  if (ok && n > 0 && mpm_nodal_density(&m, n, x, y, mass, rho, &err) != MPM_OK) {
+  if (ok && n > 0 && mpm_diag_nodal_density(&m, n, x, y, mass, rho, &err) != MPM_OK) {
     fprintf(stderr, "granmpm: %s\n", err.msg);
     ok = -1;
   }

@@ -16,21 +16,21 @@
 #include "io/h5err.h"
 #include "io/io.h"
 
-struct mpm_run {
+struct mpm_io_run {
   char path[MPM_PATH_MAX + 16];
   hid_t file;
   int nframes;
   mpm_h5_quiet quiet;  /* HDF5's error printing is off while the run is open */
 };
 
-static int fail(mpm_run *r, mpm_err *err, const char *what)
+static int fail(mpm_io_run *r, mpm_err *err, const char *what)
 {
   return mpm_err_set(err, MPM_EIO, "%s in '%s': %s", what, r->path, mpm_h5_reason(&r->quiet));
 }
 
-int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
+int mpm_io_run_open(mpm_io_run **out, const char *dir, mpm_err *err)
 {
-  mpm_run *r = calloc(1, sizeof *r);
+  mpm_io_run *r = calloc(1, sizeof *r);
   *out = NULL;
   if (!r)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening run '%s'", dir);
@@ -43,7 +43,7 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
   if (r->file < 0) {
     int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?): %s", r->path,
                          mpm_h5_reason(&r->quiet));
-    mpm_run_close(r);
+    mpm_io_run_close(r);
     return rc;
   }
   H5G_info_t info;
@@ -51,7 +51,7 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
   if (g < 0 || H5Gget_info(g, &info) < 0) {
     mpm_h5_close(g);
     int rc = fail(r, err, "no frames group");
-    mpm_run_close(r);
+    mpm_io_run_close(r);
     return rc;
   }
   H5Gclose(g);
@@ -60,7 +60,7 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
   return MPM_OK;
 }
 
-void mpm_run_close(mpm_run *r)
+void mpm_io_run_close(mpm_io_run *r)
 {
   if (!r)
     return;
@@ -69,7 +69,7 @@ void mpm_run_close(mpm_run *r)
   free(r);
 }
 
-int mpm_run_nframes(const mpm_run *r)
+int mpm_io_run_nframes(const mpm_io_run *r)
 {
   return r->nframes;
 }
@@ -98,7 +98,8 @@ static void shape_from_input(const char *text, char *shape, size_t len)
   }
 }
 
-int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err *err)
+int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
+                    mpm_err *err)
 {
   hid_t g = H5Gopen2(r->file, "mesh", H5P_DEFAULT);
   char topo[16] = "", diag[16] = "";
@@ -124,11 +125,11 @@ int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err
   }
   mpm_h5_close(g);
   if (rc != 0)
-    return fail((mpm_run *)r, err, "cannot read the mesh attributes");
+    return fail((mpm_io_run *)r, err, "cannot read the mesh attributes");
   m->topology = mpm_mesh_topology_from_name(topo);
   m->diagonal = mpm_mesh_diagonal_from_name(diag);
   if (m->topology < 0 || m->diagonal < 0)
-    return fail((mpm_run *)r, err, "unknown mesh topology or diagonal");
+    return fail((mpm_io_run *)r, err, "unknown mesh topology or diagonal");
   if (shape && len) {
     hid_t a = H5Aopen(r->file, "input", H5P_DEFAULT);
     hid_t t = a < 0 ? -1 : H5Aget_type(a);
@@ -169,7 +170,8 @@ static int written_later(const mpm_points *pts, const void *dst)
   return dst == pts->r1x || dst == pts->r1y || dst == pts->r2x || dst == pts->r2y;
 }
 
-int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_err *err)
+int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
+                     mpm_err *err)
 {
   char name[48];
   unsigned long long n = 0;
