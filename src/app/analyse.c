@@ -204,10 +204,10 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
   double *nm = malloc(nn * sizeof *nm), *nmf = malloc(nn * sizeof *nmf);
   int rc = (!st || !p || !ps || !nm || !nmf) ? mpm_err_set(err, MPM_ENOMEM, "out of memory")
                                              : MPM_OK;
-  for (size_t i = 0; rc == MPM_OK && i < n; i++)
-    p[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
-  if (rc == MPM_OK)
+  if (rc == MPM_OK) {
+    mpm_diag_pressure(pts, p);
     rc = mpm_stencil_compute(st, type, m, pts, t, err);
+  }
   if (rc == MPM_OK)
     rc = mpm_diag_smooth(st, n, pts->mass, p, m->nnodes, nm, nmf, ps, err);
   if (rc == MPM_OK) {
@@ -221,39 +221,6 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
   free(ps);
   free(nm);
   free(nmf);
-  return rc;
-}
-
-/* Heap slope range "auto": from the first column (left to right) whose top
- * is below 90% of the highest top to the last one above 10% of it. */
-static int auto_range(const mpm_points *pts, const mpm_mesh *m, double w, double *xa,
-                      double *xb, mpm_err *err)
-{
-  int n = 0, ka = -1, kb = -1, rc = column_count(m, w, &n, err);
-  if (rc != MPM_OK)
-    return rc;
-  double *top = malloc((size_t)n * sizeof *top), hmax = -INFINITY, y0 = m->y0;
-  if (!top)
-    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
-  for (int k = 0; rc == MPM_OK && k < n; k++)
-    if (!isnan(top[k]) && top[k] > hmax)
-      hmax = top[k];
-  for (int k = 0; rc == MPM_OK && k < n; k++) {
-    if (isnan(top[k]))
-      continue;
-    if (ka < 0 && top[k] - y0 < 0.9 * (hmax - y0))
-      ka = k;
-    if (top[k] - y0 > 0.1 * (hmax - y0))
-      kb = k;
-  }
-  free(top);
-  if (rc == MPM_OK && (ka < 0 || kb < ka + 1))
-    rc = mpm_err_set(err, MPM_EINVAL, "slope auto: no sloping part of the surface found");
-  if (rc == MPM_OK) {
-    *xa = m->x0 + ka * w;
-    *xb = m->x0 + (kb + 1) * w;
-  }
   return rc;
 }
 
@@ -283,7 +250,9 @@ static int do_series(const opts *o, mpm_io_run *r, const mpm_mesh *m, mpm_err *e
     if (rc == MPM_OK && o->slope) {
       xa[k] = o->xa;
       xb[k] = o->xb;
-      int src = o->slope == 2 ? auto_range(pts, m, w, &xa[k], &xb[k], err) : MPM_OK;
+      int src = o->slope == 2
+                    ? mpm_diag_slope_range(pts, m->x0, w, ncol, m->y0, &xa[k], &xb[k], err)
+                    : MPM_OK;
       if (src == MPM_OK && mpm_diag_heap_slope(pts, xa[k], xb[k], w, &sl[k], err) != MPM_OK)
         sl[k] = NAN;                       /* no surface in range in this frame */
       if (src != MPM_OK)

@@ -63,6 +63,12 @@ typedef struct mpm_points {
 #undef MPM_POINT_DECL_INT_
 } mpm_points;
 
+/* Pressure of point i: p = -(sxx + syy + szz) / 3, compression positive. */
+static inline double mpm_points_pressure(const mpm_points *pts, size_t i)
+{
+  return -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+}
+
 /* Allocate an empty store with room for cap points (cap may be 0). */
 mpm_points *mpm_points_alloc(size_t cap);
 void mpm_points_free(mpm_points *pts);  /* accepts NULL */

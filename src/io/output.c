@@ -31,6 +31,7 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 
+#include "diag/flow.h"
 #include "io/h5err.h"
 #include "io/io.h"
 
@@ -49,11 +50,10 @@ typedef struct field_spec {
   derive_fn *derive; /* for FIELD_DERIVED */
 } field_spec;
 
-/* p = -(sxx + syy + szz) / 3 */
+/* The DERIVED fields of MPM_POINT_FIELDS, derive_<key>. */
 static void derive_p(const mpm_points *pts, double *v)
 {
-  for (size_t i = 0; i < pts->n; i++)
-    v[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+  mpm_diag_pressure(pts, v);
 }
 
 /* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets in
