@@ -1,8 +1,8 @@
 /* test_flow.c: flow diagnostics (diag/flow.h) against values computed by
  * hand or in closed form: Bagnold-shaped profile bins, layer means and mu,
- * front with an isolated point, heap slope, derivative of a quadratic, and
- * the nodal smoothing of [DK15] eqs. 4.1-4.3 on a hand-made stencil and on the
- * real uGIMP stencil. */
+ * front with an isolated point, heap slope and its sloping range, point
+ * pressures, derivative of a quadratic, and the nodal smoothing of [DK15]
+ * eqs. 4.1-4.3 on a hand-made stencil and on the real uGIMP stencil. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -183,6 +183,67 @@ START_TEST(t_heap_slope)
 }
 END_TEST
 
+/* The sloping part of a heap: columns of width 0.5 from x = 2, heights above
+ * the base y = 1 of 10, 10, 9.5, 6, 3, 1.5, 0.5, (empty), 0.2. The highest
+ * is 10; the first column below 9 is column 3 (6), so xa = 2 + 3 * 0.5 = 3.5;
+ * the last above 1 is column 5 (1.5), so xb = 2 + 6 * 0.5 = 5. A point below
+ * a column's top and points outside the columns do not count. */
+START_TEST(t_slope_range)
+{
+  const double h[] = {10, 10, 9.5, 6, 3, 1.5, 0.5, NAN, 0.2};
+  const double x0 = 2.0, w = 0.5, base = 1.0;
+  mpm_points *pts = mpm_points_alloc(0);
+  mpm_err err = {0};
+  double xa = 0.0, xb = 0.0;
+  for (int k = 0; k < 9; k++)
+    if (!isnan(h[k]))
+      push(pts, x0 + (k + 0.5) * w, base + h[k], 0, 0, 1);
+  push(pts, x0 + 3.5 * w, base, 0, 0, 1);   /* below the top of column 3 */
+  push(pts, 1.9, 100.0, 0, 0, 1);           /* left of the columns */
+  push(pts, 6.6, 100.0, 0, 0, 1);           /* right of the 9 columns */
+  ck_assert_int_eq(mpm_diag_slope_range(pts, x0, w, 9, base, &xa, &xb, &err), MPM_OK);
+  ck_assert_double_eq(xa, 3.5);
+  ck_assert_double_eq(xb, 5.0);
+  mpm_points_free(pts);
+
+  /* a step from 4 to 0.2: the last column above 0.4 is left of the first
+   * below 3.6, so nothing slopes */
+  pts = mpm_points_alloc(0);
+  for (int k = 0; k < 4; k++)
+    push(pts, (k + 0.5) * w, k < 2 ? 4.0 : 0.2, 0, 0, 1);
+  ck_assert_int_eq(mpm_diag_slope_range(pts, 0.0, w, 4, 0.0, &xa, &xb, &err), MPM_EINVAL);
+  mpm_points_free(pts);
+
+  /* flat: no column below 90% of the highest */
+  pts = mpm_points_alloc(0);
+  for (int k = 0; k < 3; k++)
+    push(pts, (k + 0.5) * w, 3.0, 0, 0, 1);
+  ck_assert_int_eq(mpm_diag_slope_range(pts, 0.0, w, 3, 0.0, &xa, &xb, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_slope_range(pts, 0.0, w, 0, 0.0, &xa, &xb, &err), MPM_EINVAL);
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* p = -(sxx + syy + szz) / 3: (-3, -6, -9) Pa gives 6 Pa, (1, 2, -6) Pa gives 1 Pa. */
+START_TEST(t_pressure)
+{
+  const double s[2][3] = {{-3, -6, -9}, {1, 2, -6}}, want[2] = {6.0, 1.0};
+  mpm_points *pts = mpm_points_alloc(0);
+  double p[2];
+  for (int i = 0; i < 2; i++) {
+    size_t k = push(pts, 0, 0, 0, 0, 1);
+    pts->sxx[k] = s[i][0];
+    pts->syy[k] = s[i][1];
+    pts->szz[k] = s[i][2];
+    pts->sxy[k] = 5.0;                          /* shear does not enter p */
+  }
+  mpm_diag_pressure(pts, p);
+  ck_assert_double_eq(p[0], want[0]);
+  ck_assert_double_eq(p[1], want[1]);
+  mpm_points_free(pts);
+}
+END_TEST
+
 START_TEST(t_line_fit)
 {
   const double x[] = {1.0, 2.0, 4.0, 7.0, 3.0};
@@ -309,6 +370,8 @@ int main(void)
   tcase_add_test(tc, t_flow_mu_normal_deviator);
   tcase_add_test(tc, t_front_isolated);
   tcase_add_test(tc, t_heap_slope);
+  tcase_add_test(tc, t_slope_range);
+  tcase_add_test(tc, t_pressure);
   tcase_add_test(tc, t_line_fit);
   tcase_add_test(tc, t_derivative_quadratic);
   tcase_add_test(tc, t_smooth_hand);

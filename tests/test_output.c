@@ -284,13 +284,13 @@ START_TEST(t_run_frame_roundtrip)
 {
   char dir[DIR_MAX], shape[16];
   mpm_err err = {0};
-  mpm_run *r = NULL;
+  mpm_io_run *r = NULL;
   mpm_mesh m, want;
   double t = -1.0;
   write_run(dir);
-  ck_assert_msg(mpm_run_open(&r, dir, &err) == MPM_OK, "%s", err.msg);
-  ck_assert_int_eq(mpm_run_nframes(r), NFRAMES);
-  ck_assert_msg(mpm_run_mesh(r, &m, shape, sizeof shape, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(mpm_io_run_open(&r, dir, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_int_eq(mpm_io_run_nframes(r), NFRAMES);
+  ck_assert_msg(mpm_io_run_mesh(r, &m, shape, sizeof shape, &err) == MPM_OK, "%s", err.msg);
   fill_mesh(&want);
   ck_assert(m.nx == want.nx && m.ny == want.ny && m.x0 == want.x0 && m.dx == want.dx &&
             m.dy == want.dy && m.topology == want.topology && m.diagonal == want.diagonal &&
@@ -300,7 +300,7 @@ START_TEST(t_run_frame_roundtrip)
   for (int f = -1; f < NFRAMES; f++) {
     int ff = f < 0 ? NFRAMES - 1 : f;
     mpm_points *w = frame_points(ff);
-    ck_assert_msg(mpm_run_frame(r, f, pts, &t, &err) == MPM_OK, "%s", err.msg);
+    ck_assert_msg(mpm_io_run_frame(r, f, pts, &t, &err) == MPM_OK, "%s", err.msg);
     ck_assert(t == frame_time(ff));
     ck_assert_uint_eq(pts->n, w->n);
     for (size_t i = 0; i < w->n; i++) {
@@ -316,11 +316,11 @@ START_TEST(t_run_frame_roundtrip)
     }
     mpm_points_free(w);
   }
-  ck_assert_int_eq(mpm_run_frame(r, NFRAMES, pts, &t, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_io_run_frame(r, NFRAMES, pts, &t, &err), MPM_EINPUT);
   mpm_points_free(pts);
-  mpm_run_close(r);
+  mpm_io_run_close(r);
   remove_tree(dir);
-  ck_assert_int_eq(mpm_run_open(&r, dir, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_run_open(&r, dir, &err), MPM_EIO);
   ck_assert_ptr_null(r);
 }
 END_TEST

@@ -35,14 +35,14 @@ START_TEST(t_flow_rate_exact_line)
   double q = 0.0;
   size_t n = 0;
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_region_flow_rate(t, m, 201, 1200.0, 900.0, &q, &n, &err), MPM_OK);
+  ck_assert_int_eq(mpm_diag_region_flow_rate(t, m, 201, 1200.0, 900.0, &q, &n, &err), MPM_OK);
   /* m in [900, 1200] <=> t in [75/64, 150/64]: k = 75 ... 150 */
   ck_assert_uint_eq(n, 76);
   ck_assert_double_eq_tol(q, 256.0, 1e-9);
   /* a different slope outside the band must not change the fit */
   for (int k = 0; k < 75; k++)
     m[k] = 5000.0 - 10.0 * t[k];
-  ck_assert_int_eq(mpm_region_flow_rate(t, m, 201, 1200.0, 900.0, &q, &n, &err), MPM_OK);
+  ck_assert_int_eq(mpm_diag_region_flow_rate(t, m, 201, 1200.0, 900.0, &q, &n, &err), MPM_OK);
   ck_assert_double_eq_tol(q, 256.0, 1e-9);
   /* noise on four samples t = 0 ... 3 (mean 1.5, sum (t - 1.5)^2 = 5): the
    * slope moves by sum (t - 1.5) noise / 5 from the line's */
@@ -50,11 +50,11 @@ START_TEST(t_flow_rate_exact_line)
   const double e = 3.0;
   for (int k = 0; k < 4; k++)
     m4[k] = 1000.0 - 20.0 * t4[k] + (k % 2 ? -e : e);
-  ck_assert_int_eq(mpm_region_flow_rate(t4, m4, 4, 2000.0, 0.0, &q, &n, &err), MPM_OK);
+  ck_assert_int_eq(mpm_diag_region_flow_rate(t4, m4, 4, 2000.0, 0.0, &q, &n, &err), MPM_OK);
   /* sum (t - 1.5) noise = -1.5 e - 0.5 (-e) + 0.5 e + 1.5 (-e) = -2 e */
   ck_assert_double_eq_tol(q, 20.0 + 2.0 * e / 5.0, 1e-12);
   /* one sample in the band: no fit */
-  ck_assert_int_eq(mpm_region_flow_rate(t4, m4, 4, 1000.5 + e, 999.5 + e, &q, &n, &err),
+  ck_assert_int_eq(mpm_diag_region_flow_rate(t4, m4, 4, 1000.5 + e, 999.5 + e, &q, &n, &err),
                    MPM_EINVAL);
   ck_assert_uint_eq(n, 1);
 }
@@ -71,10 +71,10 @@ START_TEST(t_region_mass)
     p->y[i] = xy[k][1];
     p->mass[i] = xy[k][2];
   }
-  ck_assert_double_eq(mpm_region_mass(p, 0.0, 1.0, 0.0, 1.0), 7.0);
-  ck_assert_double_eq(mpm_region_mass(p, 0.0, 0.6, 0.0, 1.0), 3.0);
-  ck_assert_double_eq(mpm_region_mass(p, 0.5, 0.5, 0.5, 0.5), 2.0);  /* closed box */
-  ck_assert_double_eq(mpm_region_mass(p, -1e9, 1e9, -1e9, 1e9), 15.0);
+  ck_assert_double_eq(mpm_diag_region_mass(p, 0.0, 1.0, 0.0, 1.0), 7.0);
+  ck_assert_double_eq(mpm_diag_region_mass(p, 0.0, 0.6, 0.0, 1.0), 3.0);
+  ck_assert_double_eq(mpm_diag_region_mass(p, 0.5, 0.5, 0.5, 0.5), 2.0);  /* closed box */
+  ck_assert_double_eq(mpm_diag_region_mass(p, -1e9, 1e9, -1e9, 1e9), 15.0);
   mpm_points_free(p);
 }
 END_TEST
@@ -345,14 +345,14 @@ START_TEST(t_nodal_density)
       mass[n++] = mp;
     }
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_nodal_density(&m, n, x, y, mass, rho, &err), MPM_OK);
+  ck_assert_int_eq(mpm_diag_nodal_density(&m, n, x, y, mass, rho, &err), MPM_OK);
   for (size_t p = 0; p < n; p++)
     ck_assert_double_eq_tol(rho[p], rho0, 1e-9 * rho0);
   double x1 = 0.45, y1 = 0.35, m1 = 2.0, r1;
-  ck_assert_int_eq(mpm_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_OK);
+  ck_assert_int_eq(mpm_diag_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_OK);
   ck_assert_double_eq_tol(r1, m1 / (0.1 * 0.1), 1e-9 * r1);
   x1 = 0.6;                                /* outside: an error naming it */
-  ck_assert_int_eq(mpm_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_EOUTSIDE);
+  ck_assert_int_eq(mpm_diag_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_EOUTSIDE);
   ck_assert_ptr_nonnull(strstr(err.msg, "(0.6, 0.35)"));
 }
 END_TEST

@@ -12,12 +12,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/args.h"
 #include "diag/flow.h"
 #include "io/io.h"
 #include "shape/shape.h"
 
-enum { EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
 enum mode { MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES };
+
+/* The options that ask for a measurement, by mode; --profile takes a value. */
+static const char *const mode_option[] = {
+  [MODE_PROFILE] = "--profile", [MODE_SURFACE] = "--surface", [MODE_SMOOTH] = "--smooth",
+  [MODE_SERIES] = "--series",
+};
 
 typedef struct opts {
   const char *dir;
@@ -33,17 +39,9 @@ typedef struct opts {
   double xa, xb;
 } opts;
 
-static int usage(const char *what, const char *arg)
+static int bad_value(const char *opt, const char *what, const char *v)
 {
-  fprintf(stderr, "granmpm: extract: %s '%s' (see 'granmpm --help')\n", what, arg);
-  return EXIT_USAGE;
-}
-
-static int num(const char *s, double *v)
-{
-  char *end;
-  *v = strtod(s, &end);
-  return *s != '\0' && *end == '\0' && isfinite(*v);
+  return mpm_app_usage("extract: %s expects %s, got '%s'", opt, what, v);
 }
 
 /* "A:B" with finite A < B. */
@@ -55,7 +53,56 @@ static int pair(const char *s, double *a, double *b)
     return 0;
   memcpy(buf, s, (size_t)(c - s));
   buf[c - s] = '\0';
-  return num(buf, a) && num(c + 1, b) && *a < *b;
+  return mpm_app_arg_real(buf, a) && mpm_app_arg_real(c + 1, b) && *a < *b;
+}
+
+/* Option a with the value v: -1 if a is no such option, else 0 or the usage
+ * exit status. */
+static int parse_valued(const char *a, const char *v, opts *o)
+{
+  const struct { const char *name; double *dst; int positive; const char *what; } real[] = {
+    {"--width", &o->width, 1, "a column width > 0 [m]"},
+    {"--gdot-min", &o->gdot_min, 0, "a shear rate >= 0 [1/s]"},
+    {"--front-cell", &o->front_cell, 1, "a cell size > 0 [m]"},
+  };
+  const struct { const char *name; int *dst; int lo, hi; const char *what; } whole[] = {
+    {"--profile", &o->nbins, 1, 100000, "a number of bins 1..100000"},
+    {"--front-min", &o->front_min, 1, 1000, "a point count 1..1000"},
+  };
+  for (size_t k = 0; k < sizeof real / sizeof real[0]; k++)
+    if (strcmp(a, real[k].name) == 0) {
+      double d;
+      if (!mpm_app_arg_real(v, &d) || d < 0.0 || (real[k].positive && !(d > 0.0)))
+        return bad_value(a, real[k].what, v);
+      *real[k].dst = d;
+      return 0;
+    }
+  for (size_t k = 0; k < sizeof whole / sizeof whole[0]; k++)
+    if (strcmp(a, whole[k].name) == 0)
+      return mpm_app_arg_int(v, whole[k].lo, whole[k].hi, whole[k].dst)
+                 ? 0 : bad_value(a, whole[k].what, v);
+  if (strcmp(a, "--frame") == 0)
+    return mpm_app_arg_frame("extract", v, &o->frame);
+  if (strcmp(a, "--range") == 0)
+    return pair(v, &o->ymin, &o->ymax) ? 0 : bad_value(a, "YMIN:YMAX with YMIN < YMAX", v);
+  if (strcmp(a, "--slope") == 0) {
+    if (strcmp(v, "auto") == 0)
+      o->slope = 2;
+    else if (pair(v, &o->xa, &o->xb))
+      o->slope = 1;
+    else
+      return bad_value(a, "XA:XB with XA < XB or 'auto'", v);
+    return 0;
+  }
+  return -1;
+}
+
+static int mode_of(const char *a)
+{
+  for (int m = MODE_PROFILE; m <= MODE_SERIES; m++)
+    if (strcmp(a, mode_option[m]) == 0)
+      return m;
+  return MODE_NONE;
 }
 
 static int parse(int argc, char **argv, opts *o)
@@ -65,74 +112,29 @@ static int parse(int argc, char **argv, opts *o)
   o->front_min = 1;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    double d;
-    if (strcmp(a, "--profile") == 0 && v) {
-      if (!num(v, &d) || d < 1 || d > 100000 || d != floor(d))
-        return usage("--profile expects a number of bins 1..100000, got", v);
-      o->mode = MODE_PROFILE;
-      o->nbins = (int)d;
+    int m = mode_of(a), st = -1;
+    if (m != MODE_NONE)
+      o->mode = m;
+    if (m != MODE_NONE && m != MODE_PROFILE)
+      continue;
+    if (v)
+      st = parse_valued(a, v, o);
+    if (st < 0)
+      st = mpm_app_arg_positional("extract", a, &o->dir, 1);
+    else
       i++;
-    } else if (strcmp(a, "--surface") == 0) {
-      o->mode = MODE_SURFACE;
-    } else if (strcmp(a, "--smooth") == 0) {
-      o->mode = MODE_SMOOTH;
-    } else if (strcmp(a, "--series") == 0) {
-      o->mode = MODE_SERIES;
-    } else if (strcmp(a, "--frame") == 0 && v) {
-      if (strcmp(v, "last") == 0)
-        o->frame = -1;
-      else if (!num(v, &d) || d < 0 || d > 1e9 || d != floor(d))
-        return usage("--frame expects a frame number >= 0 or 'last', got", v);
-      else
-        o->frame = (int)d;
-      i++;
-    } else if (strcmp(a, "--range") == 0 && v) {
-      if (!pair(v, &o->ymin, &o->ymax))
-        return usage("--range expects YMIN:YMAX with YMIN < YMAX, got", v);
-      i++;
-    } else if (strcmp(a, "--width") == 0 && v) {
-      if (!num(v, &o->width) || !(o->width > 0))
-        return usage("--width expects a column width > 0 [m], got", v);
-      i++;
-    } else if (strcmp(a, "--gdot-min") == 0 && v) {
-      if (!num(v, &o->gdot_min) || o->gdot_min < 0)
-        return usage("--gdot-min expects a shear rate >= 0 [1/s], got", v);
-      i++;
-    } else if (strcmp(a, "--front-cell") == 0 && v) {
-      if (!num(v, &o->front_cell) || !(o->front_cell > 0))
-        return usage("--front-cell expects a cell size > 0 [m], got", v);
-      i++;
-    } else if (strcmp(a, "--front-min") == 0 && v) {
-      if (!num(v, &d) || d < 1 || d > 1000 || d != floor(d))
-        return usage("--front-min expects a point count 1..1000, got", v);
-      o->front_min = (int)d;
-      i++;
-    } else if (strcmp(a, "--slope") == 0 && v) {
-      if (strcmp(v, "auto") == 0)
-        o->slope = 2;
-      else if (pair(v, &o->xa, &o->xb))
-        o->slope = 1;
-      else
-        return usage("--slope expects XA:XB with XA < XB or 'auto', got", v);
-      i++;
-    } else if (a[0] == '-') {
-      return usage("unknown or incomplete option", a);
-    } else if (!o->dir) {
-      o->dir = a;
-    } else {
-      return usage("unexpected argument", a);
-    }
+    if (st != 0)
+      return st;
   }
   if (!o->dir)
-    return usage("a run directory is required", "");
+    return mpm_app_usage("extract: a run directory is required");
   return 0;
 }
 
 int mpm_app_is_analysis(int argc, char **argv)
 {
   for (int i = 1; i < argc; i++)
-    if (!strcmp(argv[i], "--profile") || !strcmp(argv[i], "--surface") ||
-        !strcmp(argv[i], "--smooth") || !strcmp(argv[i], "--series"))
+    if (mode_of(argv[i]) != MODE_NONE)
       return 1;
   return 0;
 }
@@ -204,10 +206,10 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
   double *nm = malloc(nn * sizeof *nm), *nmf = malloc(nn * sizeof *nmf);
   int rc = (!st || !p || !ps || !nm || !nmf) ? mpm_err_set(err, MPM_ENOMEM, "out of memory")
                                              : MPM_OK;
-  for (size_t i = 0; rc == MPM_OK && i < n; i++)
-    p[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
-  if (rc == MPM_OK)
+  if (rc == MPM_OK) {
+    mpm_diag_pressure(pts, p);
     rc = mpm_stencil_compute(st, type, m, pts, t, err);
+  }
   if (rc == MPM_OK)
     rc = mpm_diag_smooth(st, n, pts->mass, p, m->nnodes, nm, nmf, ps, err);
   if (rc == MPM_OK) {
@@ -224,42 +226,9 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
   return rc;
 }
 
-/* Heap slope range "auto": from the first column (left to right) whose top
- * is below 90% of the highest top to the last one above 10% of it. */
-static int auto_range(const mpm_points *pts, const mpm_mesh *m, double w, double *xa,
-                      double *xb, mpm_err *err)
+static int do_series(const opts *o, mpm_io_run *r, const mpm_mesh *m, mpm_err *err)
 {
-  int n = 0, ka = -1, kb = -1, rc = column_count(m, w, &n, err);
-  if (rc != MPM_OK)
-    return rc;
-  double *top = malloc((size_t)n * sizeof *top), hmax = -INFINITY, y0 = m->y0;
-  if (!top)
-    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  rc = mpm_diag_surface(pts, m->x0, w, n, top, err);
-  for (int k = 0; rc == MPM_OK && k < n; k++)
-    if (!isnan(top[k]) && top[k] > hmax)
-      hmax = top[k];
-  for (int k = 0; rc == MPM_OK && k < n; k++) {
-    if (isnan(top[k]))
-      continue;
-    if (ka < 0 && top[k] - y0 < 0.9 * (hmax - y0))
-      ka = k;
-    if (top[k] - y0 > 0.1 * (hmax - y0))
-      kb = k;
-  }
-  free(top);
-  if (rc == MPM_OK && (ka < 0 || kb < ka + 1))
-    rc = mpm_err_set(err, MPM_EINVAL, "slope auto: no sloping part of the surface found");
-  if (rc == MPM_OK) {
-    *xa = m->x0 + ka * w;
-    *xb = m->x0 + (kb + 1) * w;
-  }
-  return rc;
-}
-
-static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
-{
-  int nf = mpm_run_nframes(r);
+  int nf = mpm_io_run_nframes(r);
   double w = o->width > 0 ? o->width : m->dx, h = o->front_cell > 0 ? o->front_cell : m->dx;
   double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
   double *a = calloc((size_t)nf + 1, sizeof *a);
@@ -273,7 +242,7 @@ static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
   if (rc == MPM_OK && o->slope)
     rc = column_count(m, w, &ncol, err);   /* a bad --width is an error, not NaN slopes */
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
-    rc = mpm_run_frame(r, k, pts, &t[k], err);
+    rc = mpm_io_run_frame(r, k, pts, &t[k], err);
     if (rc != MPM_OK)
       break;
     mpm_diag_flow(pts, o->gdot_min, &f[k]);
@@ -283,7 +252,9 @@ static int do_series(const opts *o, mpm_run *r, const mpm_mesh *m, mpm_err *err)
     if (rc == MPM_OK && o->slope) {
       xa[k] = o->xa;
       xb[k] = o->xb;
-      int src = o->slope == 2 ? auto_range(pts, m, w, &xa[k], &xb[k], err) : MPM_OK;
+      int src = o->slope == 2
+                    ? mpm_diag_slope_range(pts, m->x0, w, ncol, m->y0, &xa[k], &xb[k], err)
+                    : MPM_OK;
       if (src == MPM_OK && mpm_diag_heap_slope(pts, xa[k], xb[k], w, &sl[k], err) != MPM_OK)
         sl[k] = NAN;                       /* no surface in range in this frame */
       if (src != MPM_OK)
@@ -322,16 +293,16 @@ int mpm_app_analyse(int argc, char **argv)
   if (st != 0)
     return st;
   mpm_err err = {0};
-  mpm_run *r = NULL;
+  mpm_io_run *r = NULL;
   mpm_mesh m;
   char shape[64];
   double t = 0.0;
   mpm_points *pts = mpm_points_alloc(0);
-  int rc = pts ? mpm_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
+  int rc = pts ? mpm_io_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
   if (rc == MPM_OK)
-    rc = mpm_run_mesh(r, &m, shape, sizeof shape, &err);
+    rc = mpm_io_run_mesh(r, &m, shape, sizeof shape, &err);
   if (rc == MPM_OK && o.mode != MODE_SERIES)
-    rc = mpm_run_frame(r, o.frame, pts, &t, &err);
+    rc = mpm_io_run_frame(r, o.frame, pts, &t, &err);
   if (rc == MPM_OK) {
     switch (o.mode) {
     case MODE_PROFILE: rc = do_profile(&o, pts, &m, &err); break;
@@ -340,11 +311,9 @@ int mpm_app_analyse(int argc, char **argv)
     default: rc = do_series(&o, r, &m, &err); break;
     }
   }
-  mpm_run_close(r);
+  mpm_io_run_close(r);
   mpm_points_free(pts);
-  if (rc != MPM_OK) {
-    fprintf(stderr, "granmpm: %s\n", err.msg);
-    return rc == MPM_EINPUT || rc == MPM_EIO ? EXIT_USAGE : EXIT_RUNTIME;
-  }
-  return fflush(stdout) == 0 ? 0 : EXIT_RUNTIME;
+  if (rc != MPM_OK)
+    return mpm_app_fail(&err);
+  return fflush(stdout) == 0 ? 0 : MPM_APP_EXIT_RUNTIME;
 }

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "app/analyse.h"
+#include "app/args.h"
 #include "app/constitutive.h"
 #include "app/state.h"
 #include "diag/diag.h"
@@ -19,7 +20,7 @@
 #include "io/io.h"
 #include "solver/solver.h"
 
-enum { EXIT_RUNTIME = 1, EXIT_USAGE = 2, MAX_SET = 256 };
+enum { MAX_SET = 256 };
 
 static const char usage_text[] =
   "usage: granmpm COMMAND [ARGS]\n"
@@ -46,14 +47,6 @@ static const char usage_text[] =
   "        (granmpm constitutive --help)\n"
   "  --version, --help\n";
 
-static int usage_error(const char *fmt, const char *arg)
-{
-  fprintf(stderr, "granmpm: ");
-  fprintf(stderr, fmt, arg);
-  fprintf(stderr, " (see 'granmpm --help')\n");
-  return EXIT_USAGE;
-}
-
 /* Options shared by run and check. */
 typedef struct run_opts {
   const char *file;
@@ -71,26 +64,24 @@ static int parse_run_opts(int argc, char **argv, int allow_run_opts, run_opts *o
     if (strcmp(a, "--set") == 0 || strncmp(a, "--set=", 6) == 0) {
       const char *v = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
       if (!v)
-        return usage_error("%s needs section.key=value", "--set");
+        return mpm_app_usage("%s needs section.key=value", "--set");
       if (o->nset == MAX_SET)
-        return usage_error("too many %s options", "--set");
+        return mpm_app_usage("too many %s options", "--set");
       o->sets[o->nset++] = v;
     } else if (allow_run_opts && strcmp(a, "--output") == 0) {
       if (i + 1 >= argc)
-        return usage_error("%s needs a directory", "--output");
+        return mpm_app_usage("%s needs a directory", "--output");
       o->outdir = argv[++i];
     } else if (allow_run_opts && strcmp(a, "--quiet") == 0) {
       o->quiet = 1;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      return usage_error("unknown option '%s'", a);
-    } else if (!o->file) {
-      o->file = a;
     } else {
-      return usage_error("unexpected argument '%s'", a);
+      int st = mpm_app_arg_positional(argv[0], a, &o->file, 1);
+      if (st != 0)
+        return st;
     }
   }
   if (!o->file)
-    return usage_error("%s: an input FILE is required", argv[0]);
+    return mpm_app_usage("%s: an input FILE is required", argv[0]);
   return 0;
 }
 
@@ -99,11 +90,11 @@ static int load_input(const run_opts *o, mpm_config *cfg)
   mpm_err err = {0};
   if (mpm_input_load(o->file, o->sets, o->nset, cfg, &err) != MPM_OK) {
     fprintf(stderr, "granmpm: %s\n", err.msg);
-    return EXIT_USAGE;
+    return MPM_APP_EXIT_USAGE;
   }
   if (o->outdir) {
     if (strlen(o->outdir) >= sizeof cfg->output.dir)
-      return usage_error("--output '%s': path too long", o->outdir);
+      return mpm_app_usage("--output '%s': path too long", o->outdir);
     strcpy(cfg->output.dir, o->outdir);
   }
   return 0;
@@ -230,8 +221,8 @@ static int report_flow_rate(const run_ctx *c, const mpm_config *cfg, mpm_err *er
   double q = 0.0;
   size_t n = 0;
   mpm_err ferr = {0};
-  if (mpm_region_flow_rate(c->ft, c->fm, c->nf, cfg->region.m_hi, cfg->region.m_lo, &q, &n,
-                           &ferr) != MPM_OK) {
+  if (mpm_diag_region_flow_rate(c->ft, c->fm, c->nf, cfg->region.m_hi, cfg->region.m_lo, &q,
+                                &n, &ferr) != MPM_OK) {
     fprintf(stderr, "granmpm: no flow rate: %s\n", ferr.msg);
     return MPM_OK;
   }
@@ -261,7 +252,7 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   mpm_sim *sim = NULL;
   if (mpm_sim_create(&sim, &cfg, &err) != MPM_OK) {
     fprintf(stderr, "granmpm: %s: %s\n", o.file, err.msg);
-    return err.code == MPM_ENOMEM ? EXIT_RUNTIME : EXIT_USAGE;
+    return err.code == MPM_ENOMEM ? MPM_APP_EXIT_RUNTIME : MPM_APP_EXIT_USAGE;
   }
   run_ctx ctx = {.quiet = o.quiet, .tty = isatty(STDERR_FILENO)};
   char *cmdline = join_args(full_argc, full_argv), *text = input_text(&cfg);
@@ -297,7 +288,7 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   mpm_sim_free(sim);
   free(ctx.ft);
   free(ctx.fm);
-  return st == MPM_OK ? 0 : EXIT_RUNTIME;
+  return st == MPM_OK ? 0 : MPM_APP_EXIT_RUNTIME;
 }
 
 /* ---- extract --------------------------------------------------------------- */
@@ -309,41 +300,32 @@ static int cmd_extract(int argc, char **argv)
   const char *dir = NULL, *fields = NULL;
   int frame = -1;
   for (int i = 1; i < argc; i++) {
-    if (strcmp(argv[i], "--frame") == 0 && i + 1 < argc) {
-      const char *v = argv[++i];
-      char *end;
-      if (strcmp(v, "last") == 0) {
-        frame = -1;
-      } else {
-        long n = strtol(v, &end, 10);
-        if (*v == '\0' || *end != '\0' || n < 0 || n > 1000000000L)
-          return usage_error("--frame '%s': expected a frame number >= 0 or 'last'", v);
-        frame = (int)n;
-      }
-    } else if (strcmp(argv[i], "--fields") == 0 && i + 1 < argc) {
-      fields = argv[++i];
-    } else if (argv[i][0] == '-') {
-      return usage_error("extract: unknown or incomplete option '%s'", argv[i]);
-    } else if (!dir) {
-      dir = argv[i];
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    int st = 0;
+    if (strcmp(a, "--frame") == 0 && v) {
+      st = mpm_app_arg_frame("extract", v, &frame);
+      i++;
+    } else if (strcmp(a, "--fields") == 0 && v) {
+      fields = v;
+      i++;
     } else {
-      return usage_error("extract: unexpected argument '%s'", argv[i]);
+      st = mpm_app_arg_positional("extract", a, &dir, 1);
     }
+    if (st != 0)
+      return st;
   }
   if (!dir)
-    return usage_error("%s: a run directory is required", "extract");
+    return mpm_app_usage("%s: a run directory is required", "extract");
   mpm_err err = {0};
-  if (mpm_extract(dir, frame, fields, stdout, &err) != MPM_OK) {
-    fprintf(stderr, "granmpm: %s\n", err.msg);
-    return EXIT_USAGE;
-  }
+  if (mpm_extract(dir, frame, fields, stdout, &err) != MPM_OK)
+    return mpm_app_fail(&err);
   return 0;
 }
 
 int main(int argc, char **argv)
 {
   if (argc < 2)
-    return usage_error("%s", "a command is required");
+    return mpm_app_usage("%s", "a command is required");
   const char *cmd = argv[1];
   if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
     fputs(usage_text, stdout);
@@ -363,5 +345,5 @@ int main(int argc, char **argv)
     return mpm_app_state(argc - 1, argv + 1);
   if (strcmp(cmd, "constitutive") == 0)
     return mpm_app_constitutive(argc - 1, argv + 1);
-  return usage_error("unknown command '%s'", cmd);
+  return mpm_app_usage("unknown command '%s'", cmd);
 }

@@ -20,7 +20,7 @@ void mpm_points_free(mpm_points *pts)
 {
   if (!pts)
     return;
-#define MPM_POINT_FREE_(f, d, u) free(pts->f);
+#define MPM_POINT_FREE_(f, nm, d, u) free(pts->f);
   MPM_POINT_REAL_FIELDS(MPM_POINT_FREE_)
   MPM_POINT_INT_FIELDS(MPM_POINT_FREE_)
 #undef MPM_POINT_FREE_
@@ -43,7 +43,7 @@ int mpm_points_reserve(mpm_points *pts, size_t cap)
   if (cap <= pts->cap)
     return MPM_OK;
   int rc = MPM_OK;
-#define MPM_POINT_GROW_(f, d, u) \
+#define MPM_POINT_GROW_(f, nm, d, u) \
   if (rc == MPM_OK) rc = grow((void **)&pts->f, pts->cap, cap, sizeof *pts->f);
   MPM_POINT_REAL_FIELDS(MPM_POINT_GROW_)
   MPM_POINT_INT_FIELDS(MPM_POINT_GROW_)
@@ -62,7 +62,7 @@ int mpm_points_push(mpm_points *pts, size_t *idx)
       return rc;
   }
   size_t i = pts->n++;
-#define MPM_POINT_ZERO_(f, d, u) pts->f[i] = 0;
+#define MPM_POINT_ZERO_(f, nm, d, u) pts->f[i] = 0;
   MPM_POINT_REAL_FIELDS(MPM_POINT_ZERO_)
   MPM_POINT_INT_FIELDS(MPM_POINT_ZERO_)
 #undef MPM_POINT_ZERO_
@@ -78,7 +78,7 @@ void mpm_points_compact(mpm_points *pts, const unsigned char *keep)
     if (!keep[i])
       continue;
     if (j != i) {
-#define MPM_POINT_MOVE_(f, d, u) pts->f[j] = pts->f[i];
+#define MPM_POINT_MOVE_(f, nm, d, u) pts->f[j] = pts->f[i];
       MPM_POINT_REAL_FIELDS(MPM_POINT_MOVE_)
       MPM_POINT_INT_FIELDS(MPM_POINT_MOVE_)
 #undef MPM_POINT_MOVE_

@@ -2,8 +2,8 @@
  *
  * Every per-point field is one contiguous array of length n (capacity cap), so
  * hot loops stream through memory and vectorise. Fields are listed once in
- * MPM_POINT_REAL_FIELDS / MPM_POINT_INT_FIELDS; allocation, growth, removal
- * and output iterate over those lists, so a new field is one line here. */
+ * MPM_POINT_FIELDS; allocation, growth, removal, output and reading a frame
+ * back iterate over that list, so a new field is one line here. */
 #ifndef MPM_CORE_POINTS_H
 #define MPM_CORE_POINTS_H
 
@@ -17,40 +17,57 @@ enum mpm_point_state {
   MPM_STATE_DISCONNECTED = 1  /* stress-free (rho < rho_c or p_tr <= 0) */
 };
 
-/* X(field, description, unit) */
-#define MPM_POINT_REAL_FIELDS(X)                                 \
-  X(x,    "position x", "m")                                     \
-  X(y,    "position y", "m")                                     \
-  X(vx,   "velocity x", "m/s")                                   \
-  X(vy,   "velocity y", "m/s")                                   \
-  X(mass, "mass per unit thickness", "kg/m")                     \
-  X(vol,  "true volume per unit thickness", "m^2")               \
-  X(r1x,  "extent half-vector r1, x", "m")                       \
-  X(r1y,  "extent half-vector r1, y", "m")                       \
-  X(r2x,  "extent half-vector r2, x", "m")                       \
-  X(r2y,  "extent half-vector r2, y", "m")                       \
-  X(sxx,  "Cauchy stress xx", "Pa")                              \
-  X(syy,  "Cauchy stress yy", "Pa")                              \
-  X(szz,  "Cauchy stress zz (out of plane)", "Pa")               \
-  X(sxy,  "Cauchy stress xy", "Pa")                              \
-  X(g,    "granular fluidity", "1/s")                            \
-  X(gdp,  "equivalent plastic shear rate gdot_p", "1/s")
+/* Every point field, once, in the order of the datasets of an output frame
+ * (io/output.c; extract's default column order, which readers rely on):
+ *   REAL(member, name, description, unit)  a double array of the store
+ *   INT(member, name, description, unit)   an int array of the store
+ *   DERIVED(key, name, description, unit)  output only, computed from the
+ *                                          stored fields when a frame is written
+ * name is the field's name in run.h5, run.xdmf and extract's CSV. The store
+ * itself does not depend on the order. */
+#define MPM_POINT_FIELDS(REAL, INT, DERIVED)                                   \
+  REAL(x,       "x",      "position x", "m")                                   \
+  REAL(y,       "y",      "position y", "m")                                   \
+  REAL(vx,      "vx",     "velocity x", "m/s")                                 \
+  REAL(vy,      "vy",     "velocity y", "m/s")                                 \
+  REAL(sxx,     "sxx",    "Cauchy stress xx", "Pa")                            \
+  REAL(syy,     "syy",    "Cauchy stress yy", "Pa")                            \
+  REAL(szz,     "szz",    "Cauchy stress zz (out of plane)", "Pa")             \
+  REAL(sxy,     "sxy",    "Cauchy stress xy", "Pa")                            \
+  DERIVED(p,    "p",      "pressure -(sxx+syy+szz)/3", "Pa")                   \
+  REAL(mass,    "mass",   "mass per unit thickness", "kg/m")                   \
+  REAL(vol,     "volume", "true volume per unit thickness", "m^2")             \
+  INT(state,    "state",  "0 dense, 1 disconnected", "-")                      \
+  REAL(gdp,     "gdot_p", "equivalent plastic shear rate", "1/s")              \
+  REAL(g,       "g",      "granular fluidity", "1/s")                          \
+  INT(id,       "id",     "persistent point id", "-")                          \
+  REAL(r1x,     "r1x",    "extent half-vector r1, x", "m")                     \
+  REAL(r1y,     "r1y",    "extent half-vector r1, y", "m")                     \
+  REAL(r2x,     "r2x",    "extent half-vector r2, x", "m")                     \
+  REAL(r2y,     "r2y",    "extent half-vector r2, y", "m")
 
-#define MPM_POINT_INT_FIELDS(X)                                  \
-  X(state, "0 dense, 1 disconnected", "-")                       \
-  X(id,    "persistent point id", "-")
+/* The stored fields of one kind: X(member, name, description, unit). */
+#define MPM_POINT_SKIP_(f, nm, d, u)
+#define MPM_POINT_REAL_FIELDS(X) MPM_POINT_FIELDS(X, MPM_POINT_SKIP_, MPM_POINT_SKIP_)
+#define MPM_POINT_INT_FIELDS(X) MPM_POINT_FIELDS(MPM_POINT_SKIP_, X, MPM_POINT_SKIP_)
 
 typedef struct mpm_points {
   size_t n;    /* points in use */
   size_t cap;  /* allocated length of every array */
   int next_id; /* id given to the next pushed point */
-#define MPM_POINT_DECL_REAL_(f, d, u) double *f;
-#define MPM_POINT_DECL_INT_(f, d, u) int *f;
+#define MPM_POINT_DECL_REAL_(f, nm, d, u) double *f;
+#define MPM_POINT_DECL_INT_(f, nm, d, u) int *f;
   MPM_POINT_REAL_FIELDS(MPM_POINT_DECL_REAL_)
   MPM_POINT_INT_FIELDS(MPM_POINT_DECL_INT_)
 #undef MPM_POINT_DECL_REAL_
 #undef MPM_POINT_DECL_INT_
 } mpm_points;
+
+/* Pressure of point i: p = -(sxx + syy + szz) / 3, compression positive. */
+static inline double mpm_points_pressure(const mpm_points *pts, size_t i)
+{
+  return -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+}
 
 /* Allocate an empty store with room for cap points (cap may be 0). */
 mpm_points *mpm_points_alloc(size_t cap);

@@ -26,7 +26,7 @@ static void diag_accumulate(const mpm_points *pts, diag_sums *s)
   for (size_t i = 0; i < pts->n; i++) {
     double m = pts->mass[i];
     double vx = pts->vx[i], vy = pts->vy[i];
-    double p = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+    double p = mpm_points_pressure(pts, i);
     s->m += m;
     s->vol += pts->vol[i];
     s->ke += 0.5 * m * (vx * vx + vy * vy);    /* m |v|^2 / 2 */

@@ -4,7 +4,8 @@
  *   layer     vbar = sum m vx / sum m,  mu = sum m tau / sum m p (flowing layer),
  *             tau = sqrt(s0:s0 / 2), p = -tr(sigma)/3 (MODEL.md section 1)
  *   front     largest x of a point with >= min_count points in its 3x3 cells
- *   surface   largest y per column; slope by least squares
+ *   surface   largest y per column; slope by least squares; the sloping part
+ *             from 90% to 10% of the highest top
  *   smoothing [DK15] eqs. 4.1-4.3 with the run's S_ip
  *
  * Sums run serially in point order. Nothing here prints. */
@@ -75,7 +76,7 @@ void mpm_diag_flow(const mpm_points *pts, double gdot_min, mpm_flow *f)
     msp += mi * hypot(vx, vy);
     if (pts->y[i] > ymax)
       ymax = pts->y[i];
-    double p = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+    double p = mpm_points_pressure(pts, i);
     if (pts->state[i] != MPM_STATE_DENSE || !(p > 0.0) || pts->gdp[i] < gdot_min)
       continue;
     fm += mi;
@@ -169,6 +170,37 @@ int mpm_diag_surface(const mpm_points *pts, double x0, double w, int ncol, doubl
   return MPM_OK;
 }
 
+int mpm_diag_slope_range(const mpm_points *pts, double x0, double w, int ncol, double ybase,
+                         double *xa, double *xb, mpm_err *err)
+{
+  if (ncol < 1)
+    return mpm_err_set(err, MPM_EINVAL, "slope range: need ncol >= 1 (got %d)", ncol);
+  double *top = malloc((size_t)ncol * sizeof *top), hmax = -INFINITY;
+  int ka = -1, kb = -1;
+  if (!top)
+    return mpm_err_set(err, MPM_ENOMEM, "slope range: out of memory");
+  int rc = mpm_diag_surface(pts, x0, w, ncol, top, err);
+  for (int k = 0; rc == MPM_OK && k < ncol; k++)
+    if (!isnan(top[k]) && top[k] - ybase > hmax)
+      hmax = top[k] - ybase;
+  for (int k = 0; rc == MPM_OK && k < ncol; k++) {
+    if (isnan(top[k]))
+      continue;
+    if (ka < 0 && top[k] - ybase < 0.9 * hmax)
+      ka = k;
+    if (top[k] - ybase > 0.1 * hmax)
+      kb = k;
+  }
+  free(top);
+  if (rc == MPM_OK && (ka < 0 || kb < ka + 1))
+    rc = mpm_err_set(err, MPM_EINVAL, "slope auto: no sloping part of the surface found");
+  if (rc == MPM_OK) {
+    *xa = x0 + ka * w;
+    *xb = x0 + (kb + 1) * w;
+  }
+  return rc;
+}
+
 /* Centred sums keep the fit accurate far from the origin. */
 int mpm_diag_line_fit(size_t n, const double *x, const double *y, double *a, double *b,
                       mpm_err *err)
@@ -218,6 +250,14 @@ int mpm_diag_heap_slope(const mpm_points *pts, double xa, double xb, double w, d
     rc = mpm_diag_line_fit((size_t)n, xc, top, &a, slope, err);
   free(top);
   return rc;
+}
+
+/* ---- point values ------------------------------------------------------------ */
+
+void mpm_diag_pressure(const mpm_points *pts, double *p)
+{
+  for (size_t i = 0; i < pts->n; i++)
+    p[i] = mpm_points_pressure(pts, i);
 }
 
 /* ---- time series ----------------------------------------------------------- */

@@ -1,7 +1,8 @@
 /* flow.h: diagnostics of one frame of a flow ([DK15] sections 4.1 and 4.4).
  *
  * Velocity profile across the depth, depth-averaged speed, mean mu of the
- * flowing layer, front position (run-out), free-surface slope of a heap, the
+ * flowing layer, front position (run-out), free-surface slope of a heap and
+ * the range of it that slopes, the point pressures, the
  * time derivative of a sampled series (depth-averaged acceleration) and the
  * nodal smoothing of point values for plots ([DK15] eqs. 4.1-4.3). All sums
  * run serially in point order. Coordinates are those of the mesh: for an
@@ -58,6 +59,16 @@ int mpm_diag_front(const mpm_points *pts, double h, int min_count, double *xfron
 int mpm_diag_surface(const mpm_points *pts, double x0, double w, int ncol, double *top,
                      mpm_err *err);
 
+/* The part of a heap's free surface that slopes ("--slope auto",
+ * docs/diagnostics.md): with the surface in ncol columns of width w from x0
+ * (mpm_diag_surface) and heights h = top - ybase, *xa is the left edge of the
+ * first column, left to right, with h < 0.9 hmax and *xb the right edge of
+ * the last column with h > 0.1 hmax, hmax the largest h; empty columns are
+ * skipped. MPM_EINVAL when no column is below 0.9 hmax or none above
+ * 0.1 hmax lies to the right of the first one that is. */
+int mpm_diag_slope_range(const mpm_points *pts, double x0, double w, int ncol, double ybase,
+                         double *xa, double *xb, mpm_err *err);
+
 /* Least-squares line y = a + b x through the pairs with finite y; at least
  * two distinct x needed (else MPM_EINVAL). */
 int mpm_diag_line_fit(size_t n, const double *x, const double *y, double *a, double *b,
@@ -73,6 +84,9 @@ int mpm_diag_heap_slope(const mpm_points *pts, double xa, double xb, double w, d
  * differences at the ends. */
 int mpm_diag_derivative(size_t n, const double *t, const double *v, double *dvdt,
                         mpm_err *err);
+
+/* Pressure of every point, p[i] = -(sxx + syy + szz) / 3 (n values). */
+void mpm_diag_pressure(const mpm_points *pts, double *p);
 
 /* Nodal smoothing of a point field f for plots ([DK15] eqs. 4.1-4.3):
  *   (m f)_i = sum_p S_ip m_p f_p,  f_i = (m f)_i / m_i,  out_p = sum_i S_ip f_i,

@@ -3,8 +3,8 @@
 
 #include <stdlib.h>
 
-double mpm_region_mass(const mpm_points *pts, double xmin, double xmax, double ymin,
-                       double ymax)
+double mpm_diag_region_mass(const mpm_points *pts, double xmin, double xmax,
+                            double ymin, double ymax)
 {
   double m = 0.0;
   for (size_t p = 0; p < pts->n; p++)
@@ -16,8 +16,8 @@ double mpm_region_mass(const mpm_points *pts, double xmin, double xmax, double y
 /* Slope of the least-squares line through the selected samples, from sums
  * about their means (the centred form keeps round-off small when t is large
  * compared with its spread). */
-int mpm_region_flow_rate(const double *t, const double *m, size_t n, double m_hi,
-                         double m_lo, double *q, size_t *nused, mpm_err *err)
+int mpm_diag_region_flow_rate(const double *t, const double *m, size_t n, double m_hi,
+                              double m_lo, double *q, size_t *nused, mpm_err *err)
 {
   size_t k = 0;
   double st = 0.0, sm = 0.0;
@@ -46,8 +46,8 @@ int mpm_region_flow_rate(const double *t, const double *m, size_t n, double m_hi
   return MPM_OK;
 }
 
-int mpm_nodal_density(const mpm_mesh *m, size_t n, const double *x, const double *y,
-                      const double *mass, double *rho, mpm_err *err)
+int mpm_diag_nodal_density(const mpm_mesh *m, size_t n, const double *x, const double *y,
+                           const double *mass, double *rho, mpm_err *err)
 {
   const size_t nn = (size_t)m->nnodes, nu = (size_t)m->nx * (size_t)m->ny;
   double *mi = calloc(nn, sizeof *mi), *vi = calloc(nn, sizeof *vi);

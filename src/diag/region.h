@@ -11,15 +11,15 @@
 
 /* Sum of the masses of the points whose centre lies in
  * [xmin, xmax] x [ymin, ymax] [kg/m], in point order. */
-double mpm_region_mass(const mpm_points *pts, double xmin, double xmax, double ymin,
-                       double ymax);
+double mpm_diag_region_mass(const mpm_points *pts, double xmin, double xmax,
+                            double ymin, double ymax);
 
 /* Flow rate Q = -dM/dt [kg/(m s)]: least-squares slope of the samples
  * (t[k], m[k]) with m_lo <= m[k] <= m_hi. *nused (may be NULL) gets their
  * number. MPM_EINVAL when fewer than two samples qualify or they share one
  * time. */
-int mpm_region_flow_rate(const double *t, const double *m, size_t n, double m_hi,
-                         double m_lo, double *q, size_t *nused, mpm_err *err);
+int mpm_diag_region_flow_rate(const double *t, const double *m, size_t n, double m_hi,
+                              double m_lo, double *q, size_t *nused, mpm_err *err);
 
 #endif
 
@@ -32,5 +32,5 @@ int mpm_region_flow_rate(const double *t, const double *m, size_t n, double m_hi
  * and rho_p = sum_i N_i(x_p) rho_i with the mesh basis (delta functions).
  * x, y, mass: n points inside the mesh; rho: n values out. MPM_EOUTSIDE
  * names a point outside the mesh. */
-int mpm_nodal_density(const mpm_mesh *m, size_t n, const double *x, const double *y,
-                      const double *mass, double *rho, mpm_err *err);
+int mpm_diag_nodal_density(const mpm_mesh *m, size_t n, const double *x, const double *y,
+                           const double *mass, double *rho, mpm_err *err);

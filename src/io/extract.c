@@ -59,22 +59,6 @@ static int h5_fail(mpm_err *err, const extract_ctx *c, const char *what)
 
 /* ---- opening ------------------------------------------------------------- */
 
-/* Read-only, without the HDF5 file lock, so a run that is still writing
- * (and flushes after every frame) can be extracted from. */
-static hid_t open_h5(const char *path)
-{
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  hid_t file = H5I_INVALID_HID;
-  if (fapl < 0)
-    return fapl;
-#if H5_VERSION_GE(1, 10, 7)
-  H5Pset_file_locking(fapl, 0, 1);
-#endif
-  file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
-  H5Pclose(fapl);
-  return file;
-}
-
 static int open_run(extract_ctx *c, mpm_err *err)
 {
   struct stat st;
@@ -85,7 +69,7 @@ static int open_run(extract_ctx *c, mpm_err *err)
   snprintf(c->path, len, "%s/run.h5", c->dir);
   if (stat(c->path, &st) != 0)
     return mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", c->path, strerror(errno));
-  c->file = open_h5(c->path);
+  c->file = mpm_h5_open_read(c->path);
   if (c->file < 0)
     return h5_fail(err, c, "cannot open");
   return MPM_OK;
@@ -96,8 +80,7 @@ static int count_frames(extract_ctx *c, hsize_t *n, mpm_err *err)
   H5G_info_t info;
   hid_t g = H5Gopen2(c->file, "frames", H5P_DEFAULT);
   herr_t rc = g < 0 ? -1 : H5Gget_info(g, &info);
-  if (g >= 0)
-    H5Gclose(g);
+  mpm_h5_close(g);
   if (rc < 0)
     return h5_fail(err, c, "no frames group in");
   *n = info.nlinks;
@@ -261,12 +244,10 @@ static int open_column(extract_ctx *c, column *col, mpm_err *err)
   rank = space < 0 ? -1 : H5Sget_simple_extent_ndims(space);
   if (rank == 1)
     H5Sget_simple_extent_dims(space, dims, NULL);
-  if (space >= 0)
-    H5Sclose(space);
+  mpm_h5_close(space);
   type = H5Dget_type(col->dset);
   col->isint = type >= 0 && H5Tget_class(type) == H5T_INTEGER;
-  if (type >= 0)
-    H5Tclose(type);
+  mpm_h5_close(type);
   if (col == c->col)
     c->npoints = dims[0]; /* the first column sets the row count */
   if (rank != 1 || dims[0] != c->npoints)
@@ -291,10 +272,8 @@ static herr_t read_block(const column *col, hsize_t start, hsize_t count)
   if (rc >= 0)
     rc = col->isint ? H5Dread(col->dset, H5T_NATIVE_LLONG, ms, fs, H5P_DEFAULT, col->i)
                     : H5Dread(col->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, col->d);
-  if (ms >= 0)
-    H5Sclose(ms);
-  if (fs >= 0)
-    H5Sclose(fs);
+  mpm_h5_close(ms);
+  mpm_h5_close(fs);
   return rc;
 }
 
@@ -347,10 +326,8 @@ static void ctx_close(extract_ctx *c)
   for (int k = 0; k < c->ncol; k++)
     if (c->col[k].dset >= 0)
       H5Dclose(c->col[k].dset);
-  if (c->group >= 0)
-    H5Gclose(c->group);
-  if (c->file >= 0)
-    H5Fclose(c->file);
+  mpm_h5_close(c->group);
+  mpm_h5_close(c->file);
 }
 
 static void ctx_free(extract_ctx *c)

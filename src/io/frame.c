@@ -3,8 +3,9 @@
  *
  * Reads DIR/run.h5 as written by output.c: /mesh attributes, the resolved
  * input (attribute "input", for the shape-function name) and frame groups
- * /frames/NNNNNN with attribute "time" and one dataset per point field.
- * Extents (r1x, r1y, r2x, r2y) are read when the frame has them. */
+ * /frames/NNNNNN with attribute "time" and one dataset per stored point
+ * field (MPM_POINT_FIELDS, by its output name). Extents (r1x, r1y, r2x, r2y)
+ * are read when the frame has them. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
@@ -15,21 +16,21 @@
 #include "io/h5err.h"
 #include "io/io.h"
 
-struct mpm_run {
+struct mpm_io_run {
   char path[MPM_PATH_MAX + 16];
   hid_t file;
   int nframes;
   mpm_h5_quiet quiet;  /* HDF5's error printing is off while the run is open */
 };
 
-static int fail(mpm_run *r, mpm_err *err, const char *what)
+static int fail(mpm_io_run *r, mpm_err *err, const char *what)
 {
   return mpm_err_set(err, MPM_EIO, "%s in '%s': %s", what, r->path, mpm_h5_reason(&r->quiet));
 }
 
-int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
+int mpm_io_run_open(mpm_io_run **out, const char *dir, mpm_err *err)
 {
-  mpm_run *r = calloc(1, sizeof *r);
+  mpm_io_run *r = calloc(1, sizeof *r);
   *out = NULL;
   if (!r)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening run '%s'", dir);
@@ -38,25 +39,19 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT, "run directory name too long: '%s'", dir);
   }
   mpm_h5_quiet_begin(&r->quiet);                    /* errors become return codes */
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-#if H5_VERSION_GE(1, 10, 7)
-  H5Pset_file_locking(fapl, 0, 1);                  /* a running job may still write */
-#endif
-  r->file = H5Fopen(r->path, H5F_ACC_RDONLY, fapl);
-  H5Pclose(fapl);
+  r->file = mpm_h5_open_read(r->path);              /* a running job may still write */
   if (r->file < 0) {
     int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?): %s", r->path,
                          mpm_h5_reason(&r->quiet));
-    mpm_run_close(r);
+    mpm_io_run_close(r);
     return rc;
   }
   H5G_info_t info;
   hid_t g = H5Gopen2(r->file, "frames", H5P_DEFAULT);
   if (g < 0 || H5Gget_info(g, &info) < 0) {
-    if (g >= 0)
-      H5Gclose(g);
+    mpm_h5_close(g);
     int rc = fail(r, err, "no frames group");
-    mpm_run_close(r);
+    mpm_io_run_close(r);
     return rc;
   }
   H5Gclose(g);
@@ -65,17 +60,16 @@ int mpm_run_open(mpm_run **out, const char *dir, mpm_err *err)
   return MPM_OK;
 }
 
-void mpm_run_close(mpm_run *r)
+void mpm_io_run_close(mpm_io_run *r)
 {
   if (!r)
     return;
-  if (r->file >= 0)
-    H5Fclose(r->file);
+  mpm_h5_close(r->file);
   mpm_h5_quiet_end(&r->quiet);
   free(r);
 }
 
-int mpm_run_nframes(const mpm_run *r)
+int mpm_io_run_nframes(const mpm_io_run *r)
 {
   return r->nframes;
 }
@@ -84,8 +78,7 @@ static int read_attr(hid_t obj, const char *name, hid_t type, void *v)
 {
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   herr_t rc = a < 0 ? -1 : H5Aread(a, type, v);
-  if (a >= 0)
-    H5Aclose(a);
+  mpm_h5_close(a);
   return rc < 0 ? -1 : 0;
 }
 
@@ -105,7 +98,8 @@ static void shape_from_input(const char *text, char *shape, size_t len)
   }
 }
 
-int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err *err)
+int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
+                    mpm_err *err)
 {
   hid_t g = H5Gopen2(r->file, "mesh", H5P_DEFAULT);
   char topo[16] = "", diag[16] = "";
@@ -126,19 +120,16 @@ int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err
     char *dst = k ? diag : topo;
     if (t < 0 || H5Tget_size(t) >= sizeof topo || H5Aread(a, t, dst) < 0)
       rc = -1;
-    if (t >= 0)
-      H5Tclose(t);
-    if (a >= 0)
-      H5Aclose(a);
+    mpm_h5_close(t);
+    mpm_h5_close(a);
   }
-  if (g >= 0)
-    H5Gclose(g);
+  mpm_h5_close(g);
   if (rc != 0)
-    return fail((mpm_run *)r, err, "cannot read the mesh attributes");
+    return fail((mpm_io_run *)r, err, "cannot read the mesh attributes");
   m->topology = mpm_mesh_topology_from_name(topo);
   m->diagonal = mpm_mesh_diagonal_from_name(diag);
   if (m->topology < 0 || m->diagonal < 0)
-    return fail((mpm_run *)r, err, "unknown mesh topology or diagonal");
+    return fail((mpm_io_run *)r, err, "unknown mesh topology or diagonal");
   if (shape && len) {
     hid_t a = H5Aopen(r->file, "input", H5P_DEFAULT);
     hid_t t = a < 0 ? -1 : H5Aget_type(a);
@@ -150,10 +141,8 @@ int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err
       shape_from_input(text, shape, len);
     }
     free(text);
-    if (t >= 0)
-      H5Tclose(t);
-    if (a >= 0)
-      H5Aclose(a);
+    mpm_h5_close(t);
+    mpm_h5_close(a);
   }
   return mpm_mesh_setup(m, err);
 }
@@ -170,14 +159,19 @@ static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *ds
            H5Sget_simple_extent_dims(s, dims, NULL) == 1 && dims[0] == n;
   if (ok && n > 0)
     ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, dst) >= 0;
-  if (s >= 0)
-    H5Sclose(s);
-  if (d >= 0)
-    H5Dclose(d);
+  mpm_h5_close(s);
+  mpm_h5_close(d);
   return ok ? 0 : -1;
 }
 
-int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_err *err)
+/* Fields that runs written before they were output lack: the extents. */
+static int written_later(const mpm_points *pts, const void *dst)
+{
+  return dst == pts->r1x || dst == pts->r1y || dst == pts->r2x || dst == pts->r2y;
+}
+
+int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
+                     mpm_err *err)
 {
   char name[48];
   unsigned long long n = 0;
@@ -190,8 +184,7 @@ int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_e
   hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
   if (g < 0 || read_attr(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
       read_attr(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
-    if (g >= 0)
-      H5Gclose(g);
+    mpm_h5_close(g);
     return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s'", frame, r->path);
   }
   pts->n = 0;
@@ -200,26 +193,24 @@ int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_e
     return mpm_err_set(err, MPM_ENOMEM, "out of memory reading frame %d of '%s'", frame, r->path);
   }
   pts->n = (size_t)n;
-  const struct { const char *name; double *dst; } real[] = {
-    {"x", pts->x}, {"y", pts->y}, {"vx", pts->vx}, {"vy", pts->vy}, {"sxx", pts->sxx},
-    {"syy", pts->syy}, {"szz", pts->szz}, {"sxy", pts->sxy}, {"mass", pts->mass},
-    {"volume", pts->vol}, {"gdot_p", pts->gdp}, {"g", pts->g},
+#define STORED_REAL_(f, nm, d, u) {nm, pts->f, sizeof *pts->f, 0},
+#define STORED_INT_(f, nm, d, u) {nm, pts->f, sizeof *pts->f, 1},
+  const struct { const char *name; void *dst; size_t size; int isint; } field[] = {
+    MPM_POINT_FIELDS(STORED_REAL_, STORED_INT_, MPM_POINT_SKIP_)
   };
+#undef STORED_REAL_
+#undef STORED_INT_
   int rc = MPM_OK;
-  for (size_t k = 0; rc == MPM_OK && k < sizeof real / sizeof real[0]; k++)
-    if (read_field(g, real[k].name, H5T_NATIVE_DOUBLE, n, real[k].dst) < 0)
+  for (size_t k = 0; rc == MPM_OK && k < sizeof field / sizeof field[0]; k++) {
+    if (read_field(g, field[k].name, field[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, n,
+                   field[k].dst) == 0)
+      continue;
+    if (written_later(pts, field[k].dst))
+      memset(field[k].dst, 0, (size_t)n * field[k].size);
+    else
       rc = mpm_err_set(err, MPM_EIO, "cannot read field '%s' of frame %d in '%s'",
-                       real[k].name, frame, r->path);
-  if (rc == MPM_OK && (read_field(g, "state", H5T_NATIVE_INT, n, pts->state) < 0 ||
-                       read_field(g, "id", H5T_NATIVE_INT, n, pts->id) < 0))
-    rc = mpm_err_set(err, MPM_EIO, "cannot read state or id of frame %d in '%s'", frame,
-                     r->path);
-  /* extents: absent in runs written before they were output */
-  double *ext[] = {pts->r1x, pts->r1y, pts->r2x, pts->r2y};
-  const char *en[] = {"r1x", "r1y", "r2x", "r2y"};
-  for (int k = 0; rc == MPM_OK && k < 4; k++)
-    if (read_field(g, en[k], H5T_NATIVE_DOUBLE, n, ext[k]) < 0)
-      memset(ext[k], 0, (size_t)n * sizeof(double));
+                       field[k].name, frame, r->path);
+  }
   H5Gclose(g);
   if (rc != MPM_OK)
     pts->n = 0;

@@ -1,4 +1,4 @@
-/* h5err.c: HDF5 errors as one mpm_err message (h5err.h). */
+/* h5err.c: HDF5 errors as one mpm_err message; opening and closing (h5err.h). */
 #include "io/h5err.h"
 
 #include <stdio.h>
@@ -61,4 +61,34 @@ const char *mpm_h5_reason(const mpm_h5_quiet *q)
 int mpm_h5_fail(mpm_err *err, const mpm_h5_quiet *q, const char *what, const char *path)
 {
   return mpm_err_set(err, MPM_EIO, "%s '%s': %s", what, path, mpm_h5_reason(q));
+}
+
+hid_t mpm_h5_open_read(const char *path)
+{
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  hid_t file = H5I_INVALID_HID;
+  if (fapl < 0)
+    return fapl;
+#if H5_VERSION_GE(1, 10, 7)
+  H5Pset_file_locking(fapl, 0, 1);
+#endif
+  file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
+  H5Pclose(fapl);
+  return file;
+}
+
+herr_t mpm_h5_close(hid_t id)
+{
+  if (id < 0)
+    return 0;
+  switch (H5Iget_type(id)) {
+  case H5I_FILE: return H5Fclose(id);
+  case H5I_GROUP: return H5Gclose(id);
+  case H5I_DATASET: return H5Dclose(id);
+  case H5I_ATTR: return H5Aclose(id);
+  case H5I_DATASPACE: return H5Sclose(id);
+  case H5I_DATATYPE: return H5Tclose(id);
+  case H5I_GENPROP_LST: return H5Pclose(id);
+  default: return H5Idec_ref(id) < 0 ? -1 : 0;
+  }
 }

@@ -1,4 +1,6 @@
-/* h5err.h (private to io/): HDF5 errors as one mpm_err message.
+/* h5err.h (private to io/): HDF5 errors as one mpm_err message, and the
+ * opening and closing of HDF5 objects that output, extraction and the frame
+ * reader share.
  *
  * Between mpm_h5_quiet_begin and mpm_h5_quiet_end HDF5's automatic error
  * printing is replaced by a handler that keeps the innermost message of the
@@ -26,5 +28,14 @@ const char *mpm_h5_reason(const mpm_h5_quiet *q);
 
 /* MPM_EIO with "WHAT 'PATH': REASON" (REASON "HDF5 error" when none was kept). */
 int mpm_h5_fail(mpm_err *err, const mpm_h5_quiet *q, const char *what, const char *path);
+
+/* Open an existing run.h5 read-only without the HDF5 file lock, so a run
+ * that is still writing (and flushes after every frame) can be read. */
+hid_t mpm_h5_open_read(const char *path);
+
+/* Close an HDF5 identifier of any kind (file, group, dataset, attribute,
+ * dataspace, datatype, property list); a negative one, never opened, is left
+ * alone. Returns the status of the close, 0 for a negative identifier. */
+herr_t mpm_h5_close(hid_t id);
 
 #endif

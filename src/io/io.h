@@ -49,17 +49,19 @@ int mpm_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_e
 
 /* Frames of a run directory read back into a point store (frame.c), for
  * post-processing. */
-typedef struct mpm_run mpm_run;
+typedef struct mpm_io_run mpm_io_run;
 
-int mpm_run_open(mpm_run **r, const char *dir, mpm_err *err);
-void mpm_run_close(mpm_run *r);  /* accepts NULL */
-int mpm_run_nframes(const mpm_run *r);
+int mpm_io_run_open(mpm_io_run **r, const char *dir, mpm_err *err);
+void mpm_io_run_close(mpm_io_run *r);  /* accepts NULL */
+int mpm_io_run_nframes(const mpm_io_run *r);
 
 /* The run's mesh (set up) and the name of its shape-function variant. */
-int mpm_run_mesh(const mpm_run *r, mpm_mesh *m, char *shape, size_t len, mpm_err *err);
+int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
+                    mpm_err *err);
 
 /* Frame `frame` (< 0: the last) into pts (previous contents replaced) and
  * its time *t. Extents are zero when the run did not write them. */
-int mpm_run_frame(const mpm_run *r, int frame, mpm_points *pts, double *t, mpm_err *err);
+int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
+                     mpm_err *err);
 
 #endif

@@ -31,11 +31,15 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 
+#include "diag/flow.h"
 #include "io/h5err.h"
 #include "io/io.h"
 
 /* One output field: name in run.h5, unit, where it comes from. */
-enum field_kind { FIELD_REAL, FIELD_INT, FIELD_PRESSURE };
+enum field_kind { FIELD_REAL, FIELD_INT, FIELD_DERIVED };
+
+/* A derived field's n values from the stored fields. */
+typedef void derive_fn(const mpm_points *pts, double *v);
 
 typedef struct field_spec {
   const char *name;
@@ -43,31 +47,26 @@ typedef struct field_spec {
   const char *description;
   int kind;      /* enum field_kind */
   size_t offset; /* offsetof(mpm_points, array) for FIELD_REAL / FIELD_INT */
+  derive_fn *derive; /* for FIELD_DERIVED */
 } field_spec;
 
-/* The order here is the order of the datasets in each frame group, which is
- * the default column order of mpm_extract. */
+/* The DERIVED fields of MPM_POINT_FIELDS, derive_<key>. */
+static void derive_p(const mpm_points *pts, double *v)
+{
+  mpm_diag_pressure(pts, v);
+}
+
+/* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets in
+ * each frame group, which is the default column order of mpm_extract. */
+#define FIELD_REAL_(f, nm, d, u) {nm, u, d, FIELD_REAL, offsetof(mpm_points, f), NULL},
+#define FIELD_INT_(f, nm, d, u) {nm, u, d, FIELD_INT, offsetof(mpm_points, f), NULL},
+#define FIELD_DERIVED_(f, nm, d, u) {nm, u, d, FIELD_DERIVED, 0, derive_##f},
 static const field_spec output_fields[] = {
-  {"x", "m", "position x", FIELD_REAL, offsetof(mpm_points, x)},
-  {"y", "m", "position y", FIELD_REAL, offsetof(mpm_points, y)},
-  {"vx", "m/s", "velocity x", FIELD_REAL, offsetof(mpm_points, vx)},
-  {"vy", "m/s", "velocity y", FIELD_REAL, offsetof(mpm_points, vy)},
-  {"sxx", "Pa", "Cauchy stress xx", FIELD_REAL, offsetof(mpm_points, sxx)},
-  {"syy", "Pa", "Cauchy stress yy", FIELD_REAL, offsetof(mpm_points, syy)},
-  {"szz", "Pa", "Cauchy stress zz (out of plane)", FIELD_REAL, offsetof(mpm_points, szz)},
-  {"sxy", "Pa", "Cauchy stress xy", FIELD_REAL, offsetof(mpm_points, sxy)},
-  {"p", "Pa", "pressure -(sxx+syy+szz)/3", FIELD_PRESSURE, 0},
-  {"mass", "kg/m", "mass per unit thickness", FIELD_REAL, offsetof(mpm_points, mass)},
-  {"volume", "m^2", "true volume per unit thickness", FIELD_REAL, offsetof(mpm_points, vol)},
-  {"state", "-", "0 dense, 1 disconnected", FIELD_INT, offsetof(mpm_points, state)},
-  {"gdot_p", "1/s", "equivalent plastic shear rate", FIELD_REAL, offsetof(mpm_points, gdp)},
-  {"g", "1/s", "granular fluidity", FIELD_REAL, offsetof(mpm_points, g)},
-  {"id", "-", "persistent point id", FIELD_INT, offsetof(mpm_points, id)},
-  {"r1x", "m", "extent half-vector r1, x", FIELD_REAL, offsetof(mpm_points, r1x)},
-  {"r1y", "m", "extent half-vector r1, y", FIELD_REAL, offsetof(mpm_points, r1y)},
-  {"r2x", "m", "extent half-vector r2, x", FIELD_REAL, offsetof(mpm_points, r2x)},
-  {"r2y", "m", "extent half-vector r2, y", FIELD_REAL, offsetof(mpm_points, r2y)},
+  MPM_POINT_FIELDS(FIELD_REAL_, FIELD_INT_, FIELD_DERIVED_)
 };
+#undef FIELD_REAL_
+#undef FIELD_INT_
+#undef FIELD_DERIVED_
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define NFIELDS COUNT(output_fields)
 
@@ -96,16 +95,6 @@ struct mpm_output {
 
 /* ---- small HDF5 writers --------------------------------------------------- */
 
-static void h5_close_all(hid_t a, hid_t b, hid_t c)
-{
-  if (c >= 0)
-    H5Aclose(c);
-  if (b >= 0)
-    H5Sclose(b);
-  if (a >= 0)
-    H5Tclose(a);
-}
-
 /* Scalar attribute of a predefined type. */
 static herr_t attr_scalar(hid_t obj, const char *name, hid_t type, const void *v)
 {
@@ -113,7 +102,8 @@ static herr_t attr_scalar(hid_t obj, const char *name, hid_t type, const void *v
   hid_t attr = space < 0 ? H5I_INVALID_HID
                          : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
   herr_t rc = attr < 0 ? -1 : H5Awrite(attr, type, v);
-  h5_close_all(H5I_INVALID_HID, space, attr);
+  mpm_h5_close(attr);
+  mpm_h5_close(space);
   return rc;
 }
 
@@ -141,7 +131,9 @@ static herr_t attr_string(hid_t obj, const char *name, const char *s)
     if (attr >= 0)
       rc = H5Awrite(attr, type, v);
   }
-  h5_close_all(type, space, attr);
+  mpm_h5_close(attr);
+  mpm_h5_close(space);
+  mpm_h5_close(type);
   return rc;
 }
 
@@ -161,10 +153,8 @@ static herr_t write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype,
     rc = attr_string(dset, "unit", unit);
   if (rc >= 0 && desc)
     rc = attr_string(dset, "description", desc);
-  if (dset >= 0)
-    H5Dclose(dset);
-  if (space >= 0)
-    H5Sclose(space);
+  mpm_h5_close(dset);
+  mpm_h5_close(space);
   return rc;
 }
 
@@ -225,12 +215,9 @@ static void output_free(mpm_output *out)
 {
   if (!out)
     return;
-  if (out->xdmf_group >= 0)
-    H5Gclose(out->xdmf_group);
-  if (out->frames >= 0)
-    H5Gclose(out->frames);
-  if (out->file >= 0)
-    H5Fclose(out->file);
+  mpm_h5_close(out->xdmf_group);
+  mpm_h5_close(out->frames);
+  mpm_h5_close(out->file);
   if (out->csv)
     fclose(out->csv);
   if (out->xdmf)
@@ -289,8 +276,7 @@ static hid_t create_h5(const char *path)
   hid_t file = H5I_INVALID_HID;
   if (fapl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110) >= 0)
     file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  if (fapl >= 0)
-    H5Pclose(fapl);
+  mpm_h5_close(fapl);
   return file;
 }
 
@@ -331,8 +317,7 @@ static herr_t write_mesh(hid_t file, const mpm_mesh *m)
     rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the vertical mesh lines");
   if (rc >= 0)
     rc = write_lines(g, "node_y", m->ny, m->y0, m->dy, "y of the horizontal mesh lines");
-  if (g >= 0)
-    H5Gclose(g);
+  mpm_h5_close(g);
   return rc;
 }
 
@@ -423,8 +408,7 @@ static const void *field_values(mpm_output *out, const field_spec *f, const mpm_
     return *(double *const *)base;
   if (f->kind == FIELD_INT)
     return *(int *const *)base;
-  for (size_t i = 0; i < pts->n; i++)
-    out->work[i] = -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0; /* p */
+  f->derive(pts, out->work);
   return out->work;
 }
 
@@ -493,14 +477,10 @@ static herr_t write_xy_view(hid_t xg, int frame, size_t n)
     dset = H5Dcreate2(xg, name, H5T_IEEE_F64LE, vspace, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   if (rc >= 0 && dset < 0)
     rc = -1;
-  if (dset >= 0)
-    H5Dclose(dset);
-  if (dcpl >= 0)
-    H5Pclose(dcpl);
-  if (sspace >= 0)
-    H5Sclose(sspace);
-  if (vspace >= 0)
-    H5Sclose(vspace);
+  mpm_h5_close(dset);
+  mpm_h5_close(dcpl);
+  mpm_h5_close(sspace);
+  mpm_h5_close(vspace);
   return rc;
 }
 
@@ -516,15 +496,13 @@ static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
   if (gcpl >= 0 &&
       H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) >= 0)
     g = H5Gcreate2(out->frames, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
-  if (gcpl >= 0)
-    H5Pclose(gcpl);
+  mpm_h5_close(gcpl);
   if (g < 0 || attr_double(g, "time", t) < 0 ||
       attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
     rc = mpm_h5_fail(err, q, "cannot create frame group in", out->h5_path);
   if (rc == MPM_OK)
     rc = write_fields(out, g, pts, q, err);
-  if (g >= 0)
-    H5Gclose(g);
+  mpm_h5_close(g);
   if (rc == MPM_OK)
     rc = write_vertices(out, pts->n, q, err);
   if (rc == MPM_OK && pts->n > 0 && write_xy_view(out->xdmf_group, out->nframes, pts->n) < 0)
@@ -638,12 +616,9 @@ static int close_text(FILE **f, const char *path, int rc, mpm_err *err)
 static int close_h5(mpm_output *out, const mpm_h5_quiet *q, mpm_err *err)
 {
   int bad = 0;
-  if (out->xdmf_group >= 0)
-    bad |= H5Gclose(out->xdmf_group) < 0;
-  if (out->frames >= 0)
-    bad |= H5Gclose(out->frames) < 0;
-  if (out->file >= 0)
-    bad |= H5Fclose(out->file) < 0;
+  bad |= mpm_h5_close(out->xdmf_group) < 0;
+  bad |= mpm_h5_close(out->frames) < 0;
+  bad |= mpm_h5_close(out->file) < 0;
   out->xdmf_group = out->frames = out->file = H5I_INVALID_HID;
   return bad ? mpm_h5_fail(err, q, "cannot close", out->h5_path) : MPM_OK;
 }

@@ -79,6 +79,6 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
 double mpm_sim_region_mass(const mpm_sim *s)
 {
   const mpm_config *c = &s->cfg;
-  return mpm_region_mass(s->pts, c->region.xmin, c->region.xmax, c->region.ymin,
-                         c->region.ymax);
+  return mpm_diag_region_mass(s->pts, c->region.xmin, c->region.xmax, c->region.ymin,
+                              c->region.ymax);
 }
