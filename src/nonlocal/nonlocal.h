@@ -138,6 +138,18 @@ void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const 
 /* lap_e on every non-empty unit from the current g_e (5-point, ghost rules). */
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws);
 
+/* The four sides of a unit, in the order of the mesh edges they face. */
+enum mpm_nonlocal_side { MPM_SIDE_W = 0, MPM_SIDE_E, MPM_SIDE_S, MPM_SIDE_N };
+
+/* The ghost rules of the 5-point Laplacian, once for every user (the
+ * explicit lap_e and the implicit matrix): across side `side` of unit
+ * (i, j), either a filled neighbour, whose index i' + nx j' (periodic edges
+ * wrapped) goes to *nb and 0 is returned, or a ghost g_ghost = k g_e with
+ * k = +1 (Neumann: empty neighbour, free edge, frictionless or symmetry
+ * wall) or k = -1 (Dirichlet: no-slip wall), and k is returned (*nb unset).
+ * A filled neighbour may be (i, j) itself on a periodic axis of one unit. */
+int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb);
+
 /* Unit pressures p_e = sum w m p / sum w m over the dense points and isp_e, the
  * mean of p^-1/2 over each unit of the limited linear reconstruction (see
  * the top of this file). Call after mpm_nonlocal_average with the same dense
