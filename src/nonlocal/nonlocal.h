@@ -47,7 +47,7 @@
  *   for each substep:
  *     ws->dense[p] = mpm_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
  *     mpm_nonlocal_average(ws, n, mass, g, ws->dense);
- *     mpm_nonlocal_laplacian(ws);
+ *     mpm_nonlocal_laplacian(ws);  (or the implicit diffusion, implicit.h)
  *     mpm_nonlocal_pressure(ws, n, mass, ws->pn, ws->dense);  (unit sampling; pn = p_n)
  *     per point: lap = mpm_nonlocal_point_lap(ws, p), isp = mpm_nonlocal_point_isp(ws, p);
  *       constitutive update
