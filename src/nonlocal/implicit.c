@@ -7,8 +7,8 @@
  * Neumann, -1 Dirichlet; mpm_nonlocal_side). Row of unit e:
  *   diagonal  1 + c sum_{s: neighbour} w_s + c sum_{s: ghost} (1 - k_s) w_s
  *   neighbour -c w_s
- * (Neumann ghosts cancel, Dirichlet ghosts add 2 c w_s; a unit that is its
- * own neighbour on a periodic axis of one unit adds nothing). Then
+ * (Neumann ghosts cancel, Dirichlet ghosts add 2 c w_s; a periodic axis of
+ * two units gives one neighbour twice, -2 c w_s, summed by the corner). Then
  *   lap_e = (g*_e - g_e) / c   (= L_h g*_e). */
 #include "nonlocal/implicit.h"
 

@@ -147,7 +147,8 @@ enum mpm_nonlocal_side { MPM_SIDE_W = 0, MPM_SIDE_E, MPM_SIDE_S, MPM_SIDE_N };
  * wrapped) goes to *nb and 0 is returned, or a ghost g_ghost = k g_e with
  * k = +1 (Neumann: empty neighbour, free edge, frictionless or symmetry
  * wall) or k = -1 (Dirichlet: no-slip wall), and k is returned (*nb unset).
- * A filled neighbour may be (i, j) itself on a periodic axis of one unit. */
+ * On a periodic axis of two units both sides along it lead to the same
+ * neighbour (the mesh allows no periodic axis of one unit). */
 int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb);
 
 /* Unit pressures p_e = sum w m p / sum w m over the dense points and isp_e, the
