@@ -29,5 +29,5 @@ tests_test_input_SOURCES = tests/test_input.c src/io/input.c $(INPUT_PARTS) src/
 tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
 tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \
-	libmpm_mesh.la libmpm_core.la $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
+	libmpm_mesh.la libmpm_linalg.la libmpm_core.la $(SUITESPARSE_LIBS) $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
 EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/inputs

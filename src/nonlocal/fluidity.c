@@ -305,11 +305,12 @@ void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const 
     ws->ge[e] = ws->sm[e] > 0.0 ? ws->smg[e] / ws->sm[e] : 0.0;  /* g_e */
 }
 
-/* Neighbour value of unit (i, j) across the face towards (i + di, j + dj):
- * the neighbour's g_e if it exists and is filled, else the ghost value. */
-static double neighbour(const mpm_nonlocal *ws, int i, int j, int di, int dj, double ge)
+/* Unit offsets towards the sides W, E, S, N (enum mpm_nonlocal_side). */
+static const int side_di[4] = {-1, 1, 0, 0}, side_dj[4] = {0, 0, -1, 1};
+
+int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb)
 {
-  int ii = i + di, jj = j + dj, edge = -1;
+  int ii = i + side_di[side], jj = j + side_dj[side], edge = -1;
   if (ii < 0)
     edge = 0;
   else if (ii >= ws->nx)
@@ -320,14 +321,26 @@ static double neighbour(const mpm_nonlocal *ws, int i, int j, int di, int dj, do
     edge = 3;
   if (edge >= 0) {
     if (ws->ghost[edge] == MPM_GHOST_DIRICHLET)
-      return -ge;                                      /* g = 0 on the face */
+      return -1;                                       /* g_ghost = -g_e: g = 0 on the face */
     if (ws->ghost[edge] == MPM_GHOST_NEUMANN)
-      return ge;                                       /* d_n g = 0 */
+      return 1;                                        /* g_ghost = g_e: d_n g = 0 */
     ii = (ii + ws->nx) % ws->nx;                       /* periodic wrap */
     jj = (jj + ws->ny) % ws->ny;
   }
   size_t e = (size_t)ii + (size_t)ws->nx * (size_t)jj;
-  return ws->sm[e] > 0.0 ? ws->ge[e] : ge;             /* empty neighbour: Neumann */
+  if (!(ws->sm[e] > 0.0))
+    return 1;                                          /* empty neighbour: Neumann */
+  *nb = e;
+  return 0;
+}
+
+/* Neighbour value of unit (i, j) across side s: the filled neighbour's g_e,
+ * else the ghost value +-g (exact: a product with +-1). */
+static double neighbour(const mpm_nonlocal *ws, int i, int j, int side, double g)
+{
+  size_t nb = 0;
+  int k = mpm_nonlocal_side(ws, i, j, side, &nb);
+  return k == 0 ? ws->ge[nb] : k * g;
 }
 
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
@@ -342,8 +355,8 @@ void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
         continue;
       }
       double g = ws->ge[e];
-      double gw = neighbour(ws, i, j, -1, 0, g), ge = neighbour(ws, i, j, 1, 0, g);
-      double gs = neighbour(ws, i, j, 0, -1, g), gn = neighbour(ws, i, j, 0, 1, g);
+      double gw = neighbour(ws, i, j, MPM_SIDE_W, g), ge = neighbour(ws, i, j, MPM_SIDE_E, g);
+      double gs = neighbour(ws, i, j, MPM_SIDE_S, g), gn = neighbour(ws, i, j, MPM_SIDE_N, g);
       ws->lap[e] = (ge - 2.0 * g + gw) * ws->idx2     /* d2g/dx2 */
                  + (gn - 2.0 * g + gs) * ws->idy2;    /* d2g/dy2 */
     }

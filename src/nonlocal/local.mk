@@ -1,9 +1,17 @@
 noinst_LTLIBRARIES += libmpm_nonlocal.la
-libmpm_nonlocal_la_SOURCES = src/nonlocal/nonlocal.h src/nonlocal/fluidity.c
+libmpm_nonlocal_la_SOURCES = src/nonlocal/nonlocal.h src/nonlocal/fluidity.c \
+	src/nonlocal/implicit.h src/nonlocal/implicit.c
 
 check_PROGRAMS += tests/test_nonlocal
 TESTS += tests/test_nonlocal
 tests_test_nonlocal_SOURCES = tests/test_nonlocal.c
 tests_test_nonlocal_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_nonlocal_LDADD = libmpm_nonlocal.la libmpm_material.la libmpm_mesh.la libmpm_core.la \
-	$(CHECK_LIBS) -lm
+tests_test_nonlocal_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_material.la libmpm_mesh.la \
+	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
+
+check_PROGRAMS += tests/test_implicit
+TESTS += tests/test_implicit
+tests_test_implicit_SOURCES = tests/test_implicit.c
+tests_test_implicit_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_implicit_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_mesh.la libmpm_core.la \
+	$(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm

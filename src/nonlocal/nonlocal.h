@@ -47,7 +47,7 @@
  *   for each substep:
  *     ws->dense[p] = mpm_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
  *     mpm_nonlocal_average(ws, n, mass, g, ws->dense);
- *     mpm_nonlocal_laplacian(ws);
+ *     mpm_nonlocal_laplacian(ws);  (or the implicit diffusion, implicit.h)
  *     mpm_nonlocal_pressure(ws, n, mass, ws->pn, ws->dense);  (unit sampling; pn = p_n)
  *     per point: lap = mpm_nonlocal_point_lap(ws, p), isp = mpm_nonlocal_point_isp(ws, p);
  *       constitutive update
@@ -137,6 +137,19 @@ void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const 
 
 /* lap_e on every non-empty unit from the current g_e (5-point, ghost rules). */
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws);
+
+/* The four sides of a unit, in the order of the mesh edges they face. */
+enum mpm_nonlocal_side { MPM_SIDE_W = 0, MPM_SIDE_E, MPM_SIDE_S, MPM_SIDE_N };
+
+/* The ghost rules of the 5-point Laplacian, once for every user (the
+ * explicit lap_e and the implicit matrix): across side `side` of unit
+ * (i, j), either a filled neighbour, whose index i' + nx j' (periodic edges
+ * wrapped) goes to *nb and 0 is returned, or a ghost g_ghost = k g_e with
+ * k = +1 (Neumann: empty neighbour, free edge, frictionless or symmetry
+ * wall) or k = -1 (Dirichlet: no-slip wall), and k is returned (*nb unset).
+ * On a periodic axis of two units both sides along it lead to the same
+ * neighbour (the mesh allows no periodic axis of one unit). */
+int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb);
 
 /* Unit pressures p_e = sum w m p / sum w m over the dense points and isp_e, the
  * mean of p^-1/2 over each unit of the limited linear reconstruction (see

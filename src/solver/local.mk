@@ -6,8 +6,8 @@ TESTS += tests/test_solver
 tests_test_solver_SOURCES = tests/test_solver.c tests/sim_config.h
 tests_test_solver_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_solver_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
-	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_core.la \
-	$(CHECK_LIBS) -lm
+	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_linalg.la \
+	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
 
 check_PROGRAMS += tests/test_threads
 TESTS += tests/test_threads
@@ -19,5 +19,5 @@ TESTS += tests/test_silo
 tests_test_silo_SOURCES = tests/test_silo.c tests/sim_config.h
 tests_test_silo_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_silo_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
-	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_core.la \
-	$(CHECK_LIBS) -lm
+	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_linalg.la \
+	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
