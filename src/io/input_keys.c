@@ -8,6 +8,7 @@
 
 #include "bc/bc.h"
 #include "io/input_internal.h"
+#include "material/density.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
 #include "nonlocal/nonlocal.h"

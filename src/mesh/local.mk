@@ -1,5 +1,5 @@
 noinst_LTLIBRARIES += libmpm_mesh.la
-libmpm_mesh_la_SOURCES = src/mesh/mesh.c src/mesh/density.c src/mesh/mesh.h
+libmpm_mesh_la_SOURCES = src/mesh/mesh.c src/mesh/mesh.h
 
 check_PROGRAMS += tests/test_mesh
 TESTS += tests/test_mesh

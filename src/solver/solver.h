@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/points.h"
 #include "diag/diag.h"
+#include "material/density.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
 #include "nonlocal/nonlocal.h"

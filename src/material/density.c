@@ -19,7 +19,7 @@
  * Only the state decision reads this density: V_p keeps its local update, so
  * mass is conserved point by point. The unit sums run over the points in index
  * order on one thread, so the result does not depend on the thread count. */
-#include "mesh/mesh.h"
+#include "material/density.h"
 
 #include <stdlib.h>
 #include <string.h>
