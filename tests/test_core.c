@@ -169,8 +169,8 @@ START_TEST(t_errors)
   ck_assert_int_eq(rc, MPM_EINPUT);
   ck_assert_int_eq(e.code, MPM_EINPUT);
   ck_assert_str_eq(e.msg, "key 'mesh.nx' = -3");
-  ck_assert_str_eq(mpm_strerror(MPM_EOUTSIDE), "material point left the mesh");
-  ck_assert_str_eq(mpm_strerror(9999), "unknown error");
+  ck_assert_str_eq(mpm_err_string(MPM_EOUTSIDE), "material point left the mesh");
+  ck_assert_str_eq(mpm_err_string(9999), "unknown error");
   mpm_err_clear(&e);
   ck_assert_int_eq(e.code, MPM_OK);
   ck_assert_int_eq(mpm_err_set(NULL, MPM_EIO, "x"), MPM_EIO);

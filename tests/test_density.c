@@ -54,16 +54,16 @@ static void fill_units(pointset *ps, const mpm_mesh *m, int i0, int i1, int j0, 
       }
 }
 
-static void compute(mpm_density *ws, const mpm_mesh *m, int rule, pointset *ps)
+static void compute(mpm_material_density *ws, const mpm_mesh *m, int rule, pointset *ps)
 {
-  mpm_density_compute(ws, m, rule, ps->n, ps->x, ps->y, ps->m, ps->v, ps->rho);
+  mpm_material_density_compute(ws, m, rule, ps->n, ps->x, ps->y, ps->m, ps->v, ps->rho);
 }
 
-static mpm_density *density_ws(const mpm_mesh *m)
+static mpm_material_density *density_ws(const mpm_mesh *m)
 {
-  mpm_density *ws = NULL;
+  mpm_material_density *ws = NULL;
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_density_alloc(&ws, m, &err), MPM_OK);
+  ck_assert_int_eq(mpm_material_density_alloc(&ws, m, &err), MPM_OK);
   return ws;
 }
 
@@ -80,7 +80,7 @@ static int near_rel(double a, double b)
 START_TEST(t_density_unit_block)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
-  mpm_density *ws = density_ws(&m);
+  mpm_material_density *ws = density_ws(&m);
   pointset ps = {0};
   fill_units(&ps, &m, 1, 4, 1, 2);
   double sv[64] = {0}, sm[64] = {0};
@@ -108,22 +108,22 @@ START_TEST(t_density_unit_block)
   compute(ws, &m, MPM_DENSITY_UNIT, &ps);
   for (size_t p = 0; p < ps.n; p++)
     ck_assert_msg(near_rel(ps.rho[p], PM / PV), "point %zu: %.17g", p, ps.rho[p]);
-  mpm_density_free(ws);
+  mpm_material_density_free(ws);
 }
 END_TEST
 
 START_TEST(t_density_names)
 {
-  ck_assert_int_eq(mpm_density_rule_from_name("point"), MPM_DENSITY_POINT);
-  ck_assert_int_eq(mpm_density_rule_from_name("element"), MPM_DENSITY_ELEMENT);
-  ck_assert_int_eq(mpm_density_rule_from_name("hybrid"), MPM_DENSITY_HYBRID);
-  ck_assert_int_eq(mpm_density_rule_from_name("unit"), MPM_DENSITY_UNIT);
-  ck_assert_int_eq(mpm_density_rule_from_name("nodal"), -1);
-  ck_assert_str_eq(mpm_density_rule_name(MPM_DENSITY_HYBRID), "hybrid");
-  ck_assert_str_eq(mpm_density_rule_name(MPM_DENSITY_UNIT), "unit");
-  ck_assert_ptr_null(mpm_density_rule_name(4));
-  ck_assert_ptr_null(mpm_density_rule_name(-1));
-  mpm_density_free(NULL);
+  ck_assert_int_eq(mpm_material_density_rule_from_name("point"), MPM_DENSITY_POINT);
+  ck_assert_int_eq(mpm_material_density_rule_from_name("element"), MPM_DENSITY_ELEMENT);
+  ck_assert_int_eq(mpm_material_density_rule_from_name("hybrid"), MPM_DENSITY_HYBRID);
+  ck_assert_int_eq(mpm_material_density_rule_from_name("unit"), MPM_DENSITY_UNIT);
+  ck_assert_int_eq(mpm_material_density_rule_from_name("nodal"), -1);
+  ck_assert_str_eq(mpm_material_density_rule_name(MPM_DENSITY_HYBRID), "hybrid");
+  ck_assert_str_eq(mpm_material_density_rule_name(MPM_DENSITY_UNIT), "unit");
+  ck_assert_ptr_null(mpm_material_density_rule_name(4));
+  ck_assert_ptr_null(mpm_material_density_rule_name(-1));
+  mpm_material_density_free(NULL);
 }
 END_TEST
 
@@ -133,7 +133,7 @@ END_TEST
 START_TEST(t_density_element_block)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
-  mpm_density *ws = density_ws(&m);
+  mpm_material_density *ws = density_ws(&m);
   pointset ps = {0};
   fill_units(&ps, &m, 1, 5, 1, 3);
   const double area = m.dx * m.dy, rho4 = 4.0 * PM / area;
@@ -166,7 +166,7 @@ START_TEST(t_density_element_block)
   ck_assert(near_rel(total, (double)(ps.n - 1) * PM));
   ck_assert_int_eq(ws->count[3 + m.nx * 2], 5);
   ck_assert_int_eq(ws->count[0], 0);
-  mpm_density_free(ws);
+  mpm_material_density_free(ws);
 }
 END_TEST
 
@@ -176,7 +176,7 @@ END_TEST
 START_TEST(t_density_hybrid_block)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
-  mpm_density *ws = density_ws(&m);
+  mpm_material_density *ws = density_ws(&m);
   pointset ps = {0};
   fill_units(&ps, &m, 1, 5, 1, 3);
   compute(ws, &m, MPM_DENSITY_HYBRID, &ps);
@@ -193,7 +193,7 @@ START_TEST(t_density_hybrid_block)
                     ps.ui[p], ps.uj[p], ps.rho[p]);
   }
   ck_assert_int_eq(ninner, 12);
-  mpm_density_free(ws);
+  mpm_material_density_free(ws);
 }
 END_TEST
 
@@ -206,7 +206,7 @@ START_TEST(t_density_hybrid_edges)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
   mpm_mesh mp = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 1, 0);
-  mpm_density *ws = density_ws(&m);
+  mpm_material_density *ws = density_ws(&m);
   const double rho4 = 4.0 * PM / (m.dx * m.dy);
   pointset ps = {0};
   fill_units(&ps, &m, 0, 2, 0, 1);
@@ -229,7 +229,7 @@ START_TEST(t_density_hybrid_edges)
                     layer.rho[p]);
     }
   }
-  mpm_density_free(ws);
+  mpm_material_density_free(ws);
 }
 END_TEST
 

@@ -291,7 +291,7 @@ END_TEST
  * out_0 = 0.5*10 + 0.5*5.2 = 7.6, out_1 = 0.25*5.2 + 0.75*2 = 2.8. */
 START_TEST(t_smooth_hand)
 {
-  mpm_stencil *st = mpm_stencil_alloc(2);
+  mpm_shape_stencil *st = mpm_shape_stencil_alloc(2);
   mpm_err err = {0};
   const double mass[] = {1.0, 3.0}, f[] = {10.0, 2.0};
   double nm[3], nmf[3], out[2];
@@ -313,7 +313,7 @@ START_TEST(t_smooth_hand)
   ck_close(out[1], 2.8);
   st->node[1] = 7;                          /* node outside 0..2 */
   ck_assert_int_eq(mpm_diag_smooth(st, 2, mass, f, 3, nm, nmf, out, &err), MPM_EINVAL);
-  mpm_stencil_free(st);
+  mpm_shape_stencil_free(st);
 }
 END_TEST
 
@@ -332,8 +332,8 @@ START_TEST(t_smooth_ugimp)
                       0, 0, 1.0 + 0.1 * k);
       pts->r1x[i] = pts->r2y[i] = 0.0125;
     }
-  mpm_stencil *st = mpm_stencil_alloc(pts->n);
-  ck_assert_int_eq(mpm_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.0, &err), MPM_OK);
+  mpm_shape_stencil *st = mpm_shape_stencil_alloc(pts->n);
+  ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.0, &err), MPM_OK);
   double *f = malloc(pts->n * sizeof *f), *out = malloc(pts->n * sizeof *out);
   double *nm = malloc((size_t)m.nnodes * sizeof *nm), *nmf = malloc((size_t)m.nnodes * sizeof *nmf);
   for (size_t i = 0; i < pts->n; i++)
@@ -356,7 +356,7 @@ START_TEST(t_smooth_ugimp)
   free(out);
   free(nm);
   free(nmf);
-  mpm_stencil_free(st);
+  mpm_shape_stencil_free(st);
   mpm_points_free(pts);
 }
 END_TEST

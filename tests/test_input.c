@@ -61,13 +61,13 @@ static int load_text(const char *text, const char *const *sets, int nsets, mpm_c
                      mpm_err *err)
 {
   write_bytes(CASE, text, strlen(text));
-  return mpm_input_load(CASE, sets, nsets, cfg, err);
+  return mpm_io_input_load(CASE, sets, nsets, cfg, err);
 }
 
 static void load_ok(const char *path, const char *const *sets, int nsets, mpm_config *cfg)
 {
   mpm_err err = {0};
-  int rc = mpm_input_load(path, sets, nsets, cfg, &err);
+  int rc = mpm_io_input_load(path, sets, nsets, cfg, &err);
   ck_assert_msg(rc == MPM_OK, "%s: %s", path, err.msg);
   ck_assert_int_eq(err.code, MPM_OK);
 }
@@ -83,14 +83,14 @@ static void expect_error(const char *text, const char *set, const char *msg)
   ck_assert_str_eq(err.msg, msg);
 }
 
-/* cfg written with mpm_input_write into a string (caller frees). */
+/* cfg written with mpm_io_input_write into a string (caller frees). */
 static char *written(const mpm_config *cfg)
 {
   char *buf = NULL;
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
   ck_assert_ptr_nonnull(f);
-  ck_assert_int_eq(mpm_input_write(f, cfg), MPM_OK);
+  ck_assert_int_eq(mpm_io_input_write(f, cfg), MPM_OK);
   ck_assert_int_eq(fclose(f), 0);
   return buf;
 }
@@ -118,7 +118,7 @@ START_TEST(t_defaults)
 {
   mpm_config c;
   memset(&c, 0x5a, sizeof c);
-  mpm_input_defaults(&c);
+  mpm_io_input_defaults(&c);
   ck_assert_int_eq(c.mesh.nx, 0);
   ck_assert_double_eq(c.mesh.x0, 0.0);
   ck_assert_str_eq(c.mesh.topology, "q4");
@@ -172,9 +172,9 @@ START_TEST(t_minimal)
   ck_assert_int_eq(f->ppu, 2);
   ck_assert_double_eq(f->density, c.material.rho_c);  /* default: rho_c */
   ck_assert_int_eq(f->lithostatic, 0);
-  /* everything else as mpm_input_defaults */
+  /* everything else as mpm_io_input_defaults */
   mpm_config d;
-  mpm_input_defaults(&d);
+  mpm_io_input_defaults(&d);
   ck_assert_mem_eq(&c.time.cfl, &d.time.cfl, sizeof d.time.cfl);
   ck_assert_mem_eq(&c.gravity, &d.gravity, sizeof d.gravity);
   ck_assert_mem_eq(&c.material, &d.material, sizeof d.material);
@@ -477,12 +477,12 @@ END_TEST
 START_TEST(t_write_fails)
 {
   mpm_config c;
-  mpm_input_defaults(&c);
+  mpm_io_input_defaults(&c);
   FILE *f = fopen("/dev/null", "r");  /* writes fail */
   ck_assert_ptr_nonnull(f);
-  ck_assert_int_eq(mpm_input_write(f, &c), MPM_EIO);
+  ck_assert_int_eq(mpm_io_input_write(f, &c), MPM_EIO);
   fclose(f);
-  ck_assert_int_eq(mpm_input_write(NULL, &c), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_input_write(NULL, &c), MPM_EINVAL);
 }
 END_TEST
 
@@ -523,7 +523,7 @@ START_TEST(t_bad_file)
   expected_message(path, msg, sizeof msg);
   mpm_config c;
   mpm_err err = {0};
-  int rc = mpm_input_load(path, NULL, 0, &c, &err);
+  int rc = mpm_io_input_load(path, NULL, 0, &c, &err);
   ck_assert_msg(rc == MPM_EINPUT, "%s: status %d, message '%s'", path, rc, err.msg);
   ck_assert_int_eq(err.code, MPM_EINPUT);
   size_t n = strlen(msg);
@@ -550,18 +550,18 @@ START_TEST(t_file_errors)
 {
   mpm_config c;
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_input_load(TMP_DIR "/missing.conf", NULL, 0, &c, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_input_load(TMP_DIR "/missing.conf", NULL, 0, &c, &err), MPM_EIO);
   ck_assert_str_eq(err.msg, TMP_DIR "/missing.conf: cannot open input file: No such file or directory");
   mkdir(TMP_DIR, 0777);
-  ck_assert_int_eq(mpm_input_load(TMP_DIR, NULL, 0, &c, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_input_load(TMP_DIR, NULL, 0, &c, &err), MPM_EIO);
   ck_assert_str_eq(err.msg, TMP_DIR ": cannot read input file: Is a directory");
   write_bytes(CASE, "mesh {\n  nx = 1\0 }\n", 19);
-  ck_assert_int_eq(mpm_input_load(CASE, NULL, 0, &c, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_io_input_load(CASE, NULL, 0, &c, &err), MPM_EINPUT);
   ck_assert_str_eq(err.msg, CASE ":2: NUL byte in the input file (allowed: text)");
   if (geteuid() != 0) {  /* root reads anything */
     write_bytes(CASE, BASE, strlen(BASE));
     ck_assert_int_eq(chmod(CASE, 0), 0);
-    ck_assert_int_eq(mpm_input_load(CASE, NULL, 0, &c, &err), MPM_EIO);
+    ck_assert_int_eq(mpm_io_input_load(CASE, NULL, 0, &c, &err), MPM_EIO);
     ck_assert_str_eq(err.msg, CASE ": cannot open input file: Permission denied");
     chmod(CASE, 0644);
   }
@@ -572,11 +572,11 @@ START_TEST(t_file_errors)
   memset(blanks, ' ', big);
   write_bytes(CASE, blanks, big);
   free(blanks);
-  ck_assert_int_eq(mpm_input_load(CASE, NULL, 0, &c, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_io_input_load(CASE, NULL, 0, &c, &err), MPM_EINPUT);
   ck_assert_str_eq(err.msg, CASE ": input file larger than 16777216 bytes (allowed: at most "
                    "16777216)");
   /* a path with a newline still gives one line */
-  ck_assert_int_eq(mpm_input_load(TMP_DIR "/a\nb.conf", NULL, 0, &c, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_input_load(TMP_DIR "/a\nb.conf", NULL, 0, &c, &err), MPM_EIO);
   ck_assert_ptr_null(strchr(err.msg, '\n'));
 }
 END_TEST
@@ -586,15 +586,15 @@ START_TEST(t_bad_arguments)
   mpm_config c;
   mpm_err err = {0};
   const char *sets[] = {NULL};
-  ck_assert_int_eq(mpm_input_load(NULL, NULL, 0, &c, &err), MPM_EINVAL);
-  ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, -1, &c, &err), MPM_EINVAL);
-  ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, 1, &c, &err), MPM_EINVAL);
-  ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", sets, 1, &c, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_input_load(NULL, NULL, 0, &c, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_input_load(GOOD "minimal.conf", NULL, -1, &c, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_input_load(GOOD "minimal.conf", NULL, 1, &c, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_input_load(GOOD "minimal.conf", sets, 1, &c, &err), MPM_EINVAL);
   ck_assert_str_eq(err.msg, "--set number 1 is missing");
-  ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, 0, NULL, &err), MPM_EINVAL);
-  ck_assert_str_eq(err.msg, "mpm_input_load: invalid arguments");
-  ck_assert_int_eq(mpm_input_load(GOOD "minimal.conf", NULL, 0, &c, NULL), MPM_OK);
-  ck_assert_int_eq(mpm_input_load(TMP_DIR "/missing.conf", NULL, 0, &c, NULL), MPM_EIO);
+  ck_assert_int_eq(mpm_io_input_load(GOOD "minimal.conf", NULL, 0, NULL, &err), MPM_EINVAL);
+  ck_assert_str_eq(err.msg, "mpm_io_input_load: invalid arguments");
+  ck_assert_int_eq(mpm_io_input_load(GOOD "minimal.conf", NULL, 0, &c, NULL), MPM_OK);
+  ck_assert_int_eq(mpm_io_input_load(TMP_DIR "/missing.conf", NULL, 0, &c, NULL), MPM_EIO);
 }
 END_TEST
 
@@ -705,13 +705,13 @@ static void check_doc_allowed(const doc_row *r)
   const char *sets[] = {set};
   mpm_config c;
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_input_load(GOOD "full.conf", sets, 1, &c, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_io_input_load(GOOD "full.conf", sets, 1, &c, &err), MPM_EINPUT);
   snprintf(named, sizeof named, ": key '%s': ", key);
   ck_assert_msg(strstr(err.msg, named) && strstr(err.msg, body), "%s: the reference says '%s', "
                 "the reader says '%s'", r->key, body, err.msg);
 }
 
-/* A value written by mpm_input_write for "  key = value" in a section. */
+/* A value written by mpm_io_input_write for "  key = value" in a section. */
 static int written_value(const char *text, const char *section, const char *key, char *out,
                          size_t cap)
 {

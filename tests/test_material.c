@@ -211,7 +211,7 @@ START_TEST(t_frame_indifference)
   const size_t ncase = sizeof obj_cases / sizeof obj_cases[0];
   const size_t nang = sizeof angles / sizeof angles[0];
   for (const mpm_material_type *const *t = mpm_material_table; *t; t++)
-    for (int form = 0; mpm_ngf_form_name(form); form++) {
+    for (int form = 0; mpm_material_ngf_form_name(form); form++) {
       const mpm_material_params par = table1(1e6, form);
       for (size_t c = 0; c < ncase; c++) {
         const obj_case *oc = &obj_cases[c];
@@ -231,17 +231,18 @@ START_TEST(t_frame_indifference)
           const double e = sym3_dist(b.sigma, sym3_rotate(&Q, a.sigma));
           ck_assert_msg(e <= TOL * ssc,
                         "%s (form %s): %s, theta = %g: |sigma(Q.Q^T) - Q sigma Q^T| = %g Pa"
-                        " > %g Pa", (*t)->name, mpm_ngf_form_name(form), oc->what,
-                        angles[k], e, TOL * ssc);
-          ck_assert_msg(rate_close(a.g, b.g, rsc),
-                        "%s (form %s): %s, theta = %g: g %.17g vs %.17g", (*t)->name,
-                        mpm_ngf_form_name(form), oc->what, angles[k], a.g, b.g);
+                        " > %g Pa",
+                        (*t)->name, mpm_material_ngf_form_name(form), oc->what, angles[k], e,
+                        TOL * ssc);
+          ck_assert_msg(rate_close(a.g, b.g, rsc), "%s (form %s): %s, theta = %g: g %.17g vs %.17g",
+                        (*t)->name, mpm_material_ngf_form_name(form), oc->what, angles[k], a.g,
+                        b.g);
           ck_assert_msg(rate_close(a.gdp, b.gdp, rsc),
                         "%s (form %s): %s, theta = %g: gdot_p %.17g vs %.17g", (*t)->name,
-                        mpm_ngf_form_name(form), oc->what, angles[k], a.gdp, b.gdp);
+                        mpm_material_ngf_form_name(form), oc->what, angles[k], a.gdp, b.gdp);
           ck_assert_msg(a.state == b.state, "%s (form %s): %s, theta = %g: state %d vs %d",
-                        (*t)->name, mpm_ngf_form_name(form), oc->what, angles[k],
-                        a.state, b.state);
+                        (*t)->name, mpm_material_ngf_form_name(form), oc->what, angles[k], a.state,
+                        b.state);
         }
       }
     }
@@ -306,7 +307,7 @@ START_TEST(t_elastic_step)
   const double dt = 1e-3, E = 1e6, nu = MPM_DK15_NU;
   const double G = E / (2.0 * (1.0 + nu)), K = E / (3.0 * (1.0 - 2.0 * nu));
   for (const mpm_material_type *const *t = mpm_material_table; *t; t++)
-    for (int form = 0; mpm_ngf_form_name(form); form++) {
+    for (int form = 0; mpm_material_ngf_form_name(form); form++) {
       const mpm_material_params par = table1(E, form);
       for (size_t c = 0; c < sizeof el_cases / sizeof el_cases[0]; c++) {
         const el_case *ec = &el_cases[c];
@@ -337,7 +338,7 @@ START_TEST(t_elastic_step)
         ck_assert_msg(e <= tol,
                       "%s (form %s): %s: |sigma - sigma_n - dt (C:D + W s - s W)| = %g Pa"
                       " > %g Pa (got - want: xx %g yy %g zz %g xy %g yz %g zx %g)",
-                      (*t)->name, mpm_ngf_form_name(form), ec->what, e, tol, df.xx, df.yy,
+                      (*t)->name, mpm_material_ngf_form_name(form), ec->what, e, tol, df.xx, df.yy,
                       df.zz, df.xy, df.yz, df.zx);
         ck_assert_msg(a.gdp == 0.0, "%s: %s: gdot_p = %g below yield", (*t)->name,
                       ec->what, a.gdp);

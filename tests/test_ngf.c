@@ -143,7 +143,7 @@ START_TEST(t_root_solves_quadratic)
     long double worst = 0.0L;
     for (int n = 0; n < 200000; n++) {
       root_case r = random_case(&seed, form);
-      double x = mpm_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, 0.0);
+      double x = mpm_material_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, 0.0);
       ck_assert(isfinite(x) && x >= 0.0);
       long double q[3], scale;
       quad_ref(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, x, q, &scale);
@@ -173,7 +173,7 @@ START_TEST(t_root_is_physical)
     for (int n = 0; n < 200000; n++) {
       root_case r = random_case(&seed, form);
       double S2 = r.par.mu_2 * r.p;
-      double x = mpm_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, 0.0);
+      double x = mpm_material_ngf_fluidity(&r.par, r.dt, r.p, r.tau_tr, r.gs, r.mug, 0.0);
       ck_assert(x >= 0.0);
       if (r.gs == 0.0 && r.tau_tr < S2) {
         ck_assert_double_eq(x, 0.0);
@@ -377,7 +377,7 @@ START_TEST(t_seed_from_local)
   for (int k = 0; k < 20000; k++)
     mpm_material_mu_i.update(&par, &L, 1e-5, &pt);
   double mu = mpm_sym3_tau(pt.sigma) / mpm_sym3_pressure(pt.sigma);
-  pt.g = mpm_ngf_seed(pt.sigma, pt.gdp);
+  pt.g = mpm_material_ngf_seed(pt.sigma, pt.gdp);
   ck_assert_double_eq_tol(pt.g * mu, pt.gdp, 1e-15 * pt.gdp);
   mpm_mpoint q = pt;
   for (int k = 0; k < 100; k++)
@@ -386,8 +386,8 @@ START_TEST(t_seed_from_local)
   ck_assert_double_eq_tol(q.sigma.xy, pt.sigma.xy, 1e-11 * fabs(pt.sigma.xy));
   ck_assert_double_eq_tol(q.gdp, pt.gdp, 1e-11 * pt.gdp);
   /* no seed from stress-free or unsheared states */
-  ck_assert_double_eq(mpm_ngf_seed(mpm_sym3_zero(), 1.0), 0.0);
-  ck_assert_double_eq(mpm_ngf_seed(stress(10.0, 0.0, 0.0, 0.0), 1.0), 0.0);
+  ck_assert_double_eq(mpm_material_ngf_seed(mpm_sym3_zero(), 1.0), 0.0);
+  ck_assert_double_eq(mpm_material_ngf_seed(stress(10.0, 0.0, 0.0, 0.0), 1.0), 0.0);
 }
 END_TEST
 
@@ -459,9 +459,9 @@ START_TEST(t_disconnected)
     ck_assert_double_eq_tol(pt.gdp, d0, 1e-15 * d0);
   }
   /* the dense flag of the element average */
-  ck_assert(mpm_ngf_dense(&par, stress(1.0, 0, 0, 0), par.rho_c));
-  ck_assert(!mpm_ngf_dense(&par, stress(1.0, 0, 0, 0), par.rho_c * (1.0 - 1e-12)));
-  ck_assert(!mpm_ngf_dense(&par, mpm_sym3_zero(), 1600.0));
+  ck_assert(mpm_material_ngf_dense(&par, stress(1.0, 0, 0, 0), par.rho_c));
+  ck_assert(!mpm_material_ngf_dense(&par, stress(1.0, 0, 0, 0), par.rho_c * (1.0 - 1e-12)));
+  ck_assert(!mpm_material_ngf_dense(&par, mpm_sym3_zero(), 1600.0));
 }
 END_TEST
 
@@ -503,14 +503,16 @@ START_TEST(t_check_and_table)
   ck_assert_int_eq(mpm_material_ngf.check(&par, &err), MPM_OK);
   /* A^2 d^2/t0 = 0.48^2 0.005^2 / 1e-3 = 5.76e-3 m^2/s; dx = dy = 1 mm:
    * 2/dx^2 + 2/dy^2 = 4e6 1/m^2; dt = 1e-4 s: 2.304 / n_sub */
-  double r = mpm_ngf_diffusion_number(&par, 1e-4, 1, 1e-3, 1e-3);
+  double r = mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 1e-3, 1e-3);
   ck_assert_double_eq_tol(r, 2.304, 1e-12);
-  ck_assert_double_eq_tol(mpm_ngf_diffusion_number(&par, 1e-4, 3, 1e-3, 1e-3), 0.768, 1e-12);
-  ck_assert_double_eq_tol(mpm_ngf_diffusion_number(&par, 1e-4, 1, 2e-3, 1e-3), 1.44, 1e-12);
-  ck_assert_int_eq(mpm_ngf_check_diffusion(&par, 1e-4, 3, 1e-3, 1e-3, &err), MPM_OK);
-  ck_assert_int_eq(mpm_ngf_check_diffusion(&par, 1e-4, 2, 1e-3, 1e-3, &err), MPM_EINPUT);
+  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 3, 1e-3, 1e-3), 0.768,
+                          1e-12);
+  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 2e-3, 1e-3), 1.44,
+                          1e-12);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 3, 1e-3, 1e-3, &err), MPM_OK);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 2, 1e-3, 1e-3, &err), MPM_EINPUT);
   ck_assert_msg(strstr(err.msg, "n_sub >= 3") != NULL, "%s", err.msg);
-  ck_assert_int_eq(mpm_ngf_check_diffusion(&par, 1e-4, 0, 1e-3, 1e-3, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 0, 1e-3, 1e-3, &err), MPM_EINPUT);
   struct { const char *key; mpm_material_params par; } bad[] = {
     {"material.A", par}, {"material.t0", par}, {"material.t_seed", par},
     {"material.mu_2", par}, {"form", par},
@@ -529,11 +531,11 @@ START_TEST(t_check_and_table)
   ck_assert_int_eq(mpm_material_ngf.nonlocal, 1);
   ck_assert_int_eq(mpm_material_mu_i.nonlocal, 0);
   ck_assert_int_eq(mpm_material_elastic.nonlocal, 0);
-  ck_assert_int_eq(mpm_ngf_form_from_name("dk"), MPM_NGF_DK);
-  ck_assert_int_eq(mpm_ngf_form_from_name("hs21"), MPM_NGF_HS21);
-  ck_assert_int_eq(mpm_ngf_form_from_name("DK"), -1);
-  ck_assert_str_eq(mpm_ngf_form_name(MPM_NGF_HS21), "hs21");
-  ck_assert_ptr_null(mpm_ngf_form_name(7));
+  ck_assert_int_eq(mpm_material_ngf_form_from_name("dk"), MPM_NGF_DK);
+  ck_assert_int_eq(mpm_material_ngf_form_from_name("hs21"), MPM_NGF_HS21);
+  ck_assert_int_eq(mpm_material_ngf_form_from_name("DK"), -1);
+  ck_assert_str_eq(mpm_material_ngf_form_name(MPM_NGF_HS21), "hs21");
+  ck_assert_ptr_null(mpm_material_ngf_form_name(7));
 }
 END_TEST
 

@@ -1,6 +1,6 @@
 /* test_output.c: run output (run.h5, run.xdmf, diagnostics.csv) and frame
  * extraction. A run of three frames with known point values is written to a
- * temporary directory, then read back through mpm_extract and the HDF5 API:
+ * temporary directory, then read back through mpm_io_extract and the HDF5 API:
  * every value must come back bit for bit. */
 #define _XOPEN_SOURCE 700
 
@@ -112,25 +112,25 @@ static void remove_tree(const char *dir)
   nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
 }
 
-static void write_frame(mpm_output *out, int f)
+static void write_frame(mpm_io_output *out, int f)
 {
   mpm_err err = {0};
   mpm_points *pts = frame_points(f);
   mpm_diag d;
   mpm_diag_compute(pts, frame_time(f), &d);
-  ck_assert_msg(mpm_output_frame(out, pts, &d, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(mpm_io_output_frame(out, pts, &d, &err) == MPM_OK, "%s", err.msg);
   mpm_points_free(pts);
 }
 
-static mpm_output *open_run(const char *dir, const char *input)
+static mpm_io_output *open_run(const char *dir, const char *input)
 {
   mpm_err err = {0};
   mpm_mesh m;
-  mpm_output *out = NULL;
+  mpm_io_output *out = NULL;
   fill_mesh(&m);
-  ck_assert_msg(mpm_output_open(&out, dir, "granmpm run test.conf --set a.b=1", input, &m,
-                                &err) == MPM_OK,
-                "%s", err.msg);
+  ck_assert_msg(
+      mpm_io_output_open(&out, dir, "granmpm run test.conf --set a.b=1", input, &m, &err) == MPM_OK,
+      "%s", err.msg);
   ck_assert_ptr_nonnull(out);
   return out;
 }
@@ -140,10 +140,10 @@ static void write_run(char *dir)
 {
   mpm_err err = {0};
   make_tmpdir(dir);
-  mpm_output *out = open_run(dir, "[mesh]\nnx = 4\n");
+  mpm_io_output *out = open_run(dir, "[mesh]\nnx = 4\n");
   for (int f = 0; f < NFRAMES; f++)
     write_frame(out, f);
-  ck_assert_msg(mpm_output_close(out, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(mpm_io_output_close(out, &err) == MPM_OK, "%s", err.msg);
 }
 
 /* ---- reading output back ------------------------------------------------------- */
@@ -157,7 +157,7 @@ static int extract(const char *dir, int frame, const char *fields, text *t, mpm_
 {
   FILE *f = open_memstream(&t->buf, &t->len);
   ck_assert_ptr_nonnull(f);
-  int rc = mpm_extract(dir, frame, fields, f, err);
+  int rc = mpm_io_extract(dir, frame, fields, f, err);
   fclose(f);
   return rc;
 }
@@ -543,10 +543,10 @@ START_TEST(t_h5_layout)
     input[i] = i % 64 == 63 ? '\n' : (char)('a' + i % 26);
   input[big] = '\0';
   make_tmpdir(dir);
-  mpm_output *out = open_run(dir, input);
+  mpm_io_output *out = open_run(dir, input);
   for (int f = 0; f < NFRAMES; f++)
     write_frame(out, f);
-  ck_assert_msg(mpm_output_close(out, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(mpm_io_output_close(out, &err) == MPM_OK, "%s", err.msg);
 
   snprintf(path, sizeof path, "%s/run.h5", dir);
   hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -612,7 +612,7 @@ START_TEST(t_live_extract)
   mpm_err err = {0};
   text t = {0};
   make_tmpdir(dir);
-  mpm_output *out = open_run(dir, NULL);
+  mpm_io_output *out = open_run(dir, NULL);
   write_frame(out, 0);
   write_frame(out, 1);
   ck_assert_int_eq(extract_in_child(dir, -1, &t), MPM_OK);
@@ -622,12 +622,12 @@ START_TEST(t_live_extract)
   ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 2);
   ck_assert_str_eq(x + strlen(x) - strlen("</Xdmf>\n"), "</Xdmf>\n");
   free(x);
-  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
   remove_tree(dir);
 }
 END_TEST
 
-/* A run killed after two frames (no mpm_output_close) leaves both frames
+/* A run killed after two frames (no mpm_io_output_close) leaves both frames
  * readable and a complete run.xdmf. */
 START_TEST(t_killed_run)
 {
@@ -639,7 +639,7 @@ START_TEST(t_killed_run)
   pid_t pid = fork();
   ck_assert(pid >= 0);
   if (pid == 0) {
-    mpm_output *out = open_run(dir, NULL);
+    mpm_io_output *out = open_run(dir, NULL);
     write_frame(out, 0);
     write_frame(out, 1);
     raise(SIGKILL);
@@ -670,12 +670,12 @@ START_TEST(t_empty_frame)
   mpm_err err = {0};
   text t = {0};
   make_tmpdir(dir);
-  mpm_output *out = open_run(dir, "");
+  mpm_io_output *out = open_run(dir, "");
   mpm_points *pts = mpm_points_alloc(0);
   mpm_diag d;
   mpm_diag_compute(pts, 1.5, &d);
-  ck_assert_int_eq(mpm_output_frame(out, pts, &d, &err), MPM_OK);
-  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_frame(out, pts, &d, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
   ck_assert_msg(extract(dir, 0, "x,id", &t, &err) == MPM_OK, "%s", err.msg);
   ck_assert_str_eq(t.buf, "x,id\n");
   free(t.buf);
@@ -697,14 +697,14 @@ START_TEST(t_open_creates_parents)
   struct stat st;
   make_tmpdir(dir);
   snprintf(sub, sizeof sub, "%s/a/b//c/", dir);
-  mpm_output *out = open_run(sub, NULL);
-  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  mpm_io_output *out = open_run(sub, NULL);
+  ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
   snprintf(sub, sizeof sub, "%s/a/b/c/run.h5", dir);
   ck_assert_int_eq(stat(sub, &st), 0);
   /* opening again truncates */
   snprintf(sub, sizeof sub, "%s/a/b/c", dir);
   out = open_run(sub, NULL);
-  ck_assert_int_eq(mpm_output_close(out, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
   remove_tree(dir);
 }
 END_TEST
@@ -714,27 +714,27 @@ START_TEST(t_open_fails)
   char dir[DIR_MAX], file[DIR_MAX + 32], sub[DIR_MAX + 64], want[DIR_MAX + 128];
   mpm_err err = {0};
   mpm_mesh m;
-  mpm_output *out = NULL;
+  mpm_io_output *out = NULL;
   fill_mesh(&m);
   make_tmpdir(dir);
   snprintf(file, sizeof file, "%s/plain", dir);
   FILE *f = fopen(file, "w");
   fclose(f);
   snprintf(sub, sizeof sub, "%s/run", file);
-  ck_assert_int_eq(mpm_output_open(&out, sub, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, sub, "", "", &m, &err), MPM_EIO);
   ck_assert_ptr_null(out);
   snprintf(want, sizeof want, "cannot create directory '%s': Not a directory", sub);
   ck_assert_str_eq(err.msg, want);
-  ck_assert_int_eq(mpm_output_open(&out, file, "", "", &m, &err), MPM_EIO);
-  ck_assert_int_eq(mpm_output_open(&out, "", "", "", &m, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_output_open(&out, file, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, "", "", "", &m, &err), MPM_EINVAL);
   /* run.h5 cannot be created: a directory is in the way */
   snprintf(sub, sizeof sub, "%s/run.h5", dir);
   ck_assert_int_eq(mkdir(sub, 0777), 0);
-  ck_assert_int_eq(mpm_output_open(&out, dir, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, dir, "", "", &m, &err), MPM_EIO);
   ck_assert_ptr_null(out);
   snprintf(want, sizeof want, "cannot create '%s/run.h5': Is a directory", dir);
   ck_assert_str_eq(err.msg, want);
-  ck_assert_int_eq(mpm_output_close(NULL, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_close(NULL, &err), MPM_OK);
   remove_tree(dir);
 }
 END_TEST
@@ -743,7 +743,7 @@ END_TEST
 static int extract_main(const char *dir, const char *frame)
 {
   mpm_err err = {0};
-  int rc = mpm_extract(dir, atoi(frame), NULL, stdout, &err);
+  int rc = mpm_io_extract(dir, atoi(frame), NULL, stdout, &err);
   if (rc != MPM_OK)
     fprintf(stderr, "%s\n", err.msg);
   return rc;

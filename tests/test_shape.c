@@ -392,12 +392,11 @@ START_TEST(t_stencil_matches_eval)
     add_point(pts, random_coord(&s, m.x0, m.lx, m.dx, 1, 0.0),
               random_coord(&s, m.y0, m.ly, m.dy, 0, 0.0), r);
   }
-  mpm_stencil *st = mpm_stencil_alloc(0);
+  mpm_shape_stencil *st = mpm_shape_stencil_alloc(0);
   ck_assert_ptr_nonnull(st);
   mpm_err err = {0};
   for (int pass = 0; pass < 2; pass++) {  /* grow, then reuse */
-    ck_assert_int_eq(mpm_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err),
-                     MPM_OK);
+    ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err), MPM_OK);
     ck_assert_uint_ge(st->cap, pts->n);
     for (size_t p = 0; p < pts->n; p++) {
       const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
@@ -416,8 +415,8 @@ START_TEST(t_stencil_matches_eval)
     }
   }
   mpm_points_free(pts);
-  mpm_stencil_free(st);
-  mpm_stencil_free(NULL);
+  mpm_shape_stencil_free(st);
+  mpm_shape_stencil_free(NULL);
 }
 END_TEST
 
@@ -438,30 +437,28 @@ START_TEST(t_stencil_outside)
   pts->y[25] = -0.002;
   pts->x[25] = 1.234;
   pts->x[31] = 2.6;                     /* a second, later offender */
-  mpm_stencil *st = mpm_stencil_alloc(8);
+  mpm_shape_stencil *st = mpm_shape_stencil_alloc(8);
   for (int v = 0; v < 2; v++) {
     const mpm_shape_type *type = v ? &mpm_shape_ugimp : &mpm_shape_delta;
     mpm_err_clear(&err);
-    ck_assert_int_eq(mpm_stencil_compute(st, type, &m, pts, 0.031, &err),
-                     MPM_EOUTSIDE);
+    ck_assert_int_eq(mpm_shape_stencil_compute(st, type, &m, pts, 0.031, &err), MPM_EOUTSIDE);
     ck_assert_int_eq(err.code, MPM_EOUTSIDE);
     ck_assert_msg(strstr(err.msg, "point 17 ") != NULL, "%s", err.msg);
     ck_assert_msg(strstr(err.msg, "(1.234, -0.002) m") != NULL, "%s", err.msg);
     ck_assert_msg(strstr(err.msg, "t = 0.031 s") != NULL, "%s", err.msg);
   }
   pts->y[25] = 0.5;                     /* now only the second one */
-  ck_assert_int_eq(mpm_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err),
+  ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err),
                    MPM_EOUTSIDE);
   char want[32];
   snprintf(want, sizeof want, "point %d ", pts->id[31]);
   ck_assert_msg(strstr(err.msg, want) != NULL, "%s", err.msg);
   pts->x[31] = 2.5;                     /* exactly on the right edge: inside */
   mpm_err_clear(&err);
-  ck_assert_int_eq(mpm_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err),
-                   MPM_OK);
+  ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err), MPM_OK);
   ck_assert_int_eq(err.code, MPM_OK);
   mpm_points_free(pts);
-  mpm_stencil_free(st);
+  mpm_shape_stencil_free(st);
 }
 END_TEST
 
@@ -469,12 +466,11 @@ START_TEST(t_stencil_empty)
 {
   mpm_mesh m = make_mesh(7, 6, MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
   mpm_points *pts = mpm_points_alloc(0);
-  mpm_stencil *st = mpm_stencil_alloc(0);
+  mpm_shape_stencil *st = mpm_shape_stencil_alloc(0);
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_stencil_compute(st, &mpm_shape_delta, &m, pts, 0.0, &err),
-                   MPM_OK);
+  ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_delta, &m, pts, 0.0, &err), MPM_OK);
   mpm_points_free(pts);
-  mpm_stencil_free(st);
+  mpm_shape_stencil_free(st);
 }
 END_TEST
 

@@ -200,7 +200,7 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
   const mpm_shape_type *type = mpm_shape_lookup(shape);
   if (!type)
     return mpm_err_set(err, MPM_EINPUT, "run uses unknown shape functions '%s'", shape);
-  mpm_stencil *st = mpm_stencil_alloc(pts->n);
+  mpm_shape_stencil *st = mpm_shape_stencil_alloc(pts->n);
   size_t n = pts->n, nn = (size_t)m->nnodes;
   double *p = malloc((n + 1) * sizeof *p), *ps = malloc((n + 1) * sizeof *ps);
   double *nm = malloc(nn * sizeof *nm), *nmf = malloc(nn * sizeof *nmf);
@@ -208,7 +208,7 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
                                              : MPM_OK;
   if (rc == MPM_OK) {
     mpm_diag_pressure(pts, p);
-    rc = mpm_stencil_compute(st, type, m, pts, t, err);
+    rc = mpm_shape_stencil_compute(st, type, m, pts, t, err);
   }
   if (rc == MPM_OK)
     rc = mpm_diag_smooth(st, n, pts->mass, p, m->nnodes, nm, nmf, ps, err);
@@ -218,7 +218,7 @@ static int do_smooth(const mpm_points *pts, const mpm_mesh *m, const char *shape
       printf("%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", pts->x[i], pts->y[i], p[i], ps[i],
              pts->gdp[i], pts->state[i]);
   }
-  mpm_stencil_free(st);
+  mpm_shape_stencil_free(st);
   free(p);
   free(ps);
   free(nm);

@@ -273,7 +273,7 @@ static int load_material(const opts *o, const mpm_material_type **mt, mpm_materi
   memset(&cfg, 0, sizeof cfg);
   if (o->file) {
     mpm_err err = {0};
-    if (mpm_input_load(o->file, o->sets, o->nset, &cfg, &err) != MPM_OK) {
+    if (mpm_io_input_load(o->file, o->sets, o->nset, &cfg, &err) != MPM_OK) {
       fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
       return EXIT_USAGE;
     }

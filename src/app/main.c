@@ -88,7 +88,7 @@ static int parse_run_opts(int argc, char **argv, int allow_run_opts, run_opts *o
 static int load_input(const run_opts *o, mpm_config *cfg)
 {
   mpm_err err = {0};
-  if (mpm_input_load(o->file, o->sets, o->nset, cfg, &err) != MPM_OK) {
+  if (mpm_io_input_load(o->file, o->sets, o->nset, cfg, &err) != MPM_OK) {
     fprintf(stderr, "granmpm: %s\n", err.msg);
     return MPM_APP_EXIT_USAGE;
   }
@@ -112,7 +112,7 @@ static void warn_diffusion(const char *file, const mpm_config *cfg)
   mpm_sim_time_plan(cfg, &dt, &n_sub);
   mpm_material_params par = {.A = cfg->material.A, .d = cfg->material.d, .t0 = cfg->material.t0};
   mpm_err err = {0};
-  if (mpm_ngf_check_diffusion(&par, dt, n_sub, cfg->mesh.dx, cfg->mesh.dy, &err) != MPM_OK)
+  if (mpm_material_ngf_check_diffusion(&par, dt, n_sub, cfg->mesh.dx, cfg->mesh.dy, &err) != MPM_OK)
     fprintf(stderr, "granmpm: warning: %s: %s (key 'material.n_sub')\n", file, err.msg);
 }
 
@@ -124,7 +124,7 @@ static int cmd_check(int argc, char **argv)
   if (rc == 0)
     rc = load_input(&o, &cfg);
   if (rc == 0) {
-    mpm_input_write(stdout, &cfg);
+    mpm_io_input_write(stdout, &cfg);
     warn_diffusion(o.file, &cfg);
   }
   return rc;
@@ -133,7 +133,7 @@ static int cmd_check(int argc, char **argv)
 /* ---- run ------------------------------------------------------------------ */
 
 typedef struct run_ctx {
-  mpm_output *out;
+  mpm_io_output *out;
   int quiet, tty;
   long frames;
   double *ft, *fm;     /* time and region mass of every frame, for the flow rate */
@@ -172,7 +172,7 @@ static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
   if (!keep_frame(c, d.t, d.mass_region))
     return mpm_err_set(err, MPM_ENOMEM, "frame %ld: out of memory", c->frames);
   c->frames++;
-  return mpm_output_frame(c->out, s->pts, &d, err);
+  return mpm_io_output_frame(c->out, s->pts, &d, err);
 }
 
 static void on_progress(void *vctx, const mpm_sim *s, double steps_per_s)
@@ -208,7 +208,7 @@ static char *input_text(const mpm_config *cfg)
   FILE *f = open_memstream(&buf, &len);
   if (!f)
     return NULL;
-  mpm_input_write(f, cfg);
+  mpm_io_input_write(f, cfg);
   fclose(f);
   return buf;
 }
@@ -256,7 +256,7 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   }
   run_ctx ctx = {.quiet = o.quiet, .tty = isatty(STDERR_FILENO)};
   char *cmdline = join_args(full_argc, full_argv), *text = input_text(&cfg);
-  int st = mpm_output_open(&ctx.out, cfg.output.dir, cmdline, text, &sim->mesh, &err);
+  int st = mpm_io_output_open(&ctx.out, cfg.output.dir, cmdline, text, &sim->mesh, &err);
   free(cmdline);
   free(text);
   if (st == MPM_OK)
@@ -264,7 +264,7 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   if (ctx.tty && !ctx.quiet)
     fputc('\n', stderr);
   mpm_err cerr = {0};
-  if (mpm_output_close(ctx.out, &cerr) != MPM_OK && st == MPM_OK) {
+  if (mpm_io_output_close(ctx.out, &cerr) != MPM_OK && st == MPM_OK) {
     st = cerr.code;
     err = cerr;
   }
@@ -317,7 +317,7 @@ static int cmd_extract(int argc, char **argv)
   if (!dir)
     return mpm_app_usage("%s: a run directory is required", "extract");
   mpm_err err = {0};
-  if (mpm_extract(dir, frame, fields, stdout, &err) != MPM_OK)
+  if (mpm_io_extract(dir, frame, fields, stdout, &err) != MPM_OK)
     return mpm_app_fail(&err);
   return 0;
 }

@@ -20,7 +20,7 @@ static int load(const char *input, const char *dir, int frame, mpm_config *cfg, 
 {
   mpm_io_run *r = NULL;
   double t;
-  int rc = mpm_input_load(input, NULL, 0, cfg, err);
+  int rc = mpm_io_input_load(input, NULL, 0, cfg, err);
   if (rc == MPM_OK)
     rc = mpm_mesh_from_config(m, cfg, err);
   if (rc == MPM_OK)

@@ -84,14 +84,15 @@ typedef struct mpm_config {
     double rho_s, rho_c;       /* grain and critical density [kg/m^3] */
     double mu_s, mu_2, I0, d;  /* mu(I) parameters; d grain diameter [m] */
     double A, t0;              /* NGF nonlocal amplitude, time scale [s] */
-    int form;                  /* NGF PDE form, enum mpm_ngf_form ("dk" | "hs21") */
-    int p_sample;              /* NGF g^2 term's p^-1/2, enum mpm_ngf_p_sample ("point" | "unit") */
+    int form;                  /* NGF PDE form, enum mpm_material_ngf_form ("dk" | "hs21") */
+    int p_sample;              /* NGF g^2 term's p^-1/2, enum mpm_material_ngf_p_sample
+                                  ("point" | "unit") */
     int g_average;             /* NGF point shares in the unit averages, enum
                                   mpm_nonlocal_rule ("centre" | "extent") */
     double t_seed;             /* NGF: local mu(I) update while t < t_seed [s] */
     int n_sub;                 /* constitutive substeps per MPM step (L fixed) */
     double dt_sub;             /* target substep [s]: n_sub = ceil(dt / dt_sub); 0: use n_sub */
-    int state_density;         /* density of the state decision, enum mpm_density_rule
+    int state_density;         /* density of the state decision, enum mpm_material_density_rule
                                   ("point" | "element" | "hybrid", [D-thesis] §3.4) */
   } material;
 

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *mpm_strerror(int code)
+const char *mpm_err_string(int code)
 {
 #define MPM_ERROR_CASE_(name, msg) case name: return msg;
   switch (code) {

@@ -32,7 +32,7 @@ typedef struct mpm_err {
 } mpm_err;
 
 /* Default text of a status code. */
-const char *mpm_strerror(int code);
+const char *mpm_err_string(int code);
 
 /* Record code and a printf-style message in err (err may be NULL); returns code,
  * so callers write `return mpm_err_set(err, MPM_EINPUT, "...", ...);`. */

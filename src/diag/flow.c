@@ -282,7 +282,7 @@ int mpm_diag_derivative(size_t n, const double *t, const double *v, double *dvdt
 
 /* ---- nodal smoothing ------------------------------------------------------- */
 
-int mpm_diag_smooth(const mpm_stencil *st, size_t n, const double *mass, const double *f,
+int mpm_diag_smooth(const mpm_shape_stencil *st, size_t n, const double *mass, const double *f,
                     int nnodes, double *nm, double *nmf, double *out, mpm_err *err)
 {
   if (!st || n > st->cap || nnodes < 1)

@@ -92,7 +92,7 @@ void mpm_diag_pressure(const mpm_points *pts, double *p);
  *   (m f)_i = sum_p S_ip m_p f_p,  f_i = (m f)_i / m_i,  out_p = sum_i S_ip f_i,
  * with the stencil st of the n points and nodal workspace nm, nmf of nnodes
  * entries. Nodes with m_i <= 0 do not contribute. */
-int mpm_diag_smooth(const mpm_stencil *st, size_t n, const double *mass, const double *f,
+int mpm_diag_smooth(const mpm_shape_stencil *st, size_t n, const double *mass, const double *f,
                     int nnodes, double *nm, double *nmf, double *out, mpm_err *err);
 
 #endif

@@ -49,12 +49,12 @@ typedef struct extract_ctx {
   column col[COLUMNS_MAX];
   int ncol;
   hsize_t npoints;
-  mpm_h5_quiet quiet;
+  mpm_io_h5_quiet quiet;
 } extract_ctx;
 
 static int h5_fail(mpm_err *err, const extract_ctx *c, const char *what)
 {
-  return mpm_h5_fail(err, &c->quiet, what, c->path);
+  return mpm_io_h5_fail(err, &c->quiet, what, c->path);
 }
 
 /* ---- opening ------------------------------------------------------------- */
@@ -69,7 +69,7 @@ static int open_run(extract_ctx *c, mpm_err *err)
   snprintf(c->path, len, "%s/run.h5", c->dir);
   if (stat(c->path, &st) != 0)
     return mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", c->path, strerror(errno));
-  c->file = mpm_h5_open_read(c->path);
+  c->file = mpm_io_h5_open_read(c->path);
   if (c->file < 0)
     return h5_fail(err, c, "cannot open");
   return MPM_OK;
@@ -80,7 +80,7 @@ static int count_frames(extract_ctx *c, hsize_t *n, mpm_err *err)
   H5G_info_t info;
   hid_t g = H5Gopen2(c->file, "frames", H5P_DEFAULT);
   herr_t rc = g < 0 ? -1 : H5Gget_info(g, &info);
-  mpm_h5_close(g);
+  mpm_io_h5_close(g);
   if (rc < 0)
     return h5_fail(err, c, "no frames group in");
   *n = info.nlinks;
@@ -244,10 +244,10 @@ static int open_column(extract_ctx *c, column *col, mpm_err *err)
   rank = space < 0 ? -1 : H5Sget_simple_extent_ndims(space);
   if (rank == 1)
     H5Sget_simple_extent_dims(space, dims, NULL);
-  mpm_h5_close(space);
+  mpm_io_h5_close(space);
   type = H5Dget_type(col->dset);
   col->isint = type >= 0 && H5Tget_class(type) == H5T_INTEGER;
-  mpm_h5_close(type);
+  mpm_io_h5_close(type);
   if (col == c->col)
     c->npoints = dims[0]; /* the first column sets the row count */
   if (rank != 1 || dims[0] != c->npoints)
@@ -272,8 +272,8 @@ static herr_t read_block(const column *col, hsize_t start, hsize_t count)
   if (rc >= 0)
     rc = col->isint ? H5Dread(col->dset, H5T_NATIVE_LLONG, ms, fs, H5P_DEFAULT, col->i)
                     : H5Dread(col->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, col->d);
-  mpm_h5_close(ms);
-  mpm_h5_close(fs);
+  mpm_io_h5_close(ms);
+  mpm_io_h5_close(fs);
   return rc;
 }
 
@@ -326,8 +326,8 @@ static void ctx_close(extract_ctx *c)
   for (int k = 0; k < c->ncol; k++)
     if (c->col[k].dset >= 0)
       H5Dclose(c->col[k].dset);
-  mpm_h5_close(c->group);
-  mpm_h5_close(c->file);
+  mpm_io_h5_close(c->group);
+  mpm_io_h5_close(c->file);
 }
 
 static void ctx_free(extract_ctx *c)
@@ -340,18 +340,18 @@ static void ctx_free(extract_ctx *c)
   free(c);
 }
 
-int mpm_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_err *err)
+int mpm_io_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_err *err)
 {
   extract_ctx *c;
   int rc;
   if (!dir || !out)
-    return mpm_err_set(err, MPM_EINVAL, "mpm_extract: missing run directory or output stream");
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_extract: missing run directory or output stream");
   c = calloc(1, sizeof *c);
   if (!c)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory extracting from '%s'", dir);
   c->dir = dir;
   c->file = c->group = H5I_INVALID_HID;
-  mpm_h5_quiet_begin(&c->quiet);
+  mpm_io_h5_quiet_begin(&c->quiet);
   rc = open_run(c, err);
   if (rc == MPM_OK)
     rc = open_frame(c, frame, err);
@@ -362,7 +362,7 @@ int mpm_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_e
   if (rc == MPM_OK)
     rc = print_frame(c, out, err);
   ctx_close(c);
-  mpm_h5_quiet_end(&c->quiet);
+  mpm_io_h5_quiet_end(&c->quiet);
   ctx_free(c);
   return rc;
 }

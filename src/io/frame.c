@@ -20,12 +20,12 @@ struct mpm_io_run {
   char path[MPM_PATH_MAX + 16];
   hid_t file;
   int nframes;
-  mpm_h5_quiet quiet;  /* HDF5's error printing is off while the run is open */
+  mpm_io_h5_quiet quiet;  /* HDF5's error printing is off while the run is open */
 };
 
 static int fail(mpm_io_run *r, mpm_err *err, const char *what)
 {
-  return mpm_err_set(err, MPM_EIO, "%s in '%s': %s", what, r->path, mpm_h5_reason(&r->quiet));
+  return mpm_err_set(err, MPM_EIO, "%s in '%s': %s", what, r->path, mpm_io_h5_reason(&r->quiet));
 }
 
 int mpm_io_run_open(mpm_io_run **out, const char *dir, mpm_err *err)
@@ -38,18 +38,18 @@ int mpm_io_run_open(mpm_io_run **out, const char *dir, mpm_err *err)
     free(r);
     return mpm_err_set(err, MPM_EINPUT, "run directory name too long: '%s'", dir);
   }
-  mpm_h5_quiet_begin(&r->quiet);                    /* errors become return codes */
-  r->file = mpm_h5_open_read(r->path);              /* a running job may still write */
+  mpm_io_h5_quiet_begin(&r->quiet);        /* errors become return codes */
+  r->file = mpm_io_h5_open_read(r->path);  /* a running job may still write */
   if (r->file < 0) {
     int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s' (not a run directory?): %s", r->path,
-                         mpm_h5_reason(&r->quiet));
+                         mpm_io_h5_reason(&r->quiet));
     mpm_io_run_close(r);
     return rc;
   }
   H5G_info_t info;
   hid_t g = H5Gopen2(r->file, "frames", H5P_DEFAULT);
   if (g < 0 || H5Gget_info(g, &info) < 0) {
-    mpm_h5_close(g);
+    mpm_io_h5_close(g);
     int rc = fail(r, err, "no frames group");
     mpm_io_run_close(r);
     return rc;
@@ -64,8 +64,8 @@ void mpm_io_run_close(mpm_io_run *r)
 {
   if (!r)
     return;
-  mpm_h5_close(r->file);
-  mpm_h5_quiet_end(&r->quiet);
+  mpm_io_h5_close(r->file);
+  mpm_io_h5_quiet_end(&r->quiet);
   free(r);
 }
 
@@ -78,12 +78,12 @@ static int read_attr(hid_t obj, const char *name, hid_t type, void *v)
 {
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   herr_t rc = a < 0 ? -1 : H5Aread(a, type, v);
-  mpm_h5_close(a);
+  mpm_io_h5_close(a);
   return rc < 0 ? -1 : 0;
 }
 
 /* The value of `shape = "..."` inside the "mesh {" section of the resolved
- * input text (written by mpm_input_write, one key per line). */
+ * input text (written by mpm_io_input_write, one key per line). */
 static void shape_from_input(const char *text, char *shape, size_t len)
 {
   const char *m = strstr(text, "\nmesh {");
@@ -120,10 +120,10 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
     char *dst = k ? diag : topo;
     if (t < 0 || H5Tget_size(t) >= sizeof topo || H5Aread(a, t, dst) < 0)
       rc = -1;
-    mpm_h5_close(t);
-    mpm_h5_close(a);
+    mpm_io_h5_close(t);
+    mpm_io_h5_close(a);
   }
-  mpm_h5_close(g);
+  mpm_io_h5_close(g);
   if (rc != 0)
     return fail((mpm_io_run *)r, err, "cannot read the mesh attributes");
   m->topology = mpm_mesh_topology_from_name(topo);
@@ -141,8 +141,8 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
       shape_from_input(text, shape, len);
     }
     free(text);
-    mpm_h5_close(t);
-    mpm_h5_close(a);
+    mpm_io_h5_close(t);
+    mpm_io_h5_close(a);
   }
   return mpm_mesh_setup(m, err);
 }
@@ -159,8 +159,8 @@ static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *ds
            H5Sget_simple_extent_dims(s, dims, NULL) == 1 && dims[0] == n;
   if (ok && n > 0)
     ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, dst) >= 0;
-  mpm_h5_close(s);
-  mpm_h5_close(d);
+  mpm_io_h5_close(s);
+  mpm_io_h5_close(d);
   return ok ? 0 : -1;
 }
 
@@ -184,7 +184,7 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
   hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
   if (g < 0 || read_attr(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
       read_attr(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
-    mpm_h5_close(g);
+    mpm_io_h5_close(g);
     return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s'", frame, r->path);
   }
   pts->n = 0;

@@ -31,14 +31,14 @@ static herr_t reason_first(unsigned n, const H5E_error2_t *e, void *data)
 
 static herr_t capture(hid_t stack, void *data)
 {
-  mpm_h5_quiet *q = data;
+  mpm_io_h5_quiet *q = data;
   reason_buf r = {q->reason, sizeof q->reason};
   if (!q->reason[0])
     H5Ewalk2(stack, H5E_WALK_UPWARD, reason_first, &r);
   return 0;
 }
 
-void mpm_h5_quiet_begin(mpm_h5_quiet *q)
+void mpm_io_h5_quiet_begin(mpm_io_h5_quiet *q)
 {
   q->reason[0] = '\0';
   if (H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data) < 0) {
@@ -48,22 +48,22 @@ void mpm_h5_quiet_begin(mpm_h5_quiet *q)
   H5Eset_auto2(H5E_DEFAULT, capture, q);
 }
 
-void mpm_h5_quiet_end(const mpm_h5_quiet *q)
+void mpm_io_h5_quiet_end(const mpm_io_h5_quiet *q)
 {
   H5Eset_auto2(H5E_DEFAULT, q->func, q->data);
 }
 
-const char *mpm_h5_reason(const mpm_h5_quiet *q)
+const char *mpm_io_h5_reason(const mpm_io_h5_quiet *q)
 {
   return q->reason[0] ? q->reason : "HDF5 error";
 }
 
-int mpm_h5_fail(mpm_err *err, const mpm_h5_quiet *q, const char *what, const char *path)
+int mpm_io_h5_fail(mpm_err *err, const mpm_io_h5_quiet *q, const char *what, const char *path)
 {
-  return mpm_err_set(err, MPM_EIO, "%s '%s': %s", what, path, mpm_h5_reason(q));
+  return mpm_err_set(err, MPM_EIO, "%s '%s': %s", what, path, mpm_io_h5_reason(q));
 }
 
-hid_t mpm_h5_open_read(const char *path)
+hid_t mpm_io_h5_open_read(const char *path)
 {
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   hid_t file = H5I_INVALID_HID;
@@ -77,7 +77,7 @@ hid_t mpm_h5_open_read(const char *path)
   return file;
 }
 
-herr_t mpm_h5_close(hid_t id)
+herr_t mpm_io_h5_close(hid_t id)
 {
   if (id < 0)
     return 0;

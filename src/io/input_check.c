@@ -33,23 +33,28 @@ static where blame(const in_ctx *c, const mpm_config *cfg, int fill, int a, int 
 {
   const loc *la = &c->at[fill < 0 ? 0 : fill][a], *lb = &c->at[fill < 0 ? 0 : fill][b];
   int k = later(*lb, *la) ? b : a;
-  where w = {.at = k == a ? *la : *lb, .sec = mpm_in_keys[k].sec, .key = k, .fill = fill,
+  where w = {.at = k == a ? *la : *lb,
+             .sec = mpm_io_in_keys[k].sec,
+             .key = k,
+             .fill = fill,
              .title = fill >= 0 ? cfg->fill[fill].name : NULL};
   return w;
 }
 
 static int key_index(int sec, const char *name)
 {
-  return mpm_in_find_key(sec, name);  /* the table is fixed: names used here exist */
+  return mpm_io_in_find_key(sec, name);  /* the table is fixed: names used here exist */
 }
 
 static int check_required(in_ctx *c)
 {
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_in_keys[k].sec == S_FILL || !(mpm_in_keys[k].flags & KF_REQUIRED) || is_set(c, k, -1))
+    if (mpm_io_in_keys[k].sec == S_FILL || !(mpm_io_in_keys[k].flags & KF_REQUIRED) ||
+        is_set(c, k, -1))
       continue;
-    where w = {.sec = mpm_in_keys[k].sec, .key = k, .fill = -1};
-    return mpm_in_fail_key(c, &w, "required, not set (allowed: %s)", mpm_in_allowed_text(&mpm_in_keys[k]).s);
+    where w = {.sec = mpm_io_in_keys[k].sec, .key = k, .fill = -1};
+    return mpm_io_in_fail_key(c, &w, "required, not set (allowed: %s)",
+                              mpm_io_in_allowed_text(&mpm_io_in_keys[k]).s);
   }
   return MPM_OK;
 }
@@ -59,24 +64,27 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
   double nodes = (cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0);
   if (nodes > MAX_NODES) {
     where w = blame(c, cfg, -1, key_index(S_MESH, "nx"), key_index(S_MESH, "ny"));
-    return mpm_in_fail_key(c, &w, "%d x %d units make %s nodes (allowed: (nx+1)(ny+1) <= %s)",
-                       cfg->mesh.nx, cfg->mesh.ny, mpm_in_num(nodes).s, mpm_in_num(MAX_NODES).s);
+    return mpm_io_in_fail_key(c, &w, "%d x %d units make %s nodes (allowed: (nx+1)(ny+1) <= %s)",
+                              cfg->mesh.nx, cfg->mesh.ny, mpm_io_in_num(nodes).s,
+                              mpm_io_in_num(MAX_NODES).s);
   }
   if (cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
       (strcmp(cfg->mesh.shape, "delta") != 0 || strcmp(cfg->mesh.topology, "q4") != 0)) {
     const int ks = key_index(S_MESH, "shape"), kt = key_index(S_MESH, "topology");
     where w = blame(c, cfg, -1, key_index(S_MESH, "dilatation"),
                     strcmp(cfg->mesh.shape, "delta") != 0 ? ks : kt);
-    return mpm_in_fail_key(c, &w, "dilatation = \"unit\" with shape = \"%s\", topology = \"%s\" "
-                       "(allowed: shape = \"delta\" and topology = \"q4\")",
-                       cfg->mesh.shape, cfg->mesh.topology);
+    return mpm_io_in_fail_key(c, &w,
+                              "dilatation = \"unit\" with shape = \"%s\", topology = \"%s\" "
+                              "(allowed: shape = \"delta\" and topology = \"q4\")",
+                              cfg->mesh.shape, cfg->mesh.topology);
   }
   double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
   double m = cfg->mesh.mirror_x;
   if (strcmp(cfg->mesh.diagonal, "mirror") == 0 && (m < cfg->mesh.x0 - tol || m > x1 + tol)) {
     where w = blame(c, cfg, -1, key_index(S_MESH, "mirror_x"), key_index(S_MESH, "diagonal"));
-    return mpm_in_fail_key(c, &w, "mirror_x = %s lies outside the mesh (allowed: %s ... %s m)",
-                       mpm_in_num(m).s, mpm_in_approx(cfg->mesh.x0).s, mpm_in_approx(x1).s);
+    return mpm_io_in_fail_key(c, &w, "mirror_x = %s lies outside the mesh (allowed: %s ... %s m)",
+                              mpm_io_in_num(m).s, mpm_io_in_approx(cfg->mesh.x0).s,
+                              mpm_io_in_approx(x1).s);
   }
   return MPM_OK;
 }
@@ -85,8 +93,9 @@ static int check_time(in_ctx *c, const mpm_config *cfg)
 {
   if (cfg->time.frame_dt > cfg->time.t_end) {
     where w = blame(c, cfg, -1, key_index(S_TIME, "frame_dt"), key_index(S_TIME, "t_end"));
-    return mpm_in_fail_key(c, &w, "frame_dt = %s > t_end = %s (allowed: frame_dt <= t_end)",
-                       mpm_in_num(cfg->time.frame_dt).s, mpm_in_num(cfg->time.t_end).s);
+    return mpm_io_in_fail_key(c, &w, "frame_dt = %s > t_end = %s (allowed: frame_dt <= t_end)",
+                              mpm_io_in_num(cfg->time.frame_dt).s,
+                              mpm_io_in_num(cfg->time.t_end).s);
   }
   return MPM_OK;
 }
@@ -105,8 +114,9 @@ static int check_gravity(in_ctx *c, mpm_config *cfg)
     return MPM_OK;
   if (cart >= 0) {
     where w = blame(c, cfg, -1, polar, cart);
-    return mpm_in_fail_key(c, &w, "gravity given both as gx, gy and as angle, g "
-                       "(allowed: one of the two)");
+    return mpm_io_in_fail_key(c, &w,
+                              "gravity given both as gx, gy and as angle, g "
+                              "(allowed: one of the two)");
   }
   const double a = cfg->gravity.angle * (3.14159265358979323846 / 180.0);  /* deg -> rad */
   cfg->gravity.gx = cfg->gravity.g * sin(a);
@@ -125,23 +135,26 @@ static void resolve_stop(in_ctx *c, mpm_config *cfg)
 static int check_material(in_ctx *c, mpm_config *cfg)
 {
   for (int k = 0; k < NKEYS; k++)  /* NGF seeding time: 10 t0 unless given ([DK-silo] 6) */
-    if ((mpm_in_keys[k].flags & KF_T0X10) && !is_set(c, k, -1))
-      *(double *)(void *)((char *)cfg + mpm_in_keys[k].off) = 10.0 * cfg->material.t0;
+    if ((mpm_io_in_keys[k].flags & KF_T0X10) && !is_set(c, k, -1))
+      *(double *)(void *)((char *)cfg + mpm_io_in_keys[k].off) = 10.0 * cfg->material.t0;
   if (cfg->material.rho_c > cfg->material.rho_s) {
     where w = blame(c, cfg, -1, key_index(S_MATERIAL, "rho_c"), key_index(S_MATERIAL, "rho_s"));
-    return mpm_in_fail_key(c, &w, "rho_c = %s > rho_s = %s (allowed: rho_c <= rho_s)",
-                       mpm_in_num(cfg->material.rho_c).s, mpm_in_num(cfg->material.rho_s).s);
+    return mpm_io_in_fail_key(c, &w, "rho_c = %s > rho_s = %s (allowed: rho_c <= rho_s)",
+                              mpm_io_in_num(cfg->material.rho_c).s,
+                              mpm_io_in_num(cfg->material.rho_s).s);
   }
   const int kn = key_index(S_MATERIAL, "n_sub"), kd = key_index(S_MATERIAL, "dt_sub");
   if (cfg->material.n_sub > 1 && cfg->material.dt_sub > 0.0) {  /* two ways to say it */
     where w = blame(c, cfg, -1, kd, kn);
-    return mpm_in_fail_key(c, &w, "n_sub = %d with dt_sub = %s s (allowed: n_sub = 1 or dt_sub = 0)",
-                       cfg->material.n_sub, mpm_in_num(cfg->material.dt_sub).s);
+    return mpm_io_in_fail_key(c, &w,
+                              "n_sub = %d with dt_sub = %s s (allowed: n_sub = 1 or dt_sub = 0)",
+                              cfg->material.n_sub, mpm_io_in_num(cfg->material.dt_sub).s);
   }
   if (cfg->material.mu_s >= cfg->material.mu_2) {
     where w = blame(c, cfg, -1, key_index(S_MATERIAL, "mu_s"), key_index(S_MATERIAL, "mu_2"));
-    return mpm_in_fail_key(c, &w, "mu_s = %s >= mu_2 = %s (allowed: mu_s < mu_2)",
-                       mpm_in_num(cfg->material.mu_s).s, mpm_in_num(cfg->material.mu_2).s);
+    return mpm_io_in_fail_key(c, &w, "mu_s = %s >= mu_2 = %s (allowed: mu_s < mu_2)",
+                              mpm_io_in_num(cfg->material.mu_s).s,
+                              mpm_io_in_num(cfg->material.mu_2).s);
   }
   return MPM_OK;
 }
@@ -153,9 +166,9 @@ static int check_periodic_pair(in_ctx *c, const mpm_config *cfg, const char *a, 
   if (pa == pb)
     return MPM_OK;
   where w = blame(c, cfg, -1, key_index(S_BOUNDARY, a), key_index(S_BOUNDARY, b));
-  return mpm_in_fail_key(c, &w,
-                     "%s = \"%s\" but %s = \"%s\" (allowed: %s and %s both \"periodic\" or neither)",
-                     a, mpm_bc_kind_name(ka), b, mpm_bc_kind_name(kb), a, b);
+  return mpm_io_in_fail_key(
+      c, &w, "%s = \"%s\" but %s = \"%s\" (allowed: %s and %s both \"periodic\" or neither)", a,
+      mpm_bc_kind_name(ka), b, mpm_bc_kind_name(kb), a, b);
 }
 
 static int check_boundary(in_ctx *c, const mpm_config *cfg)
@@ -170,17 +183,17 @@ static int check_fill_keys(in_ctx *c, const mpm_config *cfg, int i)
 {
   const mpm_fill_config *f = &cfg->fill[i];
   int mask = 1 << f->shape;
-  const char *shape = mpm_in_name_at(NK_FILL_SHAPE, f->shape);
+  const char *shape = mpm_io_in_name_at(NK_FILL_SHAPE, f->shape);
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_in_keys[k].sec != S_FILL || !mpm_in_keys[k].shapes)
+    if (mpm_io_in_keys[k].sec != S_FILL || !mpm_io_in_keys[k].shapes)
       continue;
     where w = {.at = c->at[i][k], .sec = S_FILL, .key = k, .fill = i, .title = f->name};
-    if (!(mpm_in_keys[k].shapes & mask) && is_set(c, k, i))
-      return mpm_in_fail_key(c, &w, "not used by shape \"%s\" (allowed keys for \"%s\": %s)", shape,
-                         shape, mpm_in_key_list(S_FILL, mask).s);
-    if ((mpm_in_keys[k].shapes & mask) && !is_set(c, k, i))
-      return mpm_in_fail_key(c, &w, "required for shape \"%s\", not set (allowed: %s)", shape,
-                         mpm_in_allowed_text(&mpm_in_keys[k]).s);
+    if (!(mpm_io_in_keys[k].shapes & mask) && is_set(c, k, i))
+      return mpm_io_in_fail_key(c, &w, "not used by shape \"%s\" (allowed keys for \"%s\": %s)",
+                                shape, shape, mpm_io_in_key_list(S_FILL, mask).s);
+    if ((mpm_io_in_keys[k].shapes & mask) && !is_set(c, k, i))
+      return mpm_io_in_fail_key(c, &w, "required for shape \"%s\", not set (allowed: %s)", shape,
+                                mpm_io_in_allowed_text(&mpm_io_in_keys[k]).s);
   }
   return MPM_OK;
 }
@@ -194,9 +207,10 @@ static int check_span(in_ctx *c, const mpm_config *cfg, int i, int ka, int kb, d
   if (lo >= m0 - tol && hi <= m1 + tol)
     return MPM_OK;
   where w = blame(c, cfg, i, ka, kb);
-  return mpm_in_fail_key(c, &w, "the fill spans %s %s ... %s, outside the mesh (allowed: %s ... %s m)",
-                     along_x ? "x" : "y", mpm_in_approx(lo).s, mpm_in_approx(hi).s, mpm_in_approx(m0).s,
-                     mpm_in_approx(m1).s);
+  return mpm_io_in_fail_key(c, &w,
+                            "the fill spans %s %s ... %s, outside the mesh (allowed: %s ... %s m)",
+                            along_x ? "x" : "y", mpm_io_in_approx(lo).s, mpm_io_in_approx(hi).s,
+                            mpm_io_in_approx(m0).s, mpm_io_in_approx(m1).s);
 }
 
 static int check_rectangle(in_ctx *c, const mpm_config *cfg, int i)
@@ -206,13 +220,13 @@ static int check_rectangle(in_ctx *c, const mpm_config *cfg, int i)
   int ky0 = key_index(S_FILL, "ymin"), ky1 = key_index(S_FILL, "ymax");
   if (!(f->xmin < f->xmax)) {
     where w = blame(c, cfg, i, kx1, kx0);
-    return mpm_in_fail_key(c, &w, "xmin = %s >= xmax = %s (allowed: xmin < xmax)", mpm_in_num(f->xmin).s,
-                       mpm_in_num(f->xmax).s);
+    return mpm_io_in_fail_key(c, &w, "xmin = %s >= xmax = %s (allowed: xmin < xmax)",
+                              mpm_io_in_num(f->xmin).s, mpm_io_in_num(f->xmax).s);
   }
   if (!(f->ymin < f->ymax)) {
     where w = blame(c, cfg, i, ky1, ky0);
-    return mpm_in_fail_key(c, &w, "ymin = %s >= ymax = %s (allowed: ymin < ymax)", mpm_in_num(f->ymin).s,
-                       mpm_in_num(f->ymax).s);
+    return mpm_io_in_fail_key(c, &w, "ymin = %s >= ymax = %s (allowed: ymin < ymax)",
+                              mpm_io_in_num(f->ymin).s, mpm_io_in_num(f->ymax).s);
   }
   if (check_span(c, cfg, i, kx1, kx0, f->xmin, f->xmax, 1) != MPM_OK)
     return MPM_EINPUT;
@@ -246,10 +260,10 @@ static int check_polygon(in_ctx *c, mpm_config *cfg, int i)
   int nx = c->nlist[i][0], ny = c->nlist[i][1];
   where w = blame(c, cfg, i, ky, kx);
   if (nx != ny)
-    return mpm_in_fail_key(c, &w, "x has %d values, y has %d (allowed: as many x values as y values)",
-                       nx, ny);
+    return mpm_io_in_fail_key(
+        c, &w, "x has %d values, y has %d (allowed: as many x values as y values)", nx, ny);
   if (nx < 3)
-    return mpm_in_fail_key(c, &w, "%d vertices (allowed: 3 ... %d vertices)", nx, MPM_MAX_POLY);
+    return mpm_io_in_fail_key(c, &w, "%d vertices (allowed: 3 ... %d vertices)", nx, MPM_MAX_POLY);
   f->nvert = nx;
   double area = 0, x0, x1, y0, y1;
   for (int a = 0, b = nx - 1; a < nx; b = a++)
@@ -257,9 +271,9 @@ static int check_polygon(in_ctx *c, mpm_config *cfg, int i)
   bounds(f->px, nx, &x0, &x1);
   bounds(f->py, nx, &y0, &y1);
   if (!(fabs(area) > 1e-12 * (x1 - x0) * (y1 - y0)))
-    return mpm_in_fail_key(c, &w,
-                       "the polygon encloses no area (allowed: 3 ... %d vertices around a region)",
-                       MPM_MAX_POLY);
+    return mpm_io_in_fail_key(
+        c, &w, "the polygon encloses no area (allowed: 3 ... %d vertices around a region)",
+        MPM_MAX_POLY);
   if (check_span(c, cfg, i, kx, ky, x0, x1, 1) != MPM_OK)
     return MPM_EINPUT;
   return check_span(c, cfg, i, ky, kx, y0, y1, 0);
@@ -278,13 +292,14 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
   if (rc != MPM_OK)
     return rc;
   for (int k = 0; k < NKEYS; k++)  /* defaults taken from the material */
-    if ((mpm_in_keys[k].flags & KF_RHO_C) && !is_set(c, k, i))
-      *(double *)(void *)((char *)f + mpm_in_keys[k].off) = cfg->material.rho_c;
+    if ((mpm_io_in_keys[k].flags & KF_RHO_C) && !is_set(c, k, i))
+      *(double *)(void *)((char *)f + mpm_io_in_keys[k].off) = cfg->material.rho_c;
   int kd = key_index(S_FILL, "density");
   if (is_set(c, kd, i) && f->density > cfg->material.rho_s) {
     where w = {.at = c->at[i][kd], .sec = S_FILL, .key = kd, .fill = i, .title = f->name};
-    return mpm_in_fail_key(c, &w, "density = %s > material.rho_s = %s (allowed: density <= rho_s)",
-                       mpm_in_num(f->density).s, mpm_in_num(cfg->material.rho_s).s);
+    return mpm_io_in_fail_key(c, &w,
+                              "density = %s > material.rho_s = %s (allowed: density <= rho_s)",
+                              mpm_io_in_num(f->density).s, mpm_io_in_num(cfg->material.rho_s).s);
   }
   /* The pre-stress is the weight under the full gravity, which a ramp only
    * reaches at t_ramp: at t = 0 nothing would hold it, and the fill would
@@ -292,9 +307,11 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
   int kl = key_index(S_FILL, "lithostatic");
   if (f->lithostatic && cfg->gravity.t_ramp > 0.0) {
     where w = {.at = c->at[i][kl], .sec = S_FILL, .key = kl, .fill = i, .title = f->name};
-    return mpm_in_fail_key(c, &w, "lithostatic = true with gravity.t_ramp = %s s: the pre-stress "
-                       "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
-                       "lithostatic = false)", mpm_in_num(cfg->gravity.t_ramp).s);
+    return mpm_io_in_fail_key(c, &w,
+                              "lithostatic = true with gravity.t_ramp = %s s: the pre-stress "
+                              "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
+                              "lithostatic = false)",
+                              mpm_io_in_num(cfg->gravity.t_ramp).s);
   }
   return MPM_OK;
 }
@@ -317,13 +334,14 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
     const char *q = named + strlen("key 'material.");
     size_t n = strcspn(q, "'");
     memcpy(key, q, n < sizeof key ? n : sizeof key - 1);
-    if (mpm_in_find_key(S_MATERIAL, key) >= 0)
-      k = mpm_in_find_key(S_MATERIAL, key);
+    if (mpm_io_in_find_key(S_MATERIAL, key) >= 0)
+      k = mpm_io_in_find_key(S_MATERIAL, key);
   }
   where w = {.at = c->at[0][k], .sec = S_MATERIAL, .key = k, .fill = -1};
   if (named)
-    return mpm_in_fail_at(c, &w, "%s", e.msg);
-  return mpm_in_fail_key(c, &w, "model \"%s\": %s", mpm_in_show(cfg->material.model).s, e.msg);
+    return mpm_io_in_fail_at(c, &w, "%s", e.msg);
+  return mpm_io_in_fail_key(c, &w, "model \"%s\": %s", mpm_io_in_show(cfg->material.model).s,
+                            e.msg);
 }
 
 /* Outlet: an extent on a non-periodic edge, inside it; closed by a wall. */
@@ -336,14 +354,14 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   const int ke = key_index(S_OUTLET, "edge"), kc = key_index(S_OUTLET, "closed");
   if (cfg->outlet.closed != MPM_BC_NOSLIP && cfg->outlet.closed != MPM_BC_FRICTIONLESS) {
     where w = blame(c, cfg, -1, kc, kc);
-    return mpm_in_fail_key(c, &w, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
-                       mpm_bc_kind_name(cfg->outlet.closed));
+    return mpm_io_in_fail_key(c, &w, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
+                              mpm_bc_kind_name(cfg->outlet.closed));
   }
   const int kinds[] = {0, cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
   if (kinds[e] == MPM_BC_PERIODIC) {
     where w = blame(c, cfg, -1, ke, ke);
-    return mpm_in_fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic edge)",
-                       mpm_in_name_at(NK_EDGE, e));
+    return mpm_io_in_fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic edge)",
+                              mpm_io_in_name_at(NK_EDGE, e));
   }
   const int vert = e == MPM_OUTLET_LEFT || e == MPM_OUTLET_RIGHT;
   const double d = vert ? cfg->mesh.dy : cfg->mesh.dx;
@@ -351,15 +369,15 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   const double m1 = m0 + (vert ? cfg->mesh.ny : cfg->mesh.nx) * d, tol = GEOM_TOL * d;
   if (!(cfg->outlet.to > cfg->outlet.from)) {
     where w = blame(c, cfg, -1, kt, kf);
-    return mpm_in_fail_key(c, &w, "to = %s <= from = %s (allowed: to > from)", mpm_in_num(cfg->outlet.to).s,
-                       mpm_in_num(cfg->outlet.from).s);
+    return mpm_io_in_fail_key(c, &w, "to = %s <= from = %s (allowed: to > from)",
+                              mpm_io_in_num(cfg->outlet.to).s, mpm_io_in_num(cfg->outlet.from).s);
   }
   if (cfg->outlet.from < m0 - tol || cfg->outlet.to > m1 + tol) {
     where w = blame(c, cfg, -1, kt, kf);
-    return mpm_in_fail_key(c, &w,
-                       "the outlet spans %s ... %s, outside the %s edge (allowed: %s ... %s m)",
-                       mpm_in_approx(cfg->outlet.from).s, mpm_in_approx(cfg->outlet.to).s,
-                       mpm_in_name_at(NK_EDGE, e), mpm_in_approx(m0).s, mpm_in_approx(m1).s);
+    return mpm_io_in_fail_key(
+        c, &w, "the outlet spans %s ... %s, outside the %s edge (allowed: %s ... %s m)",
+        mpm_io_in_approx(cfg->outlet.from).s, mpm_io_in_approx(cfg->outlet.to).s,
+        mpm_io_in_name_at(NK_EDGE, e), mpm_io_in_approx(m0).s, mpm_io_in_approx(m1).s);
   }
   return MPM_OK;
 }
@@ -371,17 +389,17 @@ static int check_wall(in_ctx *c, mpm_config *cfg)
   const int nx = c->wall_nlist[0], ny = c->wall_nlist[1];
   where w = blame(c, cfg, -1, ky, kx);
   if (nx != ny)
-    return mpm_in_fail_key(c, &w, "x has %d values, y has %d (allowed: as many x values as y values)",
-                       nx, ny);
+    return mpm_io_in_fail_key(
+        c, &w, "x has %d values, y has %d (allowed: as many x values as y values)", nx, ny);
   if (nx > 0 && nx < 3)
-    return mpm_in_fail_key(c, &w, "%d vertices (allowed: none, or 3 ... %d vertices)", nx,
-                       MPM_MAX_POLY);
+    return mpm_io_in_fail_key(c, &w, "%d vertices (allowed: none, or 3 ... %d vertices)", nx,
+                              MPM_MAX_POLY);
   cfg->wall.nvert = nx;
   const int kk = key_index(S_WALL, "kind");
   if (cfg->wall.kind != MPM_BC_NOSLIP && cfg->wall.kind != MPM_BC_FRICTIONLESS) {
     where wk = blame(c, cfg, -1, kk, kk);
-    return mpm_in_fail_key(c, &wk, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
-                       mpm_bc_kind_name(cfg->wall.kind));
+    return mpm_io_in_fail_key(c, &wk, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
+                              mpm_bc_kind_name(cfg->wall.kind));
   }
   return MPM_OK;
 }
@@ -394,26 +412,27 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
   for (int i = 0; i < 2; i++)
     if (!(v[i][0] > v[i][1])) {
       where w = blame(c, cfg, -1, key_index(S_REGION, pairs[i][0]), key_index(S_REGION, pairs[i][1]));
-      return mpm_in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)", pairs[i][0],
-                         mpm_in_num(v[i][0]).s, pairs[i][1], mpm_in_num(v[i][1]).s, pairs[i][0],
-                         pairs[i][1]);
+      return mpm_io_in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)", pairs[i][0],
+                                mpm_io_in_num(v[i][0]).s, pairs[i][1], mpm_io_in_num(v[i][1]).s,
+                                pairs[i][0], pairs[i][1]);
     }
   if (cfg->region.m_hi > 0.0 && !(cfg->region.m_hi > cfg->region.m_lo)) {
     where w = blame(c, cfg, -1, key_index(S_REGION, "m_hi"), key_index(S_REGION, "m_lo"));
-    return mpm_in_fail_key(c, &w, "m_hi = %s <= m_lo = %s (allowed: m_hi > m_lo, or m_hi = 0: no fit)",
-                       mpm_in_num(cfg->region.m_hi).s, mpm_in_num(cfg->region.m_lo).s);
+    return mpm_io_in_fail_key(c, &w,
+                              "m_hi = %s <= m_lo = %s (allowed: m_hi > m_lo, or m_hi = 0: no fit)",
+                              mpm_io_in_num(cfg->region.m_hi).s, mpm_io_in_num(cfg->region.m_lo).s);
   }
   return MPM_OK;
 }
 
-int mpm_in_validate(in_ctx *c, mpm_config *cfg)
+int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
 {
   if (check_required(c) != MPM_OK)
     return MPM_EINPUT;
   if (cfg->nfill == 0) {
     where w = {.sec = S_FILL, .key = -1, .fill = -1};
-    return mpm_in_fail_at(c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')",
-                      MPM_MAX_FILLS);
+    return mpm_io_in_fail_at(
+        c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')", MPM_MAX_FILLS);
   }
   if (check_mesh(c, cfg) || check_time(c, cfg) || check_gravity(c, cfg) ||
       check_material(c, cfg) || check_boundary(c, cfg) || check_outlet(c, cfg) ||

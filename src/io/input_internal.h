@@ -3,7 +3,7 @@
  * range-checked values, --set overrides, cross-field checks, and the writer
  * of the fully resolved input (docs/input-reference.md).
  *
- * One table, mpm_in_keys[], lists every key with its section, type, default,
+ * One table, mpm_io_in_keys[], lists every key with its section, type, default,
  * allowed range, unit and offset into mpm_config (or mpm_fill_config for fill
  * keys). Defaults, parsing, overrides, the required-key check and the writer
  * are all driven by it; tests/test_input.c checks the reference page against
@@ -31,8 +31,8 @@
  *     input_override.c  --set section.key=value
  *     input_check.c     cross-field checks, derived defaults
  *     input_write.c     the fully resolved input, as an input file
- * Functions and tables shared between them are declared here and named mpm_in_*;
- * everything else in them is static. The mpm_in_* names are hidden: they link the
+ * Functions and tables shared between them are declared here and named mpm_io_in_*;
+ * everything else in them is static. The mpm_io_in_* names are hidden: they link the
  * parts together but are not exported from libgranmpm. */
 #ifndef MPM_IO_INPUT_INTERNAL_H
 #define MPM_IO_INPUT_INTERNAL_H
@@ -91,16 +91,16 @@ typedef struct key_def {
   const char *unit;   /* "-": dimensionless */
 } key_def;
 
-/* The number of rows of mpm_in_keys; input_keys.c asserts that it is right. */
+/* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
 #define NKEYS 78
 
-extern const key_def mpm_in_keys[];
-extern const char *const mpm_in_sec_names[NSEC];
+extern const key_def mpm_io_in_keys[];
+extern const char *const mpm_io_in_sec_names[NSEC];
 
-const char *mpm_in_name_at(int kind, int i);
-int mpm_in_name_value(int kind, const char *s);
-int mpm_in_find_section(const char *name);
-int mpm_in_find_key(int sec, const char *name);
+const char *mpm_io_in_name_at(int kind, int i);
+int mpm_io_in_name_value(int kind, const char *s);
+int mpm_io_in_find_section(const char *name);
+int mpm_io_in_find_key(int sec, const char *name);
 
 /* --------------------------------------------------------- message pieces */
 
@@ -109,18 +109,18 @@ int mpm_in_find_key(int sec, const char *name);
 typedef struct word { char s[SHOW_MAX + 12]; } word;
 typedef struct text { char s[MPM_ERR_MSG]; } text;
 
-void mpm_in_addf(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-word mpm_in_show(const char *s);
-word mpm_in_num(double v);
-word mpm_in_approx(double v);
-word mpm_in_quoted(const char *s);
-text mpm_in_name_list(int kind);
-text mpm_in_range_text(const key_def *kd);
-text mpm_in_allowed_text(const key_def *kd);
-text mpm_in_key_list(int sec, int shapes);
-text mpm_in_section_list(void);
-text mpm_in_unknown_key_text(int sec, const char *title, const char *name);
-void mpm_in_one_line(mpm_err *err);
+void mpm_io_in_addf(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+word mpm_io_in_show(const char *s);
+word mpm_io_in_num(double v);
+word mpm_io_in_approx(double v);
+word mpm_io_in_quoted(const char *s);
+text mpm_io_in_name_list(int kind);
+text mpm_io_in_range_text(const key_def *kd);
+text mpm_io_in_allowed_text(const key_def *kd);
+text mpm_io_in_key_list(int sec, int shapes);
+text mpm_io_in_section_list(void);
+text mpm_io_in_unknown_key_text(int sec, const char *title, const char *name);
+void mpm_io_in_one_line(mpm_err *err);
 
 /* --------------------------------------------------------- parse context */
 
@@ -162,28 +162,28 @@ typedef struct in_ctx {
 
 /* Record "LOCATION: key 'NAME': message" (fail_key) or "LOCATION: message"
  * (fail_at); only the first error is kept. Both return MPM_EINPUT. */
-int mpm_in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
+int mpm_io_in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
-int mpm_in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
+int mpm_io_in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
-int mpm_in_fail_range(in_ctx *c, const where *w, const char *value);
+int mpm_io_in_fail_range(in_ctx *c, const where *w, const char *value);
 
 /* ------------------------------------------------------------ typed values */
 
-void mpm_in_copy_text(char *dst, size_t cap, const char *s);
-int mpm_in_store_value(in_ctx *c, void *rec, const where *w, const char *s);
-int mpm_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
-                  const loc *locs, int n);
-void mpm_in_store_default(void *rec, const key_def *kd);
+void mpm_io_in_copy_text(char *dst, size_t cap, const char *s);
+int mpm_io_in_store_value(in_ctx *c, void *rec, const where *w, const char *s);
+int mpm_io_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
+                         const loc *locs, int n);
+void mpm_io_in_store_default(void *rec, const key_def *kd);
 
 /* ------------------------------------------------- the steps of a load */
 
-int mpm_in_read_text(const char *path, char **out, size_t *len, mpm_err *err);
-int mpm_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root);
-int mpm_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg);
-int mpm_in_valid_title(const char *t);
-int mpm_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
-int mpm_in_validate(in_ctx *c, mpm_config *cfg);
+int mpm_io_in_read_text(const char *path, char **out, size_t *len, mpm_err *err);
+int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root);
+int mpm_io_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg);
+int mpm_io_in_valid_title(const char *t);
+int mpm_io_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
+int mpm_io_in_validate(in_ctx *c, mpm_config *cfg);
 
 #pragma GCC visibility pop
 

@@ -16,10 +16,9 @@
 
 /* ------------------------------------------------------------ the key table */
 
-const char *const mpm_in_sec_names[NSEC] = {
-  "mesh", "time", "gravity", "material", "boundary", "fill", "stop", "output",
-  "outlet", "wall", "remove", "region"
-};
+const char *const mpm_io_in_sec_names[NSEC] = {"mesh",     "time", "gravity", "material",
+                                               "boundary", "fill", "stop",    "output",
+                                               "outlet",   "wall", "remove",  "region"};
 
 #define C_(m) offsetof(mpm_config, m)
 #define F_(m) offsetof(mpm_fill_config, m)
@@ -30,102 +29,115 @@ const char *const mpm_in_sec_names[NSEC] = {
   {.name = n, .sec = S_FILL, .type = t, .off = o, .lo = l, .hi = h, \
    .flags = KF_REQUIRED | (f), .shapes = sh, .unit = "m"}
 
-const key_def mpm_in_keys[] = {
-  NUM(S_MESH, KT_INT, "nx", C_(mesh.nx), 0, 1, 100000, KF_REQUIRED, "-"),
-  NUM(S_MESH, KT_INT, "ny", C_(mesh.ny), 0, 1, 100000, KF_REQUIRED, "-"),
-  NUM(S_MESH, KT_REAL, "x0", C_(mesh.x0), 0, -1e9, 1e9, 0, "m"),
-  NUM(S_MESH, KT_REAL, "y0", C_(mesh.y0), 0, -1e9, 1e9, 0, "m"),
-  NUM(S_MESH, KT_REAL, "dx", C_(mesh.dx), 0, 0, 1e6, KF_REQUIRED | KF_LO_OPEN, "m"),
-  NUM(S_MESH, KT_REAL, "dy", C_(mesh.dy), 0, 0, 1e6, KF_REQUIRED | KF_LO_OPEN, "m"),
-  NAMED(S_MESH, KT_NAME, "topology", C_(mesh.topology), NK_TOPOLOGY, "q4"),
-  NAMED(S_MESH, KT_NAME, "diagonal", C_(mesh.diagonal), NK_DIAGONAL, "/"),
-  NUM(S_MESH, KT_REAL, "mirror_x", C_(mesh.mirror_x), 0, -1e9, 1e9, 0, "m"),
-  NAMED(S_MESH, KT_NAME, "shape", C_(mesh.shape), NK_SHAPE, "ugimp"),
-  NAMED(S_MESH, KT_ENUM, "dilatation", C_(mesh.dilatation), NK_DILATATION, "point"),
+const key_def mpm_io_in_keys[] = {
+    NUM(S_MESH, KT_INT, "nx", C_(mesh.nx), 0, 1, 100000, KF_REQUIRED, "-"),
+    NUM(S_MESH, KT_INT, "ny", C_(mesh.ny), 0, 1, 100000, KF_REQUIRED, "-"),
+    NUM(S_MESH, KT_REAL, "x0", C_(mesh.x0), 0, -1e9, 1e9, 0, "m"),
+    NUM(S_MESH, KT_REAL, "y0", C_(mesh.y0), 0, -1e9, 1e9, 0, "m"),
+    NUM(S_MESH, KT_REAL, "dx", C_(mesh.dx), 0, 0, 1e6, KF_REQUIRED | KF_LO_OPEN, "m"),
+    NUM(S_MESH, KT_REAL, "dy", C_(mesh.dy), 0, 0, 1e6, KF_REQUIRED | KF_LO_OPEN, "m"),
+    NAMED(S_MESH, KT_NAME, "topology", C_(mesh.topology), NK_TOPOLOGY, "q4"),
+    NAMED(S_MESH, KT_NAME, "diagonal", C_(mesh.diagonal), NK_DIAGONAL, "/"),
+    NUM(S_MESH, KT_REAL, "mirror_x", C_(mesh.mirror_x), 0, -1e9, 1e9, 0, "m"),
+    NAMED(S_MESH, KT_NAME, "shape", C_(mesh.shape), NK_SHAPE, "ugimp"),
+    NAMED(S_MESH, KT_ENUM, "dilatation", C_(mesh.dilatation), NK_DILATATION, "point"),
 
-  NUM(S_TIME, KT_REAL, "dt", C_(time.dt), 0, 0, 1e6, 0, "s"),
-  NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 0, 1, KF_LO_OPEN, "-"),
-  NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 0, 1e9, KF_REQUIRED | KF_LO_OPEN, "s"),
-  NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 0, 1e9, KF_LO_OPEN, "s"),
-  NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
+    NUM(S_TIME, KT_REAL, "dt", C_(time.dt), 0, 0, 1e6, 0, "s"),
+    NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 0, 1, KF_LO_OPEN, "-"),
+    NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 0, 1e9, KF_REQUIRED | KF_LO_OPEN, "s"),
+    NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 0, 1e9, KF_LO_OPEN, "s"),
+    NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
 
-  NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
-  NUM(S_GRAVITY, KT_REAL, "gy", C_(gravity.gy), -9.8, -1e5, 1e5, 0, "m/s^2"),
-  NUM(S_GRAVITY, KT_REAL, "angle", C_(gravity.angle), 0, -90, 90, 0, "deg"),
-  NUM(S_GRAVITY, KT_REAL, "g", C_(gravity.g), 9.8, 0, 1e5, 0, "m/s^2"),
-  NUM(S_GRAVITY, KT_REAL, "t_ramp", C_(gravity.t_ramp), 0.1, 0, 1e9, 0, "s"),
+    NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
+    NUM(S_GRAVITY, KT_REAL, "gy", C_(gravity.gy), -9.8, -1e5, 1e5, 0, "m/s^2"),
+    NUM(S_GRAVITY, KT_REAL, "angle", C_(gravity.angle), 0, -90, 90, 0, "deg"),
+    NUM(S_GRAVITY, KT_REAL, "g", C_(gravity.g), 9.8, 0, 1e5, 0, "m/s^2"),
+    NUM(S_GRAVITY, KT_REAL, "t_ramp", C_(gravity.t_ramp), 0.1, 0, 1e9, 0, "s"),
 
-  NAMED(S_MATERIAL, KT_NAME, "model", C_(material.model), NK_MODEL, "mu_i"),
-  NUM(S_MATERIAL, KT_REAL, "E", C_(material.E), 1e9, 0, 1e13, KF_LO_OPEN, "Pa"),
-  NUM(S_MATERIAL, KT_REAL, "nu", C_(material.nu), MPM_DK15_NU, -1, 0.5, KF_LO_OPEN | KF_HI_OPEN, "-"),
-  NUM(S_MATERIAL, KT_REAL, "rho_s", C_(material.rho_s), MPM_DK15_RHO_S, 0, 1e5, KF_LO_OPEN, "kg/m^3"),
-  NUM(S_MATERIAL, KT_REAL, "rho_c", C_(material.rho_c), MPM_DK15_RHO_C, 0, 1e5, KF_LO_OPEN, "kg/m^3"),
-  NUM(S_MATERIAL, KT_REAL, "mu_s", C_(material.mu_s), MPM_DK15_MU_S, 0, 10, 0, "-"),
-  NUM(S_MATERIAL, KT_REAL, "mu_2", C_(material.mu_2), MPM_DK15_MU_2, 0, 10, KF_LO_OPEN, "-"),
-  NUM(S_MATERIAL, KT_REAL, "I0", C_(material.I0), MPM_DK15_I0, 0, 10, KF_LO_OPEN, "-"),
-  NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), MPM_DK15_D, 0, 1, KF_LO_OPEN, "m"),
-  NUM(S_MATERIAL, KT_REAL, "A", C_(material.A), 0.48, 0, 100, 0, "-"),
-  NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
-  NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
-  NAMED(S_MATERIAL, KT_ENUM, "p_sample", C_(material.p_sample), NK_NGF_P_SAMPLE, "point"),
-  NAMED(S_MATERIAL, KT_ENUM, "g_average", C_(material.g_average), NK_NGF_G_AVERAGE, "centre"),
-  NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
-  NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
-  NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
-  NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
+    NAMED(S_MATERIAL, KT_NAME, "model", C_(material.model), NK_MODEL, "mu_i"),
+    NUM(S_MATERIAL, KT_REAL, "E", C_(material.E), 1e9, 0, 1e13, KF_LO_OPEN, "Pa"),
+    NUM(S_MATERIAL, KT_REAL, "nu", C_(material.nu), MPM_DK15_NU, -1, 0.5, KF_LO_OPEN | KF_HI_OPEN,
+        "-"),
+    NUM(S_MATERIAL, KT_REAL, "rho_s", C_(material.rho_s), MPM_DK15_RHO_S, 0, 1e5, KF_LO_OPEN,
+        "kg/m^3"),
+    NUM(S_MATERIAL, KT_REAL, "rho_c", C_(material.rho_c), MPM_DK15_RHO_C, 0, 1e5, KF_LO_OPEN,
+        "kg/m^3"),
+    NUM(S_MATERIAL, KT_REAL, "mu_s", C_(material.mu_s), MPM_DK15_MU_S, 0, 10, 0, "-"),
+    NUM(S_MATERIAL, KT_REAL, "mu_2", C_(material.mu_2), MPM_DK15_MU_2, 0, 10, KF_LO_OPEN, "-"),
+    NUM(S_MATERIAL, KT_REAL, "I0", C_(material.I0), MPM_DK15_I0, 0, 10, KF_LO_OPEN, "-"),
+    NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), MPM_DK15_D, 0, 1, KF_LO_OPEN, "m"),
+    NUM(S_MATERIAL, KT_REAL, "A", C_(material.A), 0.48, 0, 100, 0, "-"),
+    NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
+    NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
+    NAMED(S_MATERIAL, KT_ENUM, "p_sample", C_(material.p_sample), NK_NGF_P_SAMPLE, "point"),
+    NAMED(S_MATERIAL, KT_ENUM, "g_average", C_(material.g_average), NK_NGF_G_AVERAGE, "centre"),
+    NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
+    NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
+    NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
+    NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
 
-  NAMED(S_BOUNDARY, KT_ENUM, "left", C_(bc.left), NK_BC, "free"),
-  NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
-  NAMED(S_BOUNDARY, KT_ENUM, "bottom", C_(bc.bottom), NK_BC, "free"),
-  NAMED(S_BOUNDARY, KT_ENUM, "top", C_(bc.top), NK_BC, "free"),
+    NAMED(S_BOUNDARY, KT_ENUM, "left", C_(bc.left), NK_BC, "free"),
+    NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
+    NAMED(S_BOUNDARY, KT_ENUM, "bottom", C_(bc.bottom), NK_BC, "free"),
+    NAMED(S_BOUNDARY, KT_ENUM, "top", C_(bc.top), NK_BC, "free"),
 
-  NAMED(S_FILL, KT_ENUM, "shape", F_(shape), NK_FILL_SHAPE, "rectangle"),
-  GEOM(KT_REAL, "xmin", F_(xmin), -1e9, 1e9, 0, SH_RECT),
-  GEOM(KT_REAL, "ymin", F_(ymin), -1e9, 1e9, 0, SH_RECT),
-  GEOM(KT_REAL, "xmax", F_(xmax), -1e9, 1e9, 0, SH_RECT),
-  GEOM(KT_REAL, "ymax", F_(ymax), -1e9, 1e9, 0, SH_RECT),
-  GEOM(KT_REAL, "cx", F_(cx), -1e9, 1e9, 0, SH_DISC),
-  GEOM(KT_REAL, "cy", F_(cy), -1e9, 1e9, 0, SH_DISC),
-  GEOM(KT_REAL, "radius", F_(radius), 0, 1e9, KF_LO_OPEN, SH_DISC),
-  GEOM(KT_LIST, "x", F_(px), -1e9, 1e9, 0, SH_POLY),
-  GEOM(KT_LIST, "y", F_(py), -1e9, 1e9, 0, SH_POLY),
-  NUM(S_FILL, KT_INT, "ppu", F_(ppu), 2, 1, 8, 0, "-"),
-  NUM(S_FILL, KT_REAL, "density", F_(density), 0, 0, 1e5, KF_LO_OPEN | KF_RHO_C, "kg/m^3"),
-  NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
-  NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
-  NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
+    NAMED(S_FILL, KT_ENUM, "shape", F_(shape), NK_FILL_SHAPE, "rectangle"),
+    GEOM(KT_REAL, "xmin", F_(xmin), -1e9, 1e9, 0, SH_RECT),
+    GEOM(KT_REAL, "ymin", F_(ymin), -1e9, 1e9, 0, SH_RECT),
+    GEOM(KT_REAL, "xmax", F_(xmax), -1e9, 1e9, 0, SH_RECT),
+    GEOM(KT_REAL, "ymax", F_(ymax), -1e9, 1e9, 0, SH_RECT),
+    GEOM(KT_REAL, "cx", F_(cx), -1e9, 1e9, 0, SH_DISC),
+    GEOM(KT_REAL, "cy", F_(cy), -1e9, 1e9, 0, SH_DISC),
+    GEOM(KT_REAL, "radius", F_(radius), 0, 1e9, KF_LO_OPEN, SH_DISC),
+    GEOM(KT_LIST, "x", F_(px), -1e9, 1e9, 0, SH_POLY),
+    GEOM(KT_LIST, "y", F_(py), -1e9, 1e9, 0, SH_POLY),
+    NUM(S_FILL, KT_INT, "ppu", F_(ppu), 2, 1, 8, 0, "-"),
+    NUM(S_FILL, KT_REAL, "density", F_(density), 0, 0, 1e5, KF_LO_OPEN | KF_RHO_C, "kg/m^3"),
+    NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
+    NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
+    NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
 
-  NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),
-  NUM(S_STOP, KT_REAL, "t_min", C_(stop.t_min), 0, 0, 1e9, 0, "s"),
-  NUM(S_STOP, KT_REAL, "mass", C_(stop.mass), 0, 0, 1e9, 0, "kg/m"),
+    NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),
+    NUM(S_STOP, KT_REAL, "t_min", C_(stop.t_min), 0, 0, 1e9, 0, "s"),
+    NUM(S_STOP, KT_REAL, "mass", C_(stop.mass), 0, 0, 1e9, 0, "kg/m"),
 
-  NAMED(S_OUTPUT, KT_PATH, "dir", C_(output.dir), NK_NONE, "run"),
+    NAMED(S_OUTPUT, KT_PATH, "dir", C_(output.dir), NK_NONE, "run"),
 
-  NAMED(S_OUTLET, KT_ENUM, "edge", C_(outlet.edge), NK_EDGE, "none"),
-  NUM(S_OUTLET, KT_REAL, "from", C_(outlet.from), 0, -1e9, 1e9, 0, "m"),
-  NUM(S_OUTLET, KT_REAL, "to", C_(outlet.to), 0, -1e9, 1e9, 0, "m"),
-  NUM(S_OUTLET, KT_REAL, "t_open", C_(outlet.t_open), 0, 0, 1e9, 0, "s"),
-  NAMED(S_OUTLET, KT_ENUM, "closed", C_(outlet.closed), NK_BC, "noslip"),
+    NAMED(S_OUTLET, KT_ENUM, "edge", C_(outlet.edge), NK_EDGE, "none"),
+    NUM(S_OUTLET, KT_REAL, "from", C_(outlet.from), 0, -1e9, 1e9, 0, "m"),
+    NUM(S_OUTLET, KT_REAL, "to", C_(outlet.to), 0, -1e9, 1e9, 0, "m"),
+    NUM(S_OUTLET, KT_REAL, "t_open", C_(outlet.t_open), 0, 0, 1e9, 0, "s"),
+    NAMED(S_OUTLET, KT_ENUM, "closed", C_(outlet.closed), NK_BC, "noslip"),
 
-  {.name = "x", .sec = S_WALL, .type = KT_LIST, .off = C_(wall.px), .lo = -1e9, .hi = 1e9,
-   .unit = "m"},
-  {.name = "y", .sec = S_WALL, .type = KT_LIST, .off = C_(wall.py), .lo = -1e9, .hi = 1e9,
-   .unit = "m"},
-  NAMED(S_WALL, KT_ENUM, "kind", C_(wall.kind), NK_BC, "noslip"),
+    {.name = "x",
+     .sec = S_WALL,
+     .type = KT_LIST,
+     .off = C_(wall.px),
+     .lo = -1e9,
+     .hi = 1e9,
+     .unit = "m"},
+    {.name = "y",
+     .sec = S_WALL,
+     .type = KT_LIST,
+     .off = C_(wall.py),
+     .lo = -1e9,
+     .hi = 1e9,
+     .unit = "m"},
+    NAMED(S_WALL, KT_ENUM, "kind", C_(wall.kind), NK_BC, "noslip"),
 
-  NUM(S_REMOVE, KT_REAL, "below", C_(remove.below), -1e9, -1e9, 1e9, 0, "m"),
-  NUM(S_REMOVE, KT_BOOL, "free_edges", C_(remove.free_edges), 0, 0, 1, 0, "-"),
+    NUM(S_REMOVE, KT_REAL, "below", C_(remove.below), -1e9, -1e9, 1e9, 0, "m"),
+    NUM(S_REMOVE, KT_BOOL, "free_edges", C_(remove.free_edges), 0, 0, 1, 0, "-"),
 
-  NUM(S_REGION, KT_REAL, "xmin", C_(region.xmin), -1e9, -1e9, 1e9, 0, "m"),
-  NUM(S_REGION, KT_REAL, "xmax", C_(region.xmax), 1e9, -1e9, 1e9, 0, "m"),
-  NUM(S_REGION, KT_REAL, "ymin", C_(region.ymin), -1e9, -1e9, 1e9, 0, "m"),
-  NUM(S_REGION, KT_REAL, "ymax", C_(region.ymax), 1e9, -1e9, 1e9, 0, "m"),
-  NUM(S_REGION, KT_REAL, "m_hi", C_(region.m_hi), 0, 0, 1e9, 0, "kg/m"),
-  NUM(S_REGION, KT_REAL, "m_lo", C_(region.m_lo), 0, 0, 1e9, 0, "kg/m"),
+    NUM(S_REGION, KT_REAL, "xmin", C_(region.xmin), -1e9, -1e9, 1e9, 0, "m"),
+    NUM(S_REGION, KT_REAL, "xmax", C_(region.xmax), 1e9, -1e9, 1e9, 0, "m"),
+    NUM(S_REGION, KT_REAL, "ymin", C_(region.ymin), -1e9, -1e9, 1e9, 0, "m"),
+    NUM(S_REGION, KT_REAL, "ymax", C_(region.ymax), 1e9, -1e9, 1e9, 0, "m"),
+    NUM(S_REGION, KT_REAL, "m_hi", C_(region.m_hi), 0, 0, 1e9, 0, "kg/m"),
+    NUM(S_REGION, KT_REAL, "m_lo", C_(region.m_lo), 0, 0, 1e9, 0, "kg/m"),
 };
 
-_Static_assert(sizeof mpm_in_keys / sizeof mpm_in_keys[0] == NKEYS,
-               "NKEYS (input_internal.h) must count the rows of mpm_in_keys");
+_Static_assert(sizeof mpm_io_in_keys / sizeof mpm_io_in_keys[0] == NKEYS,
+               "NKEYS (input_internal.h) must count the rows of mpm_io_in_keys");
 
 /* ------------------------------------------------------------- name tables */
 
@@ -153,7 +165,7 @@ static int list_index(const char *const *list, const char *s)
 }
 
 /* The i-th allowed name of a kind, NULL past the end. */
-const char *mpm_in_name_at(int kind, int i)
+const char *mpm_io_in_name_at(int kind, int i)
 {
   int j = 0;
   switch (kind) {
@@ -163,10 +175,13 @@ const char *mpm_in_name_at(int kind, int i)
   case NK_EDGE: return i >= 0 && i <= MPM_OUTLET_TOP ? edge_names[i] : NULL;
   case NK_DILATATION: return i >= 0 && i <= MPM_DILATATION_UNIT ? dilatation_names[i] : NULL;
   case NK_BC: return mpm_bc_kind_name(i);
-  case NK_NGF_FORM: return mpm_ngf_form_name(i);
-  case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_name(i);
+  case NK_NGF_FORM:
+    return mpm_material_ngf_form_name(i);
+  case NK_NGF_P_SAMPLE:
+    return mpm_material_ngf_p_sample_name(i);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_name(i);
-  case NK_DENSITY: return mpm_density_rule_name(i);
+  case NK_DENSITY:
+    return mpm_material_density_rule_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -181,7 +196,7 @@ const char *mpm_in_name_at(int kind, int i)
 
 /* Enum value of a name (0 for table names without one); -1 if not allowed.
  * The owning modules decide what is valid. */
-int mpm_in_name_value(int kind, const char *s)
+int mpm_io_in_name_value(int kind, const char *s)
 {
   switch (kind) {
   case NK_TOPOLOGY: return mpm_mesh_topology_from_name(s);
@@ -190,28 +205,31 @@ int mpm_in_name_value(int kind, const char *s)
   case NK_MODEL: return mpm_material_lookup(s) ? 0 : -1;
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return list_index(fill_shape_names, s);
-  case NK_NGF_FORM: return mpm_ngf_form_from_name(s);
-  case NK_NGF_P_SAMPLE: return mpm_ngf_p_sample_from_name(s);
+  case NK_NGF_FORM:
+    return mpm_material_ngf_form_from_name(s);
+  case NK_NGF_P_SAMPLE:
+    return mpm_material_ngf_p_sample_from_name(s);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
-  case NK_DENSITY: return mpm_density_rule_from_name(s);
+  case NK_DENSITY:
+    return mpm_material_density_rule_from_name(s);
   case NK_EDGE: return list_index(edge_names, s);
   case NK_DILATATION: return list_index(dilatation_names, s);
   default: return -1;
   }
 }
 
-int mpm_in_find_section(const char *name)
+int mpm_io_in_find_section(const char *name)
 {
   for (int s = 0; s < NSEC; s++)
-    if (strcmp(mpm_in_sec_names[s], name) == 0)
+    if (strcmp(mpm_io_in_sec_names[s], name) == 0)
       return s;
   return -1;
 }
 
-int mpm_in_find_key(int sec, const char *name)
+int mpm_io_in_find_key(int sec, const char *name)
 {
   for (int k = 0; k < NKEYS; k++)
-    if (mpm_in_keys[k].sec == sec && strcmp(mpm_in_keys[k].name, name) == 0)
+    if (mpm_io_in_keys[k].sec == sec && strcmp(mpm_io_in_keys[k].name, name) == 0)
       return k;
   return -1;
 }

@@ -42,7 +42,7 @@ static int override_list(in_ctx *c, void *rec, const where *w, char *v)
   }
   if (count == 1 && vals[0][0] == '\0')
     count = 0;
-  return mpm_in_store_list(c, rec, w, vals, locs, count);
+  return mpm_io_in_store_list(c, rec, w, vals, locs, count);
 }
 
 static int override_value(in_ctx *c, void *rec, const where *w, char *v)
@@ -51,8 +51,8 @@ static int override_value(in_ctx *c, void *rec, const where *w, char *v)
   if (!copy)
     return mpm_err_set(c->err, MPM_ENOMEM, "--set: out of memory");
   strcpy(copy, v);
-  int rc = mpm_in_keys[w->key].type == KT_LIST ? override_list(c, rec, w, copy)
-                                        : mpm_in_store_value(c, rec, w, unquote(copy));
+  int rc = mpm_io_in_keys[w->key].type == KT_LIST ? override_list(c, rec, w, copy)
+                                                  : mpm_io_in_store_value(c, rec, w, unquote(copy));
   free(copy);
   return rc;
 }
@@ -69,9 +69,9 @@ static text fill_titles(const mpm_config *cfg)
 {
   text t = {{0}};
   for (int i = 0; i < cfg->nfill; i++)
-    mpm_in_addf(&t, "%s%s", i ? ", " : "", cfg->fill[i].name);
+    mpm_io_in_addf(&t, "%s%s", i ? ", " : "", cfg->fill[i].name);
   if (cfg->nfill == 0)
-    mpm_in_addf(&t, "the file has no fill section");
+    mpm_io_in_addf(&t, "the file has no fill section");
   return t;
 }
 
@@ -81,15 +81,15 @@ static int override_fill(in_ctx *c, mpm_config *cfg, where *w, char *rest, char 
   char *dot = strrchr(rest, '.'), *key = dot ? dot + 1 : rest;
   if (dot)
     *dot = '\0';
-  w->key = mpm_in_find_key(S_FILL, key);
+  w->key = mpm_io_in_find_key(S_FILL, key);
   w->title = dot ? rest : NULL;
   if (w->key < 0)
-    return mpm_in_fail_at(c, w, "%s", mpm_in_unknown_key_text(S_FILL, w->title, key).s);
+    return mpm_io_in_fail_at(c, w, "%s", mpm_io_in_unknown_key_text(S_FILL, w->title, key).s);
   if (dot) {
     w->fill = fill_index(cfg, rest);
     if (w->fill < 0)
-      return mpm_in_fail_at(c, w, "no fill titled '%s' (allowed: %s)", mpm_in_show(rest).s,
-                        fill_titles(cfg).s);
+      return mpm_io_in_fail_at(c, w, "no fill titled '%s' (allowed: %s)", mpm_io_in_show(rest).s,
+                               fill_titles(cfg).s);
     return override_value(c, &cfg->fill[w->fill], w, v);
   }
   for (w->fill = 0; w->fill < cfg->nfill; w->fill++)
@@ -103,26 +103,26 @@ static int apply_override(in_ctx *c, mpm_config *cfg, int i, char *arg)
   where w = {.at = {0, i + 1}, .sec = -1, .key = -1, .fill = -1};
   char *eq = strchr(arg, '=');
   if (!eq)
-    return mpm_in_fail_at(c, &w, "expected section.key=value");
+    return mpm_io_in_fail_at(c, &w, "expected section.key=value");
   *eq = '\0';
   char *name = mpm_io_text_trim(arg), *v = mpm_io_text_trim(eq + 1), *dot = strchr(name, '.');
   if (!dot)
-    return mpm_in_fail_at(c, &w, "'%s' is not section.key (allowed sections: %s)", mpm_in_show(name).s,
-                      mpm_in_section_list().s);
+    return mpm_io_in_fail_at(c, &w, "'%s' is not section.key (allowed sections: %s)",
+                             mpm_io_in_show(name).s, mpm_io_in_section_list().s);
   *dot = '\0';
-  w.sec = mpm_in_find_section(name);
+  w.sec = mpm_io_in_find_section(name);
   if (w.sec < 0)
-    return mpm_in_fail_at(c, &w, "unknown section '%s' (allowed: %s)", mpm_in_show(name).s,
-                      mpm_in_section_list().s);
+    return mpm_io_in_fail_at(c, &w, "unknown section '%s' (allowed: %s)", mpm_io_in_show(name).s,
+                             mpm_io_in_section_list().s);
   if (w.sec == S_FILL)
     return override_fill(c, cfg, &w, dot + 1, v);
-  w.key = mpm_in_find_key(w.sec, dot + 1);
+  w.key = mpm_io_in_find_key(w.sec, dot + 1);
   if (w.key < 0)
-    return mpm_in_fail_at(c, &w, "%s", mpm_in_unknown_key_text(w.sec, NULL, dot + 1).s);
+    return mpm_io_in_fail_at(c, &w, "%s", mpm_io_in_unknown_key_text(w.sec, NULL, dot + 1).s);
   return override_value(c, cfg, &w, v);
 }
 
-int mpm_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n)
+int mpm_io_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n)
 {
   for (int i = 0; i < n; i++) {
     if (!c->ovr[i])

@@ -66,16 +66,17 @@ static void unknown_option(in_ctx *c, const where *w, int sec, const char *title
                            const char *name)
 {
   if (sec >= 0) {
-    mpm_in_fail_at(c, w, "%s", mpm_in_unknown_key_text(sec, title, name).s);
+    mpm_io_in_fail_at(c, w, "%s", mpm_io_in_unknown_key_text(sec, title, name).s);
     return;
   }
   for (int k = 0; k < NKEYS; k++)
-    if (strcmp(mpm_in_keys[k].name, name) == 0) {
-      mpm_in_fail_at(c, w, "key '%s' outside a section (allowed: inside '%s { ... }')", mpm_in_show(name).s,
-                 mpm_in_sec_names[mpm_in_keys[k].sec]);
+    if (strcmp(mpm_io_in_keys[k].name, name) == 0) {
+      mpm_io_in_fail_at(c, w, "key '%s' outside a section (allowed: inside '%s { ... }')",
+                        mpm_io_in_show(name).s, mpm_io_in_sec_names[mpm_io_in_keys[k].sec]);
       return;
     }
-  mpm_in_fail_at(c, w, "unknown section '%s' (allowed: %s)", mpm_in_show(name).s, mpm_in_section_list().s);
+  mpm_io_in_fail_at(c, w, "unknown section '%s' (allowed: %s)", mpm_io_in_show(name).s,
+                    mpm_io_in_section_list().s);
 }
 
 /* libconfuse's messages, rewritten; the formats are those of libconfuse 3.3. */
@@ -84,33 +85,34 @@ static void on_confuse_error(cfg_t *cfg, const char *fmt, va_list ap)
   in_ctx *c = ctx_of(cfg);
   if (!c || c->failed)
     return;
-  int sec = cfg->name ? mpm_in_find_section(cfg->name) : -1;
+  int sec = cfg->name ? mpm_io_in_find_section(cfg->name) : -1;
   where w = {.at = {cfg->line > 0 ? cfg->line : 1, 0}, .sec = sec, .key = -1, .fill = -1};
   char msg[MPM_ERR_MSG];
   if (strcmp(fmt, "no such option '%s'") == 0) {
     unknown_option(c, &w, sec, cfg->title, va_arg(ap, const char *));
   } else if (strcmp(fmt, "missing title for section '%s'") == 0) {
-    mpm_in_fail_at(c, &w, "section '%s' needs a title (allowed: %s NAME { ... })",
-               mpm_in_show(va_arg(ap, const char *)).s, mpm_in_sec_names[S_FILL]);
+    mpm_io_in_fail_at(c, &w, "section '%s' needs a title (allowed: %s NAME { ... })",
+                      mpm_io_in_show(va_arg(ap, const char *)).s, mpm_io_in_sec_names[S_FILL]);
   } else if (strcmp(fmt, "found duplicate title '%s'") == 0) {
-    mpm_in_fail_at(c, &w, "a second fill titled '%s' (allowed: a different title for each fill)",
-               mpm_in_show(va_arg(ap, const char *)).s);
+    mpm_io_in_fail_at(c, &w, "a second fill titled '%s' (allowed: a different title for each fill)",
+                      mpm_io_in_show(va_arg(ap, const char *)).s);
   } else if (strcmp(fmt, "missing equal sign after option '%s'") == 0) {
     const char *k = va_arg(ap, const char *);
-    w.key = sec >= 0 ? mpm_in_find_key(sec, k) : -1;
+    w.key = sec >= 0 ? mpm_io_in_find_key(sec, k) : -1;
     w.title = cfg->title;
-    mpm_in_fail_key(c, &w, "missing '=' (allowed: %s = value)", mpm_in_show(k).s);
+    mpm_io_in_fail_key(c, &w, "missing '=' (allowed: %s = value)", mpm_io_in_show(k).s);
   } else if (strcmp(fmt, "attempt to append to non-list option '%s'") == 0) {
     const char *k = va_arg(ap, const char *);
-    w.key = sec >= 0 ? mpm_in_find_key(sec, k) : -1;
+    w.key = sec >= 0 ? mpm_io_in_find_key(sec, k) : -1;
     w.title = cfg->title;
-    mpm_in_fail_key(c, &w, "'+=' appends to lists only (allowed: %s = value)", mpm_in_show(k).s);
+    mpm_io_in_fail_key(c, &w, "'+=' appends to lists only (allowed: %s = value)",
+                       mpm_io_in_show(k).s);
   } else {
     vsnprintf(msg, sizeof msg, fmt, ap);
     if (sec >= 0)
-      mpm_in_fail_at(c, &w, "syntax error in section '%s': %s", mpm_in_sec_names[sec], msg);
+      mpm_io_in_fail_at(c, &w, "syntax error in section '%s': %s", mpm_io_in_sec_names[sec], msg);
     else
-      mpm_in_fail_at(c, &w, "syntax error: %s", msg);
+      mpm_io_in_fail_at(c, &w, "syntax error: %s", msg);
   }
 }
 
@@ -142,13 +144,13 @@ static void build_options(in_ctx *c)
     cfg_opt_t *o = c->opts[s];
     int n = 0;
     for (int k = 0; k < NKEYS; k++)
-      if (mpm_in_keys[k].sec == s)
-        o[n++] = ptr_option(mpm_in_keys[k].name, mpm_in_keys[k].type == KT_LIST ? CFGF_LIST : CFGF_NONE,
-                            keep_raw);
+      if (mpm_io_in_keys[k].sec == s)
+        o[n++] = ptr_option(mpm_io_in_keys[k].name,
+                            mpm_io_in_keys[k].type == KT_LIST ? CFGF_LIST : CFGF_NONE, keep_raw);
     o[n++] = ctx_option(c);
     memset(&o[n], 0, sizeof o[n]);
     memset(&root[s], 0, sizeof root[s]);
-    root[s].name = mpm_in_sec_names[s];
+    root[s].name = mpm_io_in_sec_names[s];
     root[s].type = CFGT_SEC;
     root[s].subopts = o;
     root[s].flags = s == S_FILL ? CFGF_MULTI | CFGF_TITLE | CFGF_NO_TITLE_DUPES : CFGF_NONE;
@@ -162,11 +164,11 @@ static void build_options(in_ctx *c)
 static int io_fail(mpm_err *err, int code, const char *path, const char *what, int e)
 {
   mpm_err_set(err, code, "%s: %s: %s", path, what, strerror(e));
-  mpm_in_one_line(err);
+  mpm_io_in_one_line(err);
   return code;
 }
 
-int mpm_in_read_text(const char *path, char **out, size_t *len, mpm_err *err)
+int mpm_io_in_read_text(const char *path, char **out, size_t *len, mpm_err *err)
 {
   FILE *f = fopen(path, "rb");
   if (!f)
@@ -197,7 +199,7 @@ int mpm_in_read_text(const char *path, char **out, size_t *len, mpm_err *err)
     free(buf);
     mpm_err_set(err, MPM_EINPUT, "%s: input file larger than %ld bytes (allowed: at most %ld)",
                 path, INPUT_MAX_BYTES, INPUT_MAX_BYTES);
-    mpm_in_one_line(err);
+    mpm_io_in_one_line(err);
     return MPM_EINPUT;
   }
   buf[n] = '\0';
@@ -290,12 +292,12 @@ static int blank_comments(in_ctx *c, char *s)
   }
   where w = {.at = {sc.from, 0}, .sec = -1, .key = -1, .fill = -1};
   if (sc.state == SC_BLOCK)
-    return mpm_in_fail_at(c, &w, "comment '/*' is not closed (allowed: /* ... */)");
+    return mpm_io_in_fail_at(c, &w, "comment '/*' is not closed (allowed: /* ... */)");
   if (sc.state == SC_DQ || sc.state == SC_SQ)
-    return mpm_in_fail_at(c, &w, "quoted text is not closed (allowed: \"...\" or '...')");
+    return mpm_io_in_fail_at(c, &w, "quoted text is not closed (allowed: \"...\" or '...')");
   if (sc.depth > 0) {
     w.at.line = sc.open_line[sc.depth <= SCAN_DEPTH ? sc.depth - 1 : SCAN_DEPTH - 1];
-    return mpm_in_fail_at(c, &w, "'{' is not closed (allowed: a matching '}')");
+    return mpm_io_in_fail_at(c, &w, "'{' is not closed (allowed: a matching '}')");
   }
   return MPM_OK;
 }
@@ -336,23 +338,23 @@ static void find_section_lines(in_ctx *c, const char *s)
   for (int b = 0; b < c->nbrace; b++) {
     const char *e1, *e2, *w1 = word_before(s, s + c->brace_pos[b], &e1);
     const char *w2 = word_before(s, w1, &e2);
-    if (word_is(w2, e2, mpm_in_sec_names[S_FILL])) {
+    if (word_is(w2, e2, mpm_io_in_sec_names[S_FILL])) {
       if (nfill < MPM_MAX_FILLS + 1)
         c->fill_open[nfill++] = c->brace_line[b];
       continue;
     }
     for (int k = 0; k < NSEC; k++)
-      if (k != S_FILL && word_is(w1, e1, mpm_in_sec_names[k]) && !c->sec_open[k])
+      if (k != S_FILL && word_is(w1, e1, mpm_io_in_sec_names[k]) && !c->sec_open[k])
         c->sec_open[k] = c->brace_line[b];
   }
 }
 
-int mpm_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
+int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
 {
   const char *nul = memchr(s, '\0', len);
   if (nul) {
     where w = {.at = {line_at(s, (size_t)(nul - s)), 0}, .sec = -1, .key = -1, .fill = -1};
-    return mpm_in_fail_at(c, &w, "NUL byte in the input file (allowed: text)");
+    return mpm_io_in_fail_at(c, &w, "NUL byte in the input file (allowed: text)");
   }
   int lines = line_at(s, len) - (len > 0 && s[len - 1] == '\n');
   c->eof_line = lines > 0 ? lines : 1;
@@ -366,7 +368,7 @@ int mpm_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
   cfg_set_error_function(*root, on_confuse_error);
   if (cfg_parse_buf(*root, s) != CFG_SUCCESS) {
     where w = {.at = {c->eof_line, 0}, .sec = -1, .key = -1, .fill = -1};
-    return mpm_in_fail_at(c, &w, "syntax error");  /* kept only if nothing was said */
+    return mpm_io_in_fail_at(c, &w, "syntax error");  /* kept only if nothing was said */
   }
   return MPM_OK;
 }
@@ -383,25 +385,25 @@ static int collect_list(in_ctx *c, void *rec, const where *w, cfg_opt_t *o)
     vals[i] = r->text;
     locs[i] = (loc){r->line, 0};
   }
-  return mpm_in_store_list(c, rec, w, vals, locs, n);
+  return mpm_io_in_store_list(c, rec, w, vals, locs, n);
 }
 
 static int collect_section(in_ctx *c, cfg_t *sec, int s, int fill, void *rec, const char *title)
 {
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_in_keys[k].sec != s)
+    if (mpm_io_in_keys[k].sec != s)
       continue;
-    cfg_opt_t *o = cfg_getopt(sec, mpm_in_keys[k].name);
+    cfg_opt_t *o = cfg_getopt(sec, mpm_io_in_keys[k].name);
     if (cfg_opt_size(o) == 0)
       continue;
     where w = {.sec = s, .key = k, .fill = fill, .title = title};
     int rc;
-    if (mpm_in_keys[k].type == KT_LIST) {
+    if (mpm_io_in_keys[k].type == KT_LIST) {
       rc = collect_list(c, rec, &w, o);
     } else {
       const raw_value *r = cfg_opt_getnptr(o, 0);
       w.at.line = r->line;
-      rc = mpm_in_store_value(c, rec, &w, r->text);
+      rc = mpm_io_in_store_value(c, rec, &w, r->text);
     }
     if (rc != MPM_OK)
       return rc;
@@ -409,7 +411,7 @@ static int collect_section(in_ctx *c, cfg_t *sec, int s, int fill, void *rec, co
   return MPM_OK;
 }
 
-int mpm_in_valid_title(const char *t)
+int mpm_io_in_valid_title(const char *t)
 {
   size_t n = strlen(t);
   if (n == 0 || n >= MPM_NAME_MAX)
@@ -424,27 +426,29 @@ static void fill_defaults(mpm_fill_config *f)
 {
   memset(f, 0, sizeof *f);
   for (int k = 0; k < NKEYS; k++)
-    if (mpm_in_keys[k].sec == S_FILL)
-      mpm_in_store_default(f, &mpm_in_keys[k]);
+    if (mpm_io_in_keys[k].sec == S_FILL)
+      mpm_io_in_store_default(f, &mpm_io_in_keys[k]);
 }
 
 static int collect_fills(in_ctx *c, cfg_t *root, mpm_config *cfg)
 {
-  unsigned n = cfg_size(root, mpm_in_sec_names[S_FILL]);
+  unsigned n = cfg_size(root, mpm_io_in_sec_names[S_FILL]);
   for (unsigned i = 0; i < n; i++) {
-    cfg_t *sec = cfg_getnsec(root, mpm_in_sec_names[S_FILL], i);
+    cfg_t *sec = cfg_getnsec(root, mpm_io_in_sec_names[S_FILL], i);
     const char *title = cfg_title(sec) ? cfg_title(sec) : "";
     int line = i <= MPM_MAX_FILLS && c->fill_open[i] ? c->fill_open[i] : sec->line;
     where w = {.at = {line, 0}, .sec = S_FILL, .key = -1, .fill = -1};
     if (i == MPM_MAX_FILLS)
-      return mpm_in_fail_at(c, &w, "fill '%s' is fill number %u (allowed: at most %d fill sections)",
-                        mpm_in_show(title).s, i + 1, MPM_MAX_FILLS);
-    if (!mpm_in_valid_title(title))
-      return mpm_in_fail_at(c, &w, "fill title '%s' (allowed: 1 ... %d letters, digits, '_' or '-')",
-                        mpm_in_show(title).s, MPM_NAME_MAX - 1);
+      return mpm_io_in_fail_at(c, &w,
+                               "fill '%s' is fill number %u (allowed: at most %d fill sections)",
+                               mpm_io_in_show(title).s, i + 1, MPM_MAX_FILLS);
+    if (!mpm_io_in_valid_title(title))
+      return mpm_io_in_fail_at(c, &w,
+                               "fill title '%s' (allowed: 1 ... %d letters, digits, '_' or '-')",
+                               mpm_io_in_show(title).s, MPM_NAME_MAX - 1);
     c->fill_line[i] = line;
     fill_defaults(&cfg->fill[i]);
-    mpm_in_copy_text(cfg->fill[i].name, MPM_NAME_MAX, title);
+    mpm_io_in_copy_text(cfg->fill[i].name, MPM_NAME_MAX, title);
     cfg->nfill = (int)i + 1;
     if (collect_section(c, sec, S_FILL, (int)i, &cfg->fill[i], cfg->fill[i].name) != MPM_OK)
       return MPM_EINPUT;
@@ -452,12 +456,12 @@ static int collect_fills(in_ctx *c, cfg_t *root, mpm_config *cfg)
   return MPM_OK;
 }
 
-int mpm_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg)
+int mpm_io_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg)
 {
   for (int s = 0; s < NSEC; s++) {
     if (s == S_FILL)
       continue;
-    cfg_t *sec = cfg_getsec(root, mpm_in_sec_names[s]);
+    cfg_t *sec = cfg_getsec(root, mpm_io_in_sec_names[s]);
     c->sec_line[s] = c->sec_open[s] ? c->sec_open[s] : sec ? sec->line : 0;
     if (sec && collect_section(c, sec, s, -1, cfg, NULL) != MPM_OK)
       return MPM_EINPUT;

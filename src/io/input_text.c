@@ -16,7 +16,7 @@
 /* --------------------------------------------------------- message pieces */
 
 /* Append to t, cut at its end. */
-void mpm_in_addf(text *t, const char *fmt, ...)
+void mpm_io_in_addf(text *t, const char *fmt, ...)
 {
   size_t n = strlen(t->s);
   va_list ap;
@@ -26,7 +26,7 @@ void mpm_in_addf(text *t, const char *fmt, ...)
 }
 
 /* User text for a message: cut to SHOW_MAX, control characters as '?'. */
-word mpm_in_show(const char *s)
+word mpm_io_in_show(const char *s)
 {
   word w;
   size_t i = 0;
@@ -43,7 +43,7 @@ word mpm_in_show(const char *s)
 /* v as written in messages and by the writer: integers below 1e6 in full,
  * otherwise the shortest "%g" text that reads back as v, with the exponent
  * trimmed ("1e9", "2.5e-7"). */
-word mpm_in_num(double v)
+word mpm_io_in_num(double v)
 {
   word w, r = {{0}};
   if (v == floor(v) && fabs(v) < 1e6) {
@@ -71,15 +71,15 @@ word mpm_in_num(double v)
 }
 
 /* A computed value for a message, to 6 significant digits. */
-word mpm_in_approx(double v)
+word mpm_io_in_approx(double v)
 {
   word w;
   snprintf(w.s, sizeof w.s, "%.6g", v);
-  return mpm_in_num(strtod(w.s, NULL));
+  return mpm_io_in_num(strtod(w.s, NULL));
 }
 
 /* A name as written in an input file: double quotes, '\' '"' '$' escaped. */
-word mpm_in_quoted(const char *s)
+word mpm_io_in_quoted(const char *s)
 {
   word w;
   size_t n = 0;
@@ -95,12 +95,12 @@ word mpm_in_quoted(const char *s)
 }
 
 /* "q4", "t3", ... : the allowed names of a kind. */
-text mpm_in_name_list(int kind)
+text mpm_io_in_name_list(int kind)
 {
   text t = {{0}};
   const char *s;
-  for (int i = 0; (s = mpm_in_name_at(kind, i)); i++)
-    mpm_in_addf(&t, "%s%s", i ? ", " : "", mpm_in_quoted(s).s);
+  for (int i = 0; (s = mpm_io_in_name_at(kind, i)); i++)
+    mpm_io_in_addf(&t, "%s%s", i ? ", " : "", mpm_io_in_quoted(s).s);
   return t;
 }
 
@@ -110,49 +110,57 @@ static int has_unit(const key_def *kd)
 }
 
 /* The allowed range of a numeric key: "1 ... 8", "> 0 and <= 1e6 m". */
-text mpm_in_range_text(const key_def *kd)
+text mpm_io_in_range_text(const key_def *kd)
 {
   text t = {{0}};
   int lo_open = kd->flags & KF_LO_OPEN, hi_open = kd->flags & KF_HI_OPEN;
   if (!lo_open && !hi_open)
-    mpm_in_addf(&t, "%s ... %s", mpm_in_num(kd->lo).s, mpm_in_num(kd->hi).s);
+    mpm_io_in_addf(&t, "%s ... %s", mpm_io_in_num(kd->lo).s, mpm_io_in_num(kd->hi).s);
   else
-    mpm_in_addf(&t, "%s %s and %s %s", lo_open ? ">" : ">=", mpm_in_num(kd->lo).s, hi_open ? "<" : "<=",
-            mpm_in_num(kd->hi).s);
+    mpm_io_in_addf(&t, "%s %s and %s %s", lo_open ? ">" : ">=", mpm_io_in_num(kd->lo).s,
+                   hi_open ? "<" : "<=", mpm_io_in_num(kd->hi).s);
   if (has_unit(kd))
-    mpm_in_addf(&t, " %s", kd->unit);
+    mpm_io_in_addf(&t, " %s", kd->unit);
   return t;
 }
 
 /* What a key accepts, for "(allowed: ...)". */
-text mpm_in_allowed_text(const key_def *kd)
+text mpm_io_in_allowed_text(const key_def *kd)
 {
   text t = {{0}};
   switch (kd->type) {
-  case KT_BOOL: mpm_in_addf(&t, "true, false, yes, no, on, off"); break;
+  case KT_BOOL:
+    mpm_io_in_addf(&t, "true, false, yes, no, on, off");
+    break;
   case KT_NAME:
-  case KT_ENUM: t = mpm_in_name_list(kd->kind); break;
-  case KT_PATH: mpm_in_addf(&t, "a path of 1 ... %d characters", MPM_PATH_MAX - 1); break;
-  default: t = mpm_in_range_text(kd); break;
+  case KT_ENUM:
+    t = mpm_io_in_name_list(kd->kind);
+    break;
+  case KT_PATH:
+    mpm_io_in_addf(&t, "a path of 1 ... %d characters", MPM_PATH_MAX - 1);
+    break;
+  default:
+    t = mpm_io_in_range_text(kd);
+    break;
   }
   return t;
 }
 
 /* Comma-separated keys of a section (fill keys of some shapes if shapes != 0). */
-text mpm_in_key_list(int sec, int shapes)
+text mpm_io_in_key_list(int sec, int shapes)
 {
   text t = {{0}};
   for (int k = 0; k < NKEYS; k++)
-    if (mpm_in_keys[k].sec == sec && (!shapes || (mpm_in_keys[k].shapes & shapes)))
-      mpm_in_addf(&t, "%s%s", t.s[0] ? ", " : "", mpm_in_keys[k].name);
+    if (mpm_io_in_keys[k].sec == sec && (!shapes || (mpm_io_in_keys[k].shapes & shapes)))
+      mpm_io_in_addf(&t, "%s%s", t.s[0] ? ", " : "", mpm_io_in_keys[k].name);
   return t;
 }
 
-text mpm_in_section_list(void)
+text mpm_io_in_section_list(void)
 {
   text t = {{0}};
   for (int s = 0; s < NSEC; s++)
-    mpm_in_addf(&t, "%s%s", s ? ", " : "", mpm_in_sec_names[s]);
+    mpm_io_in_addf(&t, "%s%s", s ? ", " : "", mpm_io_in_sec_names[s]);
   return t;
 }
 
@@ -173,16 +181,16 @@ static int line_of(const in_ctx *c, const where *w)
 static text key_name(const where *w)
 {
   text t = {{0}};
-  const key_def *kd = &mpm_in_keys[w->key];
+  const key_def *kd = &mpm_io_in_keys[w->key];
   if (kd->sec == S_FILL && w->title)
-    mpm_in_addf(&t, "fill.%s.%s", mpm_in_show(w->title).s, kd->name);
+    mpm_io_in_addf(&t, "fill.%s.%s", mpm_io_in_show(w->title).s, kd->name);
   else
-    mpm_in_addf(&t, "%s.%s", mpm_in_sec_names[kd->sec], kd->name);
+    mpm_io_in_addf(&t, "%s.%s", mpm_io_in_sec_names[kd->sec], kd->name);
   return t;
 }
 
 /* Messages are one line whatever the user wrote. */
-void mpm_in_one_line(mpm_err *err)
+void mpm_io_in_one_line(mpm_err *err)
 {
   if (err)
     for (char *p = err->msg; *p; p++)
@@ -199,18 +207,18 @@ static int failv(in_ctx *c, const where *w, int with_key, const char *fmt, va_li
   char body[MPM_ERR_MSG], place[MPM_ERR_MSG];
   vsnprintf(body, sizeof body, fmt, ap);
   if (w->at.ovr > 0)
-    snprintf(place, sizeof place, "--set '%s'", mpm_in_show(c->ovr[w->at.ovr - 1]).s);
+    snprintf(place, sizeof place, "--set '%s'", mpm_io_in_show(c->ovr[w->at.ovr - 1]).s);
   else
     snprintf(place, sizeof place, "%s:%d", c->path, line_of(c, w));
   if (with_key && w->key >= 0)
     mpm_err_set(c->err, MPM_EINPUT, "%s: key '%s': %s", place, key_name(w).s, body);
   else
     mpm_err_set(c->err, MPM_EINPUT, "%s: %s", place, body);
-  mpm_in_one_line(c->err);
+  mpm_io_in_one_line(c->err);
   return MPM_EINPUT;
 }
 
-int mpm_in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
+int mpm_io_in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
 {
   va_list ap;
   va_start(ap, fmt);
@@ -219,7 +227,7 @@ int mpm_in_fail_key(in_ctx *c, const where *w, const char *fmt, ...)
   return rc;
 }
 
-int mpm_in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
+int mpm_io_in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
 {
   va_list ap;
   va_start(ap, fmt);
@@ -228,19 +236,20 @@ int mpm_in_fail_at(in_ctx *c, const where *w, const char *fmt, ...)
   return rc;
 }
 
-int mpm_in_fail_range(in_ctx *c, const where *w, const char *value)
+int mpm_io_in_fail_range(in_ctx *c, const where *w, const char *value)
 {
-  return mpm_in_fail_key(c, w, "value %s out of range (allowed: %s)", mpm_in_show(value).s,
-                     mpm_in_range_text(&mpm_in_keys[w->key]).s);
+  return mpm_io_in_fail_key(c, w, "value %s out of range (allowed: %s)", mpm_io_in_show(value).s,
+                            mpm_io_in_range_text(&mpm_io_in_keys[w->key]).s);
 }
 
-text mpm_in_unknown_key_text(int sec, const char *title, const char *name)
+text mpm_io_in_unknown_key_text(int sec, const char *title, const char *name)
 {
   text t = {{0}};
   if (sec == S_FILL && title)
-    mpm_in_addf(&t, "unknown key 'fill.%s.%s'", mpm_in_show(title).s, mpm_in_show(name).s);
+    mpm_io_in_addf(&t, "unknown key 'fill.%s.%s'", mpm_io_in_show(title).s, mpm_io_in_show(name).s);
   else
-    mpm_in_addf(&t, "unknown key '%s.%s'", mpm_in_sec_names[sec], mpm_in_show(name).s);
-  mpm_in_addf(&t, " (allowed keys in '%s': %s)", mpm_in_sec_names[sec], mpm_in_key_list(sec, 0).s);
+    mpm_io_in_addf(&t, "unknown key '%s.%s'", mpm_io_in_sec_names[sec], mpm_io_in_show(name).s);
+  mpm_io_in_addf(&t, " (allowed keys in '%s': %s)", mpm_io_in_sec_names[sec],
+                 mpm_io_in_key_list(sec, 0).s);
   return t;
 }

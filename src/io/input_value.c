@@ -83,9 +83,9 @@ static int store_int(in_ctx *c, const where *w, const char *s, int *out)
   long v;
   int st = parse_long(s, &v);
   if (st == 1)
-    return mpm_in_fail_key(c, w, "expected an integer, got '%s'", mpm_in_show(s).s);
-  if (st == 2 || !within_range(&mpm_in_keys[w->key], (double)v))
-    return mpm_in_fail_range(c, w, s);
+    return mpm_io_in_fail_key(c, w, "expected an integer, got '%s'", mpm_io_in_show(s).s);
+  if (st == 2 || !within_range(&mpm_io_in_keys[w->key], (double)v))
+    return mpm_io_in_fail_range(c, w, s);
   *out = (int)v;
   return MPM_OK;
 }
@@ -94,9 +94,9 @@ static int store_real(in_ctx *c, const where *w, const char *s, double *out)
 {
   double v;
   if (parse_double(s, &v))
-    return mpm_in_fail_key(c, w, "expected a number, got '%s'", mpm_in_show(s).s);
-  if (!within_range(&mpm_in_keys[w->key], v))
-    return mpm_in_fail_range(c, w, s);
+    return mpm_io_in_fail_key(c, w, "expected a number, got '%s'", mpm_io_in_show(s).s);
+  if (!within_range(&mpm_io_in_keys[w->key], v))
+    return mpm_io_in_fail_range(c, w, s);
   *out = v;
   return MPM_OK;
 }
@@ -104,12 +104,13 @@ static int store_real(in_ctx *c, const where *w, const char *s, double *out)
 static int store_bool(in_ctx *c, const where *w, const char *s, int *out)
 {
   if (parse_bool(s, out))
-    return mpm_in_fail_key(c, w, "expected true or false, got '%s' (allowed: %s)", mpm_in_show(s).s,
-                       mpm_in_allowed_text(&mpm_in_keys[w->key]).s);
+    return mpm_io_in_fail_key(c, w, "expected true or false, got '%s' (allowed: %s)",
+                              mpm_io_in_show(s).s,
+                              mpm_io_in_allowed_text(&mpm_io_in_keys[w->key]).s);
   return MPM_OK;
 }
 
-void mpm_in_copy_text(char *dst, size_t cap, const char *s)
+void mpm_io_in_copy_text(char *dst, size_t cap, const char *s)
 {
   memset(dst, 0, cap);
   memcpy(dst, s, strlen(s) < cap ? strlen(s) : cap - 1);
@@ -118,15 +119,15 @@ void mpm_in_copy_text(char *dst, size_t cap, const char *s)
 /* A name of a table: stored as text (KT_NAME) or as its enum value (KT_ENUM). */
 static int store_name(in_ctx *c, const where *w, const char *s, char *out)
 {
-  const key_def *kd = &mpm_in_keys[w->key];
-  int v = strlen(s) < MPM_NAME_MAX ? mpm_in_name_value(kd->kind, s) : -1;
+  const key_def *kd = &mpm_io_in_keys[w->key];
+  int v = strlen(s) < MPM_NAME_MAX ? mpm_io_in_name_value(kd->kind, s) : -1;
   if (v < 0)
-    return mpm_in_fail_key(c, w, "unknown value '%s' (allowed: %s)", mpm_in_show(s).s,
-                       mpm_in_name_list(kd->kind).s);
+    return mpm_io_in_fail_key(c, w, "unknown value '%s' (allowed: %s)", mpm_io_in_show(s).s,
+                              mpm_io_in_name_list(kd->kind).s);
   if (kd->type == KT_ENUM)
     *(int *)out = v;
   else
-    mpm_in_copy_text(out, MPM_NAME_MAX, s);
+    mpm_io_in_copy_text(out, MPM_NAME_MAX, s);
   return MPM_OK;
 }
 
@@ -134,20 +135,21 @@ static int store_path(in_ctx *c, const where *w, const char *s, char *out)
 {
   size_t n = strlen(s);
   if (n == 0 || n >= MPM_PATH_MAX)
-    return mpm_in_fail_key(c, w, "%zu characters (allowed: a path of 1 ... %d characters)", n,
-                       MPM_PATH_MAX - 1);
+    return mpm_io_in_fail_key(c, w, "%zu characters (allowed: a path of 1 ... %d characters)", n,
+                              MPM_PATH_MAX - 1);
   for (const char *p = s; *p; p++)
     if (iscntrl((unsigned char)*p))
-      return mpm_in_fail_key(c, w, "'%s' contains a control character (allowed: printable characters)",
-                         mpm_in_show(s).s);
-  mpm_in_copy_text(out, MPM_PATH_MAX, s);
+      return mpm_io_in_fail_key(c, w,
+                                "'%s' contains a control character (allowed: printable characters)",
+                                mpm_io_in_show(s).s);
+  mpm_io_in_copy_text(out, MPM_PATH_MAX, s);
   return MPM_OK;
 }
 
 /* Parse s as the value of key w->key into rec (mpm_config or mpm_fill_config). */
-int mpm_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
+int mpm_io_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
 {
-  const key_def *kd = &mpm_in_keys[w->key];
+  const key_def *kd = &mpm_io_in_keys[w->key];
   char *p = (char *)rec + kd->off;
   int rc = MPM_EINPUT;
   switch (kd->type) {
@@ -165,16 +167,16 @@ int mpm_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
 }
 
 /* Polygon coordinates: n values, each with its own location. */
-int mpm_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
-                  const loc *locs, int n)
+int mpm_io_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
+                         const loc *locs, int n)
 {
-  const key_def *kd = &mpm_in_keys[w->key];
+  const key_def *kd = &mpm_io_in_keys[w->key];
   double *arr = (double *)(void *)((char *)rec + kd->off);
   if (n > MPM_MAX_POLY) {
     where e = *w;
     e.at = locs[MPM_MAX_POLY];
-    return mpm_in_fail_key(c, &e, "more than %d values (allowed: 3 ... %d vertices)", MPM_MAX_POLY,
-                       MPM_MAX_POLY);
+    return mpm_io_in_fail_key(c, &e, "more than %d values (allowed: 3 ... %d vertices)",
+                              MPM_MAX_POLY, MPM_MAX_POLY);
   }
   memset(arr, 0, MPM_MAX_POLY * sizeof *arr);
   for (int i = 0; i < n; i++) {
@@ -188,16 +190,22 @@ int mpm_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *v
   return MPM_OK;
 }
 
-void mpm_in_store_default(void *rec, const key_def *kd)
+void mpm_io_in_store_default(void *rec, const key_def *kd)
 {
   char *p = (char *)rec + kd->off;
   switch (kd->type) {
   case KT_INT:
   case KT_BOOL: *(int *)(void *)p = (int)kd->def; break;
   case KT_REAL: *(double *)(void *)p = kd->def; break;
-  case KT_NAME: mpm_in_copy_text(p, MPM_NAME_MAX, kd->sdef); break;
-  case KT_ENUM: *(int *)(void *)p = mpm_in_name_value(kd->kind, kd->sdef); break;
-  case KT_PATH: mpm_in_copy_text(p, MPM_PATH_MAX, kd->sdef); break;
+  case KT_NAME:
+    mpm_io_in_copy_text(p, MPM_NAME_MAX, kd->sdef);
+    break;
+  case KT_ENUM:
+    *(int *)(void *)p = mpm_io_in_name_value(kd->kind, kd->sdef);
+    break;
+  case KT_PATH:
+    mpm_io_in_copy_text(p, MPM_PATH_MAX, kd->sdef);
+    break;
   default: break;
   }
 }

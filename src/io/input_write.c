@@ -12,7 +12,7 @@ static void write_list(FILE *f, const double *v, int n)
 {
   fputc('{', f);
   for (int i = 0; i < n; i++)
-    fprintf(f, "%s%s", i ? ", " : "", mpm_in_num(v[i]).s);
+    fprintf(f, "%s%s", i ? ", " : "", mpm_io_in_num(v[i]).s);
   fputc('}', f);
 }
 
@@ -23,14 +23,18 @@ static void write_key(FILE *f, const void *rec, const key_def *kd, int nvert)
   fprintf(f, "  %s = ", kd->name);
   switch (kd->type) {
   case KT_INT: fprintf(f, "%d", *(const int *)(const void *)p); break;
-  case KT_REAL: fputs(mpm_in_num(*(const double *)(const void *)p).s, f); break;
+  case KT_REAL:
+    fputs(mpm_io_in_num(*(const double *)(const void *)p).s, f);
+    break;
   case KT_BOOL: fputs(*(const int *)(const void *)p ? "true" : "false", f); break;
   case KT_ENUM:
-    name = mpm_in_name_at(kd->kind, *(const int *)(const void *)p);
-    fputs(mpm_in_quoted(name ? name : "?").s, f);
+    name = mpm_io_in_name_at(kd->kind, *(const int *)(const void *)p);
+    fputs(mpm_io_in_quoted(name ? name : "?").s, f);
     break;
   case KT_LIST: write_list(f, (const double *)(const void *)p, nvert); break;
-  default: fputs(mpm_in_quoted(p).s, f); break;  /* names and paths */
+  default:
+    fputs(mpm_io_in_quoted(p).s, f);
+    break;  /* names and paths */
   }
   fputc('\n', f);
 }
@@ -60,16 +64,16 @@ static int derived_key(const mpm_config *cfg, const key_def *kd)
 
 static void write_section(FILE *f, const mpm_config *cfg, int s)
 {
-  fprintf(f, "%s {\n", mpm_in_sec_names[s]);
+  fprintf(f, "%s {\n", mpm_io_in_sec_names[s]);
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_in_keys[k].sec != s || derived_key(cfg, &mpm_in_keys[k]))
+    if (mpm_io_in_keys[k].sec != s || derived_key(cfg, &mpm_io_in_keys[k]))
       continue;
-    if (mpm_in_keys[k].type == KT_PATH) {
-      fprintf(f, "  %s = ", mpm_in_keys[k].name);
-      write_path(f, (const char *)cfg + mpm_in_keys[k].off);
+    if (mpm_io_in_keys[k].type == KT_PATH) {
+      fprintf(f, "  %s = ", mpm_io_in_keys[k].name);
+      write_path(f, (const char *)cfg + mpm_io_in_keys[k].off);
       fputc('\n', f);
     } else {
-      write_key(f, cfg, &mpm_in_keys[k], s == S_WALL ? cfg->wall.nvert : 0);
+      write_key(f, cfg, &mpm_io_in_keys[k], s == S_WALL ? cfg->wall.nvert : 0);
     }
   }
   fputs("}\n", f);
@@ -77,19 +81,20 @@ static void write_section(FILE *f, const mpm_config *cfg, int s)
 
 static void write_fill(FILE *f, const mpm_fill_config *fc, int i)
 {
-  if (mpm_in_valid_title(fc->name))
+  if (mpm_io_in_valid_title(fc->name))
     fprintf(f, "fill %s {\n", fc->name);
   else
     fprintf(f, "fill fill%d {\n", i + 1);
   int mask = fc->shape >= 0 && fc->shape <= MPM_FILL_POLYGON ? 1 << fc->shape : 0;
   int nvert = fc->nvert < 0 ? 0 : fc->nvert > MPM_MAX_POLY ? MPM_MAX_POLY : fc->nvert;
   for (int k = 0; k < NKEYS; k++)
-    if (mpm_in_keys[k].sec == S_FILL && (!mpm_in_keys[k].shapes || (mpm_in_keys[k].shapes & mask)))
-      write_key(f, fc, &mpm_in_keys[k], nvert);
+    if (mpm_io_in_keys[k].sec == S_FILL &&
+        (!mpm_io_in_keys[k].shapes || (mpm_io_in_keys[k].shapes & mask)))
+      write_key(f, fc, &mpm_io_in_keys[k], nvert);
   fputs("}\n", f);
 }
 
-int mpm_input_write(FILE *f, const mpm_config *cfg)
+int mpm_io_input_write(FILE *f, const mpm_config *cfg)
 {
   if (!f || !cfg)
     return MPM_EINVAL;

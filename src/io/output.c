@@ -57,7 +57,7 @@ static void derive_p(const mpm_points *pts, double *v)
 }
 
 /* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets in
- * each frame group, which is the default column order of mpm_extract. */
+ * each frame group, which is the default column order of mpm_io_extract. */
 #define FIELD_REAL_(f, nm, d, u) {nm, u, d, FIELD_REAL, offsetof(mpm_points, f), NULL},
 #define FIELD_INT_(f, nm, d, u) {nm, u, d, FIELD_INT, offsetof(mpm_points, f), NULL},
 #define FIELD_DERIVED_(f, nm, d, u) {nm, u, d, FIELD_DERIVED, 0, derive_##f},
@@ -78,7 +78,7 @@ static const char xdmf_head[] =
     "    <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
 static const char xdmf_tail[] = "    </Grid>\n  </Domain>\n</Xdmf>\n";
 
-struct mpm_output {
+struct mpm_io_output {
   char *h5_path, *csv_path, *xdmf_path;
   hid_t file;       /* run.h5 */
   hid_t frames;     /* /frames */
@@ -102,8 +102,8 @@ static herr_t attr_scalar(hid_t obj, const char *name, hid_t type, const void *v
   hid_t attr = space < 0 ? H5I_INVALID_HID
                          : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
   herr_t rc = attr < 0 ? -1 : H5Awrite(attr, type, v);
-  mpm_h5_close(attr);
-  mpm_h5_close(space);
+  mpm_io_h5_close(attr);
+  mpm_io_h5_close(space);
   return rc;
 }
 
@@ -131,9 +131,9 @@ static herr_t attr_string(hid_t obj, const char *name, const char *s)
     if (attr >= 0)
       rc = H5Awrite(attr, type, v);
   }
-  mpm_h5_close(attr);
-  mpm_h5_close(space);
-  mpm_h5_close(type);
+  mpm_io_h5_close(attr);
+  mpm_io_h5_close(space);
+  mpm_io_h5_close(type);
   return rc;
 }
 
@@ -153,8 +153,8 @@ static herr_t write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype,
     rc = attr_string(dset, "unit", unit);
   if (rc >= 0 && desc)
     rc = attr_string(dset, "description", desc);
-  mpm_h5_close(dset);
-  mpm_h5_close(space);
+  mpm_io_h5_close(dset);
+  mpm_io_h5_close(space);
   return rc;
 }
 
@@ -211,13 +211,13 @@ static int make_dirs(const char *dir, mpm_err *err)
 
 /* ---- open ------------------------------------------------------------------- */
 
-static void output_free(mpm_output *out)
+static void output_free(mpm_io_output *out)
 {
   if (!out)
     return;
-  mpm_h5_close(out->xdmf_group);
-  mpm_h5_close(out->frames);
-  mpm_h5_close(out->file);
+  mpm_io_h5_close(out->xdmf_group);
+  mpm_io_h5_close(out->frames);
+  mpm_io_h5_close(out->file);
   if (out->csv)
     fclose(out->csv);
   if (out->xdmf)
@@ -229,9 +229,9 @@ static void output_free(mpm_output *out)
   free(out);
 }
 
-static mpm_output *output_alloc(const char *dir)
+static mpm_io_output *output_alloc(const char *dir)
 {
-  mpm_output *out = calloc(1, sizeof *out);
+  mpm_io_output *out = calloc(1, sizeof *out);
   if (!out)
     return NULL;
   out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
@@ -258,7 +258,7 @@ static int open_text(FILE **f, const char *path, const char *text, mpm_err *err)
 
 /* run.xdmf starts as an empty temporal collection; frames are inserted
  * before the closing tags, which are rewritten after each frame. */
-static int open_xdmf(mpm_output *out, mpm_err *err)
+static int open_xdmf(mpm_io_output *out, mpm_err *err)
 {
   int rc = open_text(&out->xdmf, out->xdmf_path, xdmf_head, err);
   if (rc != MPM_OK)
@@ -276,7 +276,7 @@ static hid_t create_h5(const char *path)
   hid_t file = H5I_INVALID_HID;
   if (fapl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110) >= 0)
     file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  mpm_h5_close(fapl);
+  mpm_io_h5_close(fapl);
   return file;
 }
 
@@ -317,11 +317,11 @@ static herr_t write_mesh(hid_t file, const mpm_mesh *m)
     rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the vertical mesh lines");
   if (rc >= 0)
     rc = write_lines(g, "node_y", m->ny, m->y0, m->dy, "y of the horizontal mesh lines");
-  mpm_h5_close(g);
+  mpm_io_h5_close(g);
   return rc;
 }
 
-static herr_t write_header(mpm_output *out, const char *cmdline, const char *input,
+static herr_t write_header(mpm_io_output *out, const char *cmdline, const char *input,
                            const mpm_mesh *m)
 {
   herr_t rc = attr_string(out->file, "version", PACKAGE_VERSION);
@@ -341,12 +341,11 @@ static herr_t write_header(mpm_output *out, const char *cmdline, const char *inp
   return rc;
 }
 
-static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
-                       const char *input, const mpm_mesh *m, const mpm_h5_quiet *q,
-                       mpm_err *err)
+static int output_open(mpm_io_output **pout, const char *dir, const char *cmdline,
+                       const char *input, const mpm_mesh *m, const mpm_io_h5_quiet *q, mpm_err *err)
 {
   int rc = make_dirs(dir, err);
-  mpm_output *out;
+  mpm_io_output *out;
   if (rc != MPM_OK)
     return rc;
   out = output_alloc(dir);
@@ -358,10 +357,10 @@ static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
   if (rc == MPM_OK) {
     out->file = create_h5(out->h5_path);
     if (out->file < 0)
-      rc = mpm_h5_fail(err, q, "cannot create", out->h5_path);
+      rc = mpm_io_h5_fail(err, q, "cannot create", out->h5_path);
   }
   if (rc == MPM_OK && write_header(out, cmdline, input, m) < 0)
-    rc = mpm_h5_fail(err, q, "cannot write header of", out->h5_path);
+    rc = mpm_io_h5_fail(err, q, "cannot write header of", out->h5_path);
   if (rc != MPM_OK) {
     output_free(out);
     return rc;
@@ -370,25 +369,25 @@ static int output_open(mpm_output **pout, const char *dir, const char *cmdline,
   return MPM_OK;
 }
 
-int mpm_output_open(mpm_output **out, const char *dir, const char *cmdline,
-                    const char *input_text, const mpm_mesh *m, mpm_err *err)
+int mpm_io_output_open(mpm_io_output **out, const char *dir, const char *cmdline,
+                       const char *input_text, const mpm_mesh *m, mpm_err *err)
 {
-  mpm_h5_quiet q;
+  mpm_io_h5_quiet q;
   int rc;
   if (!out)
-    return mpm_err_set(err, MPM_EINVAL, "mpm_output_open: no output handle");
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: no output handle");
   *out = NULL;
   if (!dir || !dir[0])
-    return mpm_err_set(err, MPM_EINVAL, "mpm_output_open: empty output directory");
-  mpm_h5_quiet_begin(&q);
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: empty output directory");
+  mpm_io_h5_quiet_begin(&q);
   rc = output_open(out, dir, cmdline, input_text, m, &q, err);
-  mpm_h5_quiet_end(&q);
+  mpm_io_h5_quiet_end(&q);
   return rc;
 }
 
 /* ---- frames ------------------------------------------------------------------ */
 
-static int work_reserve(mpm_output *out, size_t n)
+static int work_reserve(mpm_io_output *out, size_t n)
 {
   if (n <= out->work_cap)
     return MPM_OK;
@@ -401,7 +400,7 @@ static int work_reserve(mpm_output *out, size_t n)
 }
 
 /* Pointer to the values of one field; derived fields are computed into work. */
-static const void *field_values(mpm_output *out, const field_spec *f, const mpm_points *pts)
+static const void *field_values(mpm_io_output *out, const field_spec *f, const mpm_points *pts)
 {
   const char *base = (const char *)pts + f->offset;
   if (f->kind == FIELD_REAL)
@@ -412,8 +411,8 @@ static const void *field_values(mpm_output *out, const field_spec *f, const mpm_
   return out->work;
 }
 
-static int write_fields(mpm_output *out, hid_t g, const mpm_points *pts,
-                        const mpm_h5_quiet *q, mpm_err *err)
+static int write_fields(mpm_io_output *out, hid_t g, const mpm_points *pts,
+                        const mpm_io_h5_quiet *q, mpm_err *err)
 {
   for (size_t k = 0; k < NFIELDS; k++) {
     const field_spec *f = &output_fields[k];
@@ -422,14 +421,14 @@ static int write_fields(mpm_output *out, hid_t g, const mpm_points *pts,
                             isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, pts->n,
                             field_values(out, f, pts), f->unit, f->description);
     if (rc < 0)
-      return mpm_err_set(err, MPM_EIO, "cannot write field '%s' of frame %d to '%s': %s",
-                         f->name, out->nframes, out->h5_path, mpm_h5_reason(q));
+      return mpm_err_set(err, MPM_EIO, "cannot write field '%s' of frame %d to '%s': %s", f->name,
+                         out->nframes, out->h5_path, mpm_io_h5_reason(q));
   }
   return MPM_OK;
 }
 
 /* Polyvertex connectivity 0..n-1, written again only when n changes. */
-static int write_vertices(mpm_output *out, size_t n, const mpm_h5_quiet *q, mpm_err *err)
+static int write_vertices(mpm_io_output *out, size_t n, const mpm_io_h5_quiet *q, mpm_err *err)
 {
   char name[32];
   int *v;
@@ -446,7 +445,7 @@ static int write_vertices(mpm_output *out, size_t n, const mpm_h5_quiet *q, mpm_
                    "Polyvertex connectivity of run.xdmf");
   free(v);
   if (rc < 0)
-    return mpm_h5_fail(err, q, "cannot write connectivity to", out->h5_path);
+    return mpm_io_h5_fail(err, q, "cannot write connectivity to", out->h5_path);
   out->vertex_n = n;
   out->vertex_frame = out->nframes;
   return MPM_OK;
@@ -477,15 +476,15 @@ static herr_t write_xy_view(hid_t xg, int frame, size_t n)
     dset = H5Dcreate2(xg, name, H5T_IEEE_F64LE, vspace, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   if (rc >= 0 && dset < 0)
     rc = -1;
-  mpm_h5_close(dset);
-  mpm_h5_close(dcpl);
-  mpm_h5_close(sspace);
-  mpm_h5_close(vspace);
+  mpm_io_h5_close(dset);
+  mpm_io_h5_close(dcpl);
+  mpm_io_h5_close(sspace);
+  mpm_io_h5_close(vspace);
   return rc;
 }
 
-static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
-                          const mpm_h5_quiet *q, mpm_err *err)
+static int write_frame_h5(mpm_io_output *out, const mpm_points *pts, double t,
+                          const mpm_io_h5_quiet *q, mpm_err *err)
 {
   char name[32];
   hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
@@ -496,23 +495,23 @@ static int write_frame_h5(mpm_output *out, const mpm_points *pts, double t,
   if (gcpl >= 0 &&
       H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) >= 0)
     g = H5Gcreate2(out->frames, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
-  mpm_h5_close(gcpl);
+  mpm_io_h5_close(gcpl);
   if (g < 0 || attr_double(g, "time", t) < 0 ||
       attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
-    rc = mpm_h5_fail(err, q, "cannot create frame group in", out->h5_path);
+    rc = mpm_io_h5_fail(err, q, "cannot create frame group in", out->h5_path);
   if (rc == MPM_OK)
     rc = write_fields(out, g, pts, q, err);
-  mpm_h5_close(g);
+  mpm_io_h5_close(g);
   if (rc == MPM_OK)
     rc = write_vertices(out, pts->n, q, err);
   if (rc == MPM_OK && pts->n > 0 && write_xy_view(out->xdmf_group, out->nframes, pts->n) < 0)
-    rc = mpm_h5_fail(err, q, "cannot write XY view to", out->h5_path);
+    rc = mpm_io_h5_fail(err, q, "cannot write XY view to", out->h5_path);
   if (rc == MPM_OK && H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
-    rc = mpm_h5_fail(err, q, "cannot flush", out->h5_path);
+    rc = mpm_io_h5_fail(err, q, "cannot flush", out->h5_path);
   return rc;
 }
 
-static int write_csv_row(mpm_output *out, const mpm_diag *d, mpm_err *err)
+static int write_csv_row(mpm_io_output *out, const mpm_diag *d, mpm_err *err)
 {
   char row[512];
   if (mpm_diag_csv_row(d, row, sizeof row) != MPM_OK)
@@ -536,7 +535,7 @@ static void xdmf_item(FILE *f, const char *path, size_t n, int isint, const char
  * sets z = 0. Geometries assembled from the separate x and y datasets do not
  * work there: "X_Y" and a JOIN function crash the Xdmf3 readers and "X_Y_Z"
  * loses the points; only the legacy XDMF reader understands them. */
-static void xdmf_grid(FILE *f, const mpm_output *out, double t, size_t n)
+static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n)
 {
   char path[64];
   fprintf(f, "      <Grid Name=\"frame_%06d\" GridType=\"Uniform\">\n", out->nframes);
@@ -566,7 +565,7 @@ static void xdmf_grid(FILE *f, const mpm_output *out, double t, size_t n)
 
 /* Insert the frame's grid before the closing tags. A frame without points
  * gets no grid: readers reject empty datasets. */
-static int write_xdmf_frame(mpm_output *out, double t, size_t n, mpm_err *err)
+static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, mpm_err *err)
 {
   FILE *f = out->xdmf;
   if (n == 0)
@@ -582,18 +581,18 @@ static int write_xdmf_frame(mpm_output *out, double t, size_t n, mpm_err *err)
   return MPM_OK;
 }
 
-int mpm_output_frame(mpm_output *out, const mpm_points *pts, const mpm_diag *d,
-                     mpm_err *err)
+int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_diag *d, mpm_err *err)
 {
-  mpm_h5_quiet q;
+  mpm_io_h5_quiet q;
   int rc;
   if (!out || !pts || !d)
-    return mpm_err_set(err, MPM_EINVAL, "mpm_output_frame: missing output, points or diagnostics");
+    return mpm_err_set(err, MPM_EINVAL,
+                       "mpm_io_output_frame: missing output, points or diagnostics");
   if (work_reserve(out, pts->n) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory writing frame %d", out->nframes);
-  mpm_h5_quiet_begin(&q);
+  mpm_io_h5_quiet_begin(&q);
   rc = write_frame_h5(out, pts, d->t, &q, err);
-  mpm_h5_quiet_end(&q);
+  mpm_io_h5_quiet_end(&q);
   if (rc == MPM_OK)
     rc = write_csv_row(out, d, err);
   if (rc == MPM_OK)
@@ -613,25 +612,25 @@ static int close_text(FILE **f, const char *path, int rc, mpm_err *err)
   return rc;
 }
 
-static int close_h5(mpm_output *out, const mpm_h5_quiet *q, mpm_err *err)
+static int close_h5(mpm_io_output *out, const mpm_io_h5_quiet *q, mpm_err *err)
 {
   int bad = 0;
-  bad |= mpm_h5_close(out->xdmf_group) < 0;
-  bad |= mpm_h5_close(out->frames) < 0;
-  bad |= mpm_h5_close(out->file) < 0;
+  bad |= mpm_io_h5_close(out->xdmf_group) < 0;
+  bad |= mpm_io_h5_close(out->frames) < 0;
+  bad |= mpm_io_h5_close(out->file) < 0;
   out->xdmf_group = out->frames = out->file = H5I_INVALID_HID;
-  return bad ? mpm_h5_fail(err, q, "cannot close", out->h5_path) : MPM_OK;
+  return bad ? mpm_io_h5_fail(err, q, "cannot close", out->h5_path) : MPM_OK;
 }
 
-int mpm_output_close(mpm_output *out, mpm_err *err)
+int mpm_io_output_close(mpm_io_output *out, mpm_err *err)
 {
-  mpm_h5_quiet q;
+  mpm_io_h5_quiet q;
   int rc;
   if (!out)
     return MPM_OK;
-  mpm_h5_quiet_begin(&q);
+  mpm_io_h5_quiet_begin(&q);
   rc = close_h5(out, &q, err);
-  mpm_h5_quiet_end(&q);
+  mpm_io_h5_quiet_end(&q);
   rc = close_text(&out->csv, out->csv_path, rc, err);
   rc = close_text(&out->xdmf, out->xdmf_path, rc, err);
   output_free(out);

@@ -31,17 +31,17 @@ static const char *const rule_names[] = {
   [MPM_DENSITY_HYBRID] = "hybrid", [MPM_DENSITY_UNIT] = "unit"
 };
 
-int mpm_density_rule_from_name(const char *name)
+int mpm_material_density_rule_from_name(const char *name)
 {
   return mpm_names_index(rule_names, MPM_NAMES_COUNT(rule_names), name);
 }
 
-const char *mpm_density_rule_name(int rule)
+const char *mpm_material_density_rule_name(int rule)
 {
   return mpm_names_at(rule_names, MPM_NAMES_COUNT(rule_names), rule);
 }
 
-void mpm_density_free(mpm_density *ws)
+void mpm_material_density_free(mpm_material_density *ws)
 {
   if (!ws)
     return;
@@ -52,12 +52,12 @@ void mpm_density_free(mpm_density *ws)
   free(ws);
 }
 
-int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err)
+int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mpm_err *err)
 {
   *out = NULL;
   if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
     return mpm_err_set(err, MPM_EINVAL, "density: mesh not set up (%d x %d units)", m->nx, m->ny);
-  mpm_density *ws = calloc(1, sizeof *ws);
+  mpm_material_density *ws = calloc(1, sizeof *ws);
   size_t nu = (size_t)m->nx * (size_t)m->ny;
   if (ws) {
     ws->nx = m->nx;
@@ -69,7 +69,7 @@ int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err)
     ws->edge = calloc(nu, sizeof *ws->edge);
   }
   if (!ws || !ws->sm || !ws->sv || !ws->count || !ws->edge) {
-    mpm_density_free(ws);
+    mpm_material_density_free(ws);
     return mpm_err_set(err, MPM_ENOMEM, "density: no memory for %zu units", nu);
   }
   *out = ws;
@@ -77,7 +77,7 @@ int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err)
 }
 
 /* m_e, the point volume and the point count of every unit, in point order. */
-static void unit_sums(mpm_density *ws, const mpm_mesh *m, size_t n, const double *x,
+static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, size_t n, const double *x,
                       const double *y, const double *mass, const double *vol)
 {
   size_t nu = (size_t)ws->nx * (size_t)ws->ny;
@@ -96,7 +96,7 @@ static void unit_sums(mpm_density *ws, const mpm_mesh *m, size_t n, const double
 }
 
 /* Count of unit (i, j) seen from inside: -1 beyond a non-periodic edge. */
-static int count_at(const mpm_density *ws, const mpm_mesh *m, int i, int j)
+static int count_at(const mpm_material_density *ws, const mpm_mesh *m, int i, int j)
 {
   if (i < 0 || i >= ws->nx) {
     if (!m->periodic_x)
@@ -112,7 +112,7 @@ static int count_at(const mpm_density *ws, const mpm_mesh *m, int i, int j)
 }
 
 /* edge[e] = 1 for a unit with points and an empty unit among its 8 neighbours. */
-static void mark_edges(mpm_density *ws, const mpm_mesh *m)
+static void mark_edges(mpm_material_density *ws, const mpm_mesh *m)
 {
   for (int j = 0; j < ws->ny; j++)
     for (int i = 0; i < ws->nx; i++) {
@@ -125,9 +125,9 @@ static void mark_edges(mpm_density *ws, const mpm_mesh *m)
     }
 }
 
-void mpm_density_compute(mpm_density *ws, const mpm_mesh *m, int rule, size_t n,
-                         const double *x, const double *y, const double *mass,
-                         const double *vol, double *rho)
+void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule, size_t n,
+                                  const double *x, const double *y, const double *mass,
+                                  const double *vol, double *rho)
 {
   if (rule == MPM_DENSITY_POINT) {
     for (size_t p = 0; p < n; p++)

@@ -10,19 +10,20 @@
 #include "mesh/mesh.h"
 
 /* Which density decides a point's state (rho < rho_c: stress-free). */
-enum mpm_density_rule {
+enum mpm_material_density_rule {
   MPM_DENSITY_POINT = 0,  /* m_p / V_p, V_p from the local update [DK15] */
-  MPM_DENSITY_ELEMENT,    /* m_e / (dx dy) of the unit holding the point's centre */
-  MPM_DENSITY_HYBRID,     /* point in boundary units, element in the interior */
-  MPM_DENSITY_UNIT        /* sum m_p / sum V_p over the points of the unit */
+  MPM_DENSITY_ELEMENT,   /* m_e / (dx dy) of the unit holding the point's centre */
+  MPM_DENSITY_HYBRID,    /* point in boundary units, element in the interior */
+  MPM_DENSITY_UNIT       /* sum m_p / sum V_p over the points of the unit */
 };
 
-/* "point" | "element" | "hybrid" | "unit" <-> enum mpm_density_rule; -1 / NULL if unknown. */
-int mpm_density_rule_from_name(const char *name);
-const char *mpm_density_rule_name(int rule);
+/* "point" | "element" | "hybrid" | "unit" <-> enum mpm_material_density_rule;
+ * -1 / NULL if unknown. */
+int mpm_material_density_rule_from_name(const char *name);
+const char *mpm_material_density_rule_name(int rule);
 
 /* Per-unit workspace of the element, hybrid and unit rules. */
-typedef struct mpm_density {
+typedef struct mpm_material_density {
   int nx, ny;           /* units */
   double area;          /* V_e = dx dy [m^2] (per unit thickness) */
   double *sm;           /* [nx*ny] m_e: mass of the points in the unit [kg/m] */
@@ -30,17 +31,17 @@ typedef struct mpm_density {
   int *count;           /* [nx*ny] number of points in the unit */
   unsigned char *edge;  /* [nx*ny] hybrid: 1 for a boundary unit (a unit with
                            points and an empty unit among its 8 neighbours) */
-} mpm_density;
+} mpm_material_density;
 
 /* Workspace for mesh m (set up). */
-int mpm_density_alloc(mpm_density **out, const mpm_mesh *m, mpm_err *err);
-void mpm_density_free(mpm_density *ws);  /* accepts NULL */
+int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mpm_err *err);
+void mpm_material_density_free(mpm_material_density *ws);  /* accepts NULL */
 
 /* rho[p] for the n points at (x, y) with mass and volume vol, by rule (enum
- * mpm_density_rule; ws may be NULL for MPM_DENSITY_POINT). A point outside the
+ * mpm_material_density_rule; ws may be NULL for MPM_DENSITY_POINT). A point outside the
  * mesh is not counted in any unit and gets m_p / V_p. */
-void mpm_density_compute(mpm_density *ws, const mpm_mesh *m, int rule, size_t n,
-                         const double *x, const double *y, const double *mass,
-                         const double *vol, double *rho);
+void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule, size_t n,
+                                  const double *x, const double *y, const double *mass,
+                                  const double *vol, double *rho);
 
 #endif

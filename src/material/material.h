@@ -19,10 +19,10 @@ typedef struct mpm_material_params {
   double mu_s, mu_2, I0; /* mu(I): static and limit friction, I0 */
   double d;              /* grain diameter [m] */
   double A, t0;          /* NGF amplitude and time scale [s] */
-  int form;              /* NGF PDE form, enum mpm_ngf_form (0: [DK-silo]) */
-  int p_sample;          /* NGF: p^-1/2 of the g^2 term, enum mpm_ngf_p_sample */
+  int form;              /* NGF PDE form, enum mpm_material_ngf_form (0: [DK-silo]) */
+  int p_sample;          /* NGF: p^-1/2 of the g^2 term, enum mpm_material_ngf_p_sample */
   double t_seed;         /* NGF seeding time [s]: the local mu_i update runs for
-                            t < t_seed, then g = gdot_p / mu (mpm_ngf_seed); 0: none */
+                            t < t_seed, then g = gdot_p / mu (mpm_material_ngf_seed); 0: none */
   /* derived (mpm_material_params_derive) */
   double G, K;           /* shear and bulk modulus [Pa] */
   double dmu;            /* mu_2 - mu_s */
@@ -74,7 +74,7 @@ typedef struct mpm_material_type {
                  mpm_mpoint *pt);
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
    * the element fluidity of the dense points (nonlocal/nonlocal.h, dense flag
-   * from mpm_ngf_dense); local models ignore pt->lap. */
+   * from mpm_material_ngf_dense); local models ignore pt->lap. */
   int nonlocal;
 } mpm_material_type;
 
@@ -116,11 +116,11 @@ double mpm_material_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm
  *   MPM_NGF_DK:   - Delta_mu (mu_s - mu)/(mu_2 - mu) g   [DK-silo] eq. 2.1 (A = 0: mu(I))
  *   MPM_NGF_HS21: - (mu_s - mu) g                       [HS21] eq. 6 (A = 0: mu_s + b I)
  * both with - b sqrt(rho_s d^2 / p) mu g^2 and the diffusion A^2 d^2 lap(g). */
-enum mpm_ngf_form { MPM_NGF_DK = 0, MPM_NGF_HS21 };
+enum mpm_material_ngf_form { MPM_NGF_DK = 0, MPM_NGF_HS21 };
 
-/* "dk" | "hs21" <-> enum mpm_ngf_form; -1 / NULL if unknown. */
-int mpm_ngf_form_from_name(const char *name);
-const char *mpm_ngf_form_name(int form);
+/* "dk" | "hs21" <-> enum mpm_material_ngf_form; -1 / NULL if unknown. */
+int mpm_material_ngf_form_from_name(const char *name);
+const char *mpm_material_ngf_form_name(int form);
 
 /* Where the g^2 term b sqrt(rho_s d^2 / p) mu g^2 samples p^-1/2:
  *   MPM_NGF_P_POINT: the point's own p_tr^-1/2, as [DK-silo] §5.2 (with A = 0
@@ -131,35 +131,35 @@ const char *mpm_ngf_form_name(int form);
  *                    free surface, where the point value under-weights the
  *                    top unit by a factor up to sqrt(2) when g is smooth on the
  *                    unit scale (A d >~ dx; docs/model.md). */
-enum mpm_ngf_p_sample { MPM_NGF_P_POINT = 0, MPM_NGF_P_UNIT };
+enum mpm_material_ngf_p_sample { MPM_NGF_P_POINT = 0, MPM_NGF_P_UNIT };
 
-/* "point" | "unit" <-> enum mpm_ngf_p_sample; -1 / NULL if unknown. */
-int mpm_ngf_p_sample_from_name(const char *name);
-const char *mpm_ngf_p_sample_name(int sample);
+/* "point" | "unit" <-> enum mpm_material_ngf_p_sample; -1 / NULL if unknown. */
+int mpm_material_ngf_p_sample_from_name(const char *name);
+const char *mpm_material_ngf_p_sample_name(int sample);
 
 /* 1 if the point is dense this step (contributes to the element g):
  * p_n = -tr(sigma_n)/3 > 0 and rho_{n+1} >= rho_c. */
-int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho);
+int mpm_material_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho);
 
 /* g_{n+1} of MODEL.md section 5 step 4: the root of the quadratic in x = g_{n+1}
  * with the physical choice, for time step dt, pressure p = p_tr > 0, trial
  * shear stress tau_tr >= 0, diffused fluidity gstar = g* >= 0,
  * mug_n = mu_n g_n (start of step) and isp, the p^-1/2 of the g^2 term
  * (0: 1/sqrt(p)). Returns x >= 0. */
-double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
-                        double gstar, double mug_n, double isp);
+double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
+                                 double gstar, double mug_n, double isp);
 
 /* Seeding from a local run: g = gdot_p / mu, mu = tau / p (0 if p <= 0 or tau = 0). */
-double mpm_ngf_seed(mpm_sym3 sigma, double gdp);
+double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp);
 
 /* Explicit-diffusion number (dt/n_sub) A^2 d^2 / t0 (2/dx^2 + 2/dy^2); the
  * update is stable when it is <= 1. */
-double mpm_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
-                                double dx, double dy);
+double mpm_material_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
+                                         double dx, double dy);
 
 /* MPM_OK if the diffusion number is <= 1, else MPM_EINPUT with the smallest
  * n_sub that satisfies it. */
-int mpm_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub, double dx,
-                            double dy, mpm_err *err);
+int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub,
+                                     double dx, double dy, mpm_err *err);
 
 #endif

@@ -38,32 +38,32 @@
 static const char *const form_names[] = {"dk", "hs21"};
 static const char *const p_sample_names[] = {"point", "unit"};
 
-int mpm_ngf_form_from_name(const char *name)
+int mpm_material_ngf_form_from_name(const char *name)
 {
   return mpm_names_index(form_names, MPM_NAMES_COUNT(form_names), name);
 }
 
-const char *mpm_ngf_form_name(int form)
+const char *mpm_material_ngf_form_name(int form)
 {
   return mpm_names_at(form_names, MPM_NAMES_COUNT(form_names), form);
 }
 
-int mpm_ngf_p_sample_from_name(const char *name)
+int mpm_material_ngf_p_sample_from_name(const char *name)
 {
   return mpm_names_index(p_sample_names, MPM_NAMES_COUNT(p_sample_names), name);
 }
 
-const char *mpm_ngf_p_sample_name(int sample)
+const char *mpm_material_ngf_p_sample_name(int sample)
 {
   return mpm_names_at(p_sample_names, MPM_NAMES_COUNT(p_sample_names), sample);
 }
 
-int mpm_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho)
+int mpm_material_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, double rho)
 {
   return mpm_sym3_pressure(sigma_n) > 0.0 && rho >= par->rho_c;   /* p_n > 0, rho >= rho_c */
 }
 
-double mpm_ngf_seed(mpm_sym3 sigma, double gdp)
+double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp)
 {
   double p = mpm_sym3_pressure(sigma), tau = mpm_sym3_tau(sigma);
   return p > 0.0 && tau > 0.0 ? gdp * p / tau : 0.0;              /* g = gdot_p / mu */
@@ -127,8 +127,8 @@ static double larger_root(ngf_quad q)
   return x > 0.0 ? x : 0.0;
 }
 
-double mpm_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
-                        double gstar, double mug_n, double isp)
+double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
+                                 double gstar, double mug_n, double isp)
 {
   if (!(dt > 0.0))
     return gstar;
@@ -183,7 +183,7 @@ static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double
   mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
   double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
   double gs = ngf_gstar(par, dt, g_n, pt->lap);                    /* g* */
-  double x = mpm_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt->isp);  /* g_{n+1} */
+  double x = mpm_material_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt->isp);  /* g_{n+1} */
   double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
   pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);     /* (tau/tau_tr) s0_tr - p I */
   pt->g = x;
@@ -199,10 +199,10 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT, "key 'material.A' = %g: must be >= 0", par->A);
   if (!(par->t0 > 0.0 && isfinite(par->t0)))
     return mpm_err_set(err, MPM_EINPUT, "key 'material.t0' = %g: must be > 0 s", par->t0);
-  if (!mpm_ngf_form_name(par->form))
+  if (!mpm_material_ngf_form_name(par->form))
     return mpm_err_set(err, MPM_EINPUT,
                        "key 'material.form' = %d: unknown (allowed: \"dk\", \"hs21\")", par->form);
-  if (!mpm_ngf_p_sample_name(par->p_sample))
+  if (!mpm_material_ngf_p_sample_name(par->p_sample))
     return mpm_err_set(err, MPM_EINPUT,
                        "key 'material.p_sample' = %d: unknown (allowed: \"point\", \"unit\")",
                        par->p_sample);
@@ -212,22 +212,22 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
   return MPM_OK;
 }
 
-double mpm_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
-                                double dx, double dy)
+double mpm_material_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
+                                         double dx, double dy)
 {
   double D = par->A * par->A * par->d * par->d / par->t0;          /* A^2 d^2 / t0 */
   return dt / n_sub * D * (2.0 / (dx * dx) + 2.0 / (dy * dy));
 }
 
-int mpm_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub, double dx,
-                            double dy, mpm_err *err)
+int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub,
+                                     double dx, double dy, mpm_err *err)
 {
   if (n_sub < 1)
     return mpm_err_set(err, MPM_EINPUT, "NGF substeps n_sub = %d: must be >= 1", n_sub);
-  double r = mpm_ngf_diffusion_number(par, dt, n_sub, dx, dy);
+  double r = mpm_material_ngf_diffusion_number(par, dt, n_sub, dx, dy);
   if (r <= 1.0)
     return MPM_OK;
-  double need = ceil(mpm_ngf_diffusion_number(par, dt, 1, dx, dy));
+  double need = ceil(mpm_material_ngf_diffusion_number(par, dt, 1, dx, dy));
   return mpm_err_set(err, MPM_EINPUT,
                      "NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2)"
                      " = %.4g > 1 with dt = %g s, n_sub = %d; needs n_sub >= %.0f", r, dt,

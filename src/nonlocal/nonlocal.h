@@ -45,7 +45,7 @@
  * Usage per MPM step (the solver):
  *   mpm_nonlocal_locate_extents(ws, mesh, n, x, y, r, err);  once, positions x_{n+1}
  *   for each substep:
- *     ws->dense[p] = mpm_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
+ *     ws->dense[p] = mpm_material_ngf_dense(par, sigma_p, rho_p);  p_n > 0, rho >= rho_c
  *     mpm_nonlocal_average(ws, n, mass, g, ws->dense);
  *     mpm_nonlocal_laplacian(ws);  (or the implicit diffusion, implicit.h)
  *     mpm_nonlocal_pressure(ws, n, mass, ws->pn, ws->dense);  (unit sampling; pn = p_n)

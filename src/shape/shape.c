@@ -38,7 +38,7 @@ static int grow(void **a, size_t n, size_t sz)
 }
 
 /* Make room for cap points; on failure the old arrays and cap stay valid. */
-static int stencil_reserve(mpm_stencil *st, size_t cap)
+static int stencil_reserve(mpm_shape_stencil *st, size_t cap)
 {
   if (cap <= st->cap && st->count)
     return MPM_OK;
@@ -57,19 +57,19 @@ static int stencil_reserve(mpm_stencil *st, size_t cap)
   return MPM_OK;
 }
 
-mpm_stencil *mpm_stencil_alloc(size_t cap)
+mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap)
 {
-  mpm_stencil *st = calloc(1, sizeof *st);
+  mpm_shape_stencil *st = calloc(1, sizeof *st);
   if (!st)
     return NULL;
   if (stencil_reserve(st, cap) != MPM_OK) {
-    mpm_stencil_free(st);
+    mpm_shape_stencil_free(st);
     return NULL;
   }
   return st;
 }
 
-void mpm_stencil_free(mpm_stencil *st)
+void mpm_shape_stencil_free(mpm_shape_stencil *st)
 {
   if (!st)
     return;
@@ -82,8 +82,8 @@ void mpm_stencil_free(mpm_stencil *st)
 }
 
 /* Evaluate every point; returns the index of the first one outside, or n. */
-static long stencil_fill(mpm_stencil *st, const mpm_shape_type *type,
-                         const mpm_mesh *m, const mpm_points *pts)
+static long stencil_fill(mpm_shape_stencil *st, const mpm_shape_type *type, const mpm_mesh *m,
+                         const mpm_points *pts)
 {
   const long n = (long)pts->n;
   long first = n;
@@ -103,9 +103,8 @@ static long stencil_fill(mpm_stencil *st, const mpm_shape_type *type,
   return first;
 }
 
-int mpm_stencil_compute(mpm_stencil *st, const mpm_shape_type *type,
-                        const mpm_mesh *m, const mpm_points *pts, double t,
-                        mpm_err *err)
+int mpm_shape_stencil_compute(mpm_shape_stencil *st, const mpm_shape_type *type, const mpm_mesh *m,
+                              const mpm_points *pts, double t, mpm_err *err)
 {
   if (!st || !type || !m || !pts)
     return mpm_err_set(err, MPM_EINVAL, "stencil: missing stencil, shape, "

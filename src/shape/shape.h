@@ -34,20 +34,19 @@ extern const mpm_shape_type *const mpm_shape_table[];
 /* Variant by name, NULL if unknown. */
 const mpm_shape_type *mpm_shape_lookup(const char *name);
 
-typedef struct mpm_stencil {
+typedef struct mpm_shape_stencil {
   size_t cap;     /* points it has room for */
   int *count;     /* [cap] nodes per point */
   int *node;      /* [cap * MPM_STENCIL_W] storage node ids */
   double *S, *dSx, *dSy;  /* [cap * MPM_STENCIL_W] */
-} mpm_stencil;
+} mpm_shape_stencil;
 
-mpm_stencil *mpm_stencil_alloc(size_t cap);
-void mpm_stencil_free(mpm_stencil *st);  /* accepts NULL */
+mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap);
+void mpm_shape_stencil_free(mpm_shape_stencil *st);  /* accepts NULL */
 
 /* Stencil of every point (grows st as needed). A point outside the mesh is
  * MPM_EOUTSIDE with a message naming the point id, its position and time t. */
-int mpm_stencil_compute(mpm_stencil *st, const mpm_shape_type *type,
-                        const mpm_mesh *m, const mpm_points *pts, double t,
-                        mpm_err *err);
+int mpm_shape_stencil_compute(mpm_shape_stencil *st, const mpm_shape_type *type, const mpm_mesh *m,
+                              const mpm_points *pts, double t, mpm_err *err);
 
 #endif

@@ -29,7 +29,7 @@ typedef struct mpm_sim {
   const mpm_material_type *mat;
   mpm_material_params par;
   mpm_points *pts;
-  mpm_stencil *st;
+  mpm_shape_stencil *st;
 
   /* nodal workspace [mesh.nnodes] */
   double *nm, *nmvx, *nmvy, *nfx, *nfy, *nvx, *nvy, *nax, *nay;
@@ -44,7 +44,7 @@ typedef struct mpm_sim {
   int seeded;                     /* NGF: 1 once g was seeded from the local run */
 
   /* density of the state decision ([D-thesis] §3.4; cfg.material.state_density) */
-  mpm_density *dens;              /* unit sums; NULL for the point rule */
+  mpm_material_density *dens;     /* unit sums; NULL for the point rule */
   double *rho;                    /* [rcap] density each point's update sees [kg/m^3] */
   size_t rcap;                    /* length of rho */
   double *ug;                     /* mesh.dilatation = "unit": [9 nx ny] per unit, the

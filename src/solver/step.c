@@ -105,11 +105,11 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
 static int density_alloc(mpm_sim *s, mpm_err *err)
 {
   int rule = s->cfg.material.state_density;
-  if (!mpm_density_rule_name(rule))
+  if (!mpm_material_density_rule_name(rule))
     return mpm_err_set(err, MPM_EINPUT, "material.state_density = %d unknown", rule);
   if (rule == MPM_DENSITY_POINT)
     return MPM_OK;
-  int rc = mpm_density_alloc(&s->dens, &s->mesh, err);
+  int rc = mpm_material_density_alloc(&s->dens, &s->mesh, err);
   if (rc != MPM_OK)
     return rc;
   size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
@@ -149,8 +149,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     rc = mpm_err_set(err, MPM_ENOMEM, "points: out of memory");
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++)
     rc = mpm_scenario_fill(s->pts, &s->mesh, &cfg->fill[f], &s->par, cfg->gravity.gy, err);
-  if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK ||
-                       !(s->st = mpm_stencil_alloc(s->pts->cap))))
+  if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK || !(s->st = mpm_shape_stencil_alloc(s->pts->cap))))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
   if (rc == MPM_OK)
     rc = nonlocal_alloc(s, err);
@@ -179,10 +178,10 @@ void mpm_sim_free(mpm_sim *s)
     return;
   mpm_bc_clear(&s->bc);
   mpm_points_free(s->pts);
-  mpm_stencil_free(s->st);
+  mpm_shape_stencil_free(s->st);
   free(s->nbusy);
   mpm_nonlocal_free(s->nl);
-  mpm_density_free(s->dens);
+  mpm_material_density_free(s->dens);
   free(s->rho);
   free(s->ug);
   free(s->uof);
@@ -261,7 +260,7 @@ static int range_start(const mpm_sim *s, int t, int nt)
 static int unit_gradients(mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
-  const mpm_stencil *st = s->st;
+  const mpm_shape_stencil *st = s->st;
   const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
   if (P->n > s->ucap) {
     long *u = realloc(s->uof, P->n * sizeof *u);
@@ -313,7 +312,7 @@ static void bbar_gradient(const mpm_sim *s, size_t p, const double **gx, const d
 static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
 {
   const mpm_points *P = s->pts;
-  const mpm_stencil *st = s->st;
+  const mpm_shape_stencil *st = s->st;
   const size_t len = (size_t)(hi - lo) * sizeof(double);
   double *nm = s->nm, *nmvx = s->nmvx, *nmvy = s->nmvy, *nfx = s->nfx, *nfy = s->nfy;
   memset(nm + lo, 0, len);
@@ -443,7 +442,7 @@ static void grid_phase(mpm_sim *s, double bx, double by)
 static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
 {
   mpm_points *P = s->pts;
-  const mpm_stencil *st = s->st;
+  const mpm_shape_stencil *st = s->st;
   const double dt = s->dt;
   const int *node = st->node + p * MPM_STENCIL_W;
   const double *S = st->S + p * MPM_STENCIL_W;
@@ -551,8 +550,8 @@ static void update_density(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
   if (s->dens)
-    mpm_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x, P->y,
-                        P->mass, P->vol, s->rho);
+    mpm_material_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x, P->y,
+                                 P->mass, P->vol, s->rho);
 }
 
 /* L_p as stored for the substeps. */
@@ -653,7 +652,7 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
 #pragma omp parallel for schedule(static)
     for (size_t p = 0; p < n; p++) {                       /* p_n > 0, rho_{n+1} >= rho_c */
       mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
-      nl->dense[p] = (unsigned char)mpm_ngf_dense(&s->par, sig, state_rho(s, p));
+      nl->dense[p] = (unsigned char)mpm_material_ngf_dense(&s->par, sig, state_rho(s, p));
       nl->pn[p] = mpm_sym3_pressure(sig);                  /* p_n */
     }
     mpm_nonlocal_average(nl, n, P->mass, P->g, nl->dense);  /* g_e, point order */
@@ -704,7 +703,7 @@ static const mpm_material_type *seeding(mpm_sim *s)
   mpm_points *P = s->pts;
   for (size_t p = 0; p < P->n; p++) {
     mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
-    P->g[p] = P->state[p] == MPM_STATE_DENSE ? mpm_ngf_seed(sig, P->gdp[p]) : 0.0;
+    P->g[p] = P->state[p] == MPM_STATE_DENSE ? mpm_material_ngf_seed(sig, P->gdp[p]) : 0.0;
   }
   s->seeded = 1;
   return s->mat;
@@ -712,7 +711,7 @@ static const mpm_material_type *seeding(mpm_sim *s)
 
 int mpm_sim_step(mpm_sim *s, mpm_err *err)
 {
-  int rc = mpm_stencil_compute(s->st, s->shape, &s->mesh, s->pts, s->t, err);
+  int rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, s->pts, s->t, err);
   if (rc != MPM_OK)
     return rc;
   if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc.open &&

@@ -113,7 +113,7 @@ static void check_invariants(result *r)
 
 static void base_config(mpm_config *c, const char *topo, const char *shape)
 {
-  mpm_input_defaults(c);
+  mpm_io_input_defaults(c);
   c->mesh.nx = 40;
   c->mesh.ny = 40;
   c->mesh.x0 = c->mesh.y0 = 0.0;

@@ -5,7 +5,7 @@
  * prescribed pressure p and stress ratio mu. One iteration is exactly the
  * per-step NGF sequence of MODEL.md section 5:
  *   g_e = sum m g / sum m, lap_e with the ghost rules, g* = max(0, g + k A^2 d^2 lap_e),
- *   x = mpm_ngf_fluidity(dt, p, tau_tr, g*, mu g), tau_tr = mu (p + G dt g),
+ *   x = mpm_material_ngf_fluidity(dt, p, tau_tr, g*, mu g), tau_tr = mu (p + G dt g),
  * the trial stress chosen so that the returned stress ratio mu(x) = tau_tr/(G dt x + p)
  * equals mu when x = g. At the fixed point the split update reads
  *   A^2 d^2 lap_e = P(mu) g + b sqrt(rho_s d^2/p) mu g^2,
@@ -45,7 +45,7 @@ static void report(tally *t, const char *name, double measured, double lo, doubl
 }
 
 /* granmpm parameters matching a reference problem, with the given
- * enum mpm_ngf_p_sample. */
+ * enum mpm_material_ngf_p_sample. */
 static mpm_material_params params_of(const ngf1d_problem *pb, int sample)
 {
   mpm_material_params par = {.E = 1e7, .nu = 0.3, .rho_s = pb->rho_s, .rho_c = pb->rho,
@@ -124,8 +124,8 @@ static int relax(column *c, const mpm_material_params *par)
     for (size_t k = 0; k < c->n; k++) {
       double tau_tr = c->mu[k] * (c->p[k] + par->G * dt * c->g[k]);   /* mu(x = g) = mu */
       double gs = fmax(0.0, c->g[k] + kD * mpm_nonlocal_point_lap(ws, k));
-      double x = mpm_ngf_fluidity(par, dt, c->p[k], tau_tr, gs, c->mu[k] * c->g[k],
-                                  mpm_nonlocal_point_isp(ws, k));
+      double x = mpm_material_ngf_fluidity(par, dt, c->p[k], tau_tr, gs, c->mu[k] * c->g[k],
+                                           mpm_nonlocal_point_isp(ws, k));
       change = fmax(change, fabs(x - c->g[k]) / fmax(x, 1e-300));
       c->g[k] = x;
     }
