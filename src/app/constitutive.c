@@ -10,6 +10,8 @@
  * parses arguments and prints. */
 #include "app/constitutive.h"
 
+#include "app/args.h"
+
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -25,7 +27,7 @@
 #include "pointrun/reference.h"
 #include "pointrun/series.h"
 
-enum { EXIT_RUNTIME = 1, EXIT_USAGE = 2, MAX_SET = 64, MAX_DT = 32 };
+enum { MAX_SET = 64, MAX_DT = 32 };
 
 static const char help_text[] =
   "usage: granmpm constitutive [FILE] [options]\n"
@@ -82,17 +84,10 @@ static int usage(const char *fmt, const char *arg)
   fputs("granmpm constitutive: ", stderr);
   fprintf(stderr, fmt, arg);
   fputs(" (see 'granmpm constitutive --help')\n", stderr);
-  return EXIT_USAGE;
+  return MPM_APP_EXIT_USAGE;
 }
 
 /* ------------------------------------------------------------ arguments */
-
-static int parse_real(const char *s, double *v)
-{
-  char *end;
-  *v = strtod(s, &end);
-  return *s != '\0' && *end == '\0' && isfinite(*v);
-}
 
 /* Comma-separated list of up to max finite numbers; returns the count or -1. */
 static int parse_list(const char *s, double *v, int max)
@@ -139,7 +134,7 @@ static int parse_valued(const char *a, const char *v, opts *o)
   } else if (strcmp(a, "--write-history") == 0) {
     o->write_history = v;
   } else if (strcmp(a, "--dt") == 0) {
-    if (!parse_real(v, &o->dt) || !(o->dt > 0.0))
+    if (!mpm_app_arg_real(v, &o->dt) || !(o->dt > 0.0))
       return usage("--dt '%s': expected a time step > 0 s", v);
   } else if (strcmp(a, "--sample") == 0) {
     if ((o->sample = mpm_pointrun_sample_from_name(v)) < 0)
@@ -150,22 +145,22 @@ static int parse_valued(const char *a, const char *v, opts *o)
     o->sigma0 = (mpm_sym3){x[0], x[1], x[2], x[3], 0.0, 0.0};
     o->have_sigma0 = 1;
   } else if (strcmp(a, "--p0") == 0) {
-    if (!parse_real(v, &o->p0))
+    if (!mpm_app_arg_real(v, &o->p0))
       return usage("--p0 '%s': expected a pressure [Pa]", v);
     o->have_p0 = 1;
   } else if (strcmp(a, "--rho0") == 0) {
-    if (!parse_real(v, &o->rho0) || !(o->rho0 > 0.0))
+    if (!mpm_app_arg_real(v, &o->rho0) || !(o->rho0 > 0.0))
       return usage("--rho0 '%s': expected a density > 0 kg/m^3", v);
     o->have_rho0 = 1;
   } else if (strcmp(a, "--rtol") == 0) {
-    if (!parse_real(v, &o->rtol) || !(o->rtol > 0.0))
+    if (!mpm_app_arg_real(v, &o->rtol) || !(o->rtol > 0.0))
       return usage("--rtol '%s': expected a tolerance > 0", v);
   } else if (strcmp(a, "--atol") == 0) {
-    if (!parse_real(v, &o->atol) || !(o->atol > 0.0))
+    if (!mpm_app_arg_real(v, &o->atol) || !(o->atol > 0.0))
       return usage("--atol '%s': expected a tolerance > 0", v);
   } else if (strcmp(a, "--every") == 0) {
     double e;
-    if (!parse_real(v, &e) || e < 1.0 || e != floor(e) || e > 1e9)
+    if (!mpm_app_arg_real(v, &e) || e < 1.0 || e != floor(e) || e > 1e9)
       return usage("--every '%s': expected a whole number >= 1", v);
     o->every = (long)e;
   } else if (strcmp(a, "--converge") == 0) {
@@ -249,7 +244,7 @@ static int apply_set(const char *s, mpm_config *cfg)
       for (int k = 0; mpm_material_table[k]; k++)
         fprintf(stderr, "%s %s", k ? "," : "", mpm_material_table[k]->name);
       fputs(") (see 'granmpm constitutive --help')\n", stderr);
-      return EXIT_USAGE;
+      return MPM_APP_EXIT_USAGE;
     }
     snprintf(cfg->material.model, sizeof cfg->material.model, "%s", val);
     return 0;
@@ -258,7 +253,7 @@ static int apply_set(const char *s, mpm_config *cfg)
     if (strlen(keys[i].key) != klen || strncmp(key, keys[i].key, klen) != 0)
       continue;
     double v;
-    if (!parse_real(val, &v))
+    if (!mpm_app_arg_real(val, &v))
       return usage("--set '%s': expected a number", s);
     *(double *)(void *)((char *)cfg + keys[i].off) = v;
     return 0;
@@ -275,13 +270,13 @@ static int load_material(const opts *o, const mpm_material_type **mt, mpm_materi
     mpm_err err = {0};
     if (mpm_io_input_load(o->file, o->sets, o->nset, &cfg, &err) != MPM_OK) {
       fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
-      return EXIT_USAGE;
+      return MPM_APP_EXIT_USAGE;
     }
   } else {
     dk15_material(&cfg);
     for (int i = 0; i < o->nset; i++)
       if (apply_set(o->sets[i], &cfg))
-        return EXIT_USAGE;
+        return MPM_APP_EXIT_USAGE;
   }
   *mt = mpm_material_lookup(cfg.material.model);
   if (!*mt)
@@ -291,7 +286,7 @@ static int load_material(const opts *o, const mpm_material_type **mt, mpm_materi
   if ((*mt)->check && (*mt)->check(par, &err) != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s%s%s\n", o->file ? o->file : "",
             o->file ? ": " : "", err.msg);
-    return EXIT_USAGE;
+    return MPM_APP_EXIT_USAGE;
   }
   if (!o->no_ref && strcmp((*mt)->name, "mu_i") != 0)
     return usage("the reference ODE is the mu(I) law; model '%s' needs --no-reference",
@@ -330,7 +325,7 @@ static int write_series(const opts *o, const mpm_history *h, const mpm_series *a
   FILE *f = o->output ? fopen(o->output, "w") : stdout;
   if (!f) {
     fprintf(stderr, "granmpm constitutive: %s: cannot open for writing\n", o->output);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   write_header(f, r != NULL);
   for (size_t k = 0; k < a->n; k++)
@@ -343,7 +338,7 @@ static int write_series(const opts *o, const mpm_history *h, const mpm_series *a
     bad |= fflush(f) != 0;
   if (bad) {
     fprintf(stderr, "granmpm constitutive: %s: write error\n", o->output ? o->output : "stdout");
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   return 0;
 }
@@ -366,19 +361,19 @@ static int run_pair(const problem *pb, double dt, int sample, mpm_series **ours,
   if (mpm_pointrun_update(pb->mt, &pb->par, pb->h, &pb->init, dt, sample, ours, &err)
       != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   if (!ref)
     return 0;
   *ref = mpm_pointrun_series_alloc((*ours)->n);
   if (!*ref) {
     fputs("granmpm constitutive: out of memory\n", stderr);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   memcpy((*ref)->t, (*ours)->t, (*ours)->n * sizeof *(*ours)->t);
   if (mpm_pointrun_reference_run(&pb->par, pb->h, &pb->init, &pb->ropt, *ref, &err) != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   return 0;
 }
@@ -399,7 +394,7 @@ static int write_table(const char *path, const opts *o, double err[][NCONV])
   FILE *f = fopen(path, "w");
   if (!f) {
     fprintf(stderr, "granmpm constitutive: %s: cannot open for writing\n", path);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   fputs("dt", f);
   for (int c = 0; c < NCONV; c++)
@@ -413,7 +408,7 @@ static int write_table(const char *path, const opts *o, double err[][NCONV])
   }
   if (fclose(f) != 0) {
     fprintf(stderr, "granmpm constitutive: %s: write error\n", path);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   return 0;
 }
@@ -459,7 +454,7 @@ static int run_convergence(const opts *o, const problem *pb)
   }
   print_convergence(o, err);
   if (fflush(stdout) != 0)
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   return o->table ? write_table(o->table, o, err) : 0;
 }
 
@@ -472,7 +467,7 @@ static int load_history(const opts *o, mpm_history **h)
                ? mpm_pointrun_history_dk15(h, &err) : mpm_io_history_read(o->history, h, &err);
   if (rc != MPM_OK) {
     fprintf(stderr, "granmpm constitutive: %s\n", err.msg);
-    return rc == MPM_ENOMEM ? EXIT_RUNTIME : EXIT_USAGE;
+    return rc == MPM_ENOMEM ? MPM_APP_EXIT_RUNTIME : MPM_APP_EXIT_USAGE;
   }
   return 0;
 }
@@ -482,13 +477,13 @@ static int write_history_file(const char *path, const mpm_history *h)
   FILE *f = strcmp(path, "-") == 0 ? stdout : fopen(path, "w");
   if (!f) {
     fprintf(stderr, "granmpm constitutive: %s: cannot open for writing\n", path);
-    return EXIT_RUNTIME;
+    return MPM_APP_EXIT_RUNTIME;
   }
   int bad = mpm_io_history_write(f, h) != MPM_OK;
   bad |= (f == stdout ? fflush(f) : fclose(f)) != 0;
   if (bad)
     fprintf(stderr, "granmpm constitutive: %s: write error\n", path);
-  return bad ? EXIT_RUNTIME : 0;
+  return bad ? MPM_APP_EXIT_RUNTIME : 0;
 }
 
 static void set_initial(const opts *o, problem *pb)
