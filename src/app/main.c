@@ -101,16 +101,21 @@ static int load_input(const run_opts *o, mpm_config *cfg)
 }
 
 /* A nonlocal model whose explicit diffusion of g is unstable at the planned
- * time step and substeps: a warning on stderr, not an error (MODEL.md section 5). */
+ * time step and substeps: a warning on stderr, not an error (MODEL.md section
+ * 5). The implicit diffusion has no such limit. */
 static void warn_diffusion(const char *file, const mpm_config *cfg)
 {
   const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
-  if (!t || !t->nonlocal)
+  const mpm_nonlocal_diffusion *d = mpm_nonlocal_diffusion_name(cfg->material.diffusion)
+                                        ? mpm_nonlocal_diffusion_table[cfg->material.diffusion]
+                                        : NULL;
+  if (!t || !t->nonlocal || !d || !d->stability_limited)
     return;
   double dt;
   int n_sub;
   mpm_sim_time_plan(cfg, &dt, &n_sub);
-  mpm_material_params par = {.A = cfg->material.A, .d = cfg->material.d, .t0 = cfg->material.t0};
+  mpm_material_params par;
+  mpm_material_params_from_config(&par, cfg);
   mpm_err err = {0};
   if (mpm_material_ngf_check_diffusion(&par, dt, n_sub, cfg->mesh.dx, cfg->mesh.dy, &err) != MPM_OK)
     fprintf(stderr, "granmpm: warning: %s: %s (key 'material.n_sub')\n", file, err.msg);

@@ -90,6 +90,8 @@ typedef struct mpm_config {
     int g_average;             /* NGF point shares in the unit averages, enum
                                   mpm_nonlocal_rule ("centre" | "extent") */
     double t_seed;             /* NGF: local mu(I) update while t < t_seed [s] */
+    int diffusion;             /* NGF diffusion of g, enum mpm_nonlocal_diffusion_kind
+                                  ("explicit" | "implicit") */
     int n_sub;                 /* constitutive substeps per MPM step (L fixed) */
     double dt_sub;             /* target substep [s]: n_sub = ceil(dt / dt_sub); 0: use n_sub */
     int state_density;         /* density of the state decision, enum mpm_material_density_rule

@@ -7,10 +7,12 @@
 #include <string.h>
 
 #include "bc/bc.h"
+#include "core/names.h"
 #include "io/input_internal.h"
 #include "material/density.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
+#include "nonlocal/field.h"
 #include "nonlocal/nonlocal.h"
 #include "shape/shape.h"
 
@@ -72,6 +74,7 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_MATERIAL, KT_ENUM, "p_sample", C_(material.p_sample), NK_NGF_P_SAMPLE, "point"),
     NAMED(S_MATERIAL, KT_ENUM, "g_average", C_(material.g_average), NK_NGF_G_AVERAGE, "centre"),
     NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
+    NAMED(S_MATERIAL, KT_ENUM, "diffusion", C_(material.diffusion), NK_DIFFUSION, "explicit"),
     NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
     NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
     NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
@@ -143,26 +146,21 @@ _Static_assert(sizeof mpm_io_in_keys / sizeof mpm_io_in_keys[0] == NKEYS,
 
 static const char *const fill_shape_names[] = {
   [MPM_FILL_RECTANGLE] = "rectangle", [MPM_FILL_DISC] = "disc",
-  [MPM_FILL_POLYGON] = "polygon", [MPM_FILL_POLYGON + 1] = NULL
+  [MPM_FILL_POLYGON] = "polygon",
 };
 
 static const char *const edge_names[] = {
   [MPM_OUTLET_NONE] = "none", [MPM_OUTLET_LEFT] = "left", [MPM_OUTLET_RIGHT] = "right",
-  [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top", [MPM_OUTLET_TOP + 1] = NULL
+  [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top",
 };
 
 static const char *const dilatation_names[] = {
   [MPM_DILATATION_POINT] = "point", [MPM_DILATATION_UNIT] = "unit",
-  [MPM_DILATATION_UNIT + 1] = NULL
 };
 
-static int list_index(const char *const *list, const char *s)
-{
-  for (int i = 0; list[i]; i++)
-    if (strcmp(list[i], s) == 0)
-      return i;
-  return -1;
-}
+/* Name <-> value of the config enums these tables cover. */
+#define NAME_AT(table, i) mpm_names_at(table, MPM_NAMES_COUNT(table), i)
+#define NAME_INDEX(table, s) mpm_names_index(table, MPM_NAMES_COUNT(table), s)
 
 /* The i-th allowed name of a kind, NULL past the end. */
 const char *mpm_io_in_name_at(int kind, int i)
@@ -171,17 +169,15 @@ const char *mpm_io_in_name_at(int kind, int i)
   switch (kind) {
   case NK_TOPOLOGY: return mpm_mesh_topology_name(i);
   case NK_DIAGONAL: return mpm_mesh_diagonal_name(i);
-  case NK_FILL_SHAPE: return i >= 0 && i <= MPM_FILL_POLYGON ? fill_shape_names[i] : NULL;
-  case NK_EDGE: return i >= 0 && i <= MPM_OUTLET_TOP ? edge_names[i] : NULL;
-  case NK_DILATATION: return i >= 0 && i <= MPM_DILATATION_UNIT ? dilatation_names[i] : NULL;
+  case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
+  case NK_EDGE: return NAME_AT(edge_names, i);
+  case NK_DILATATION: return NAME_AT(dilatation_names, i);
   case NK_BC: return mpm_bc_kind_name(i);
-  case NK_NGF_FORM:
-    return mpm_material_ngf_form_name(i);
-  case NK_NGF_P_SAMPLE:
-    return mpm_material_ngf_p_sample_name(i);
+  case NK_NGF_FORM: return mpm_material_ngf_form_name(i);
+  case NK_NGF_P_SAMPLE: return mpm_material_ngf_p_sample_name(i);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_name(i);
-  case NK_DENSITY:
-    return mpm_material_density_rule_name(i);
+  case NK_DENSITY: return mpm_material_density_rule_name(i);
+  case NK_DIFFUSION: return mpm_nonlocal_diffusion_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -204,16 +200,14 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_SHAPE: return mpm_shape_lookup(s) ? 0 : -1;
   case NK_MODEL: return mpm_material_lookup(s) ? 0 : -1;
   case NK_BC: return mpm_bc_kind_from_name(s);
-  case NK_FILL_SHAPE: return list_index(fill_shape_names, s);
-  case NK_NGF_FORM:
-    return mpm_material_ngf_form_from_name(s);
-  case NK_NGF_P_SAMPLE:
-    return mpm_material_ngf_p_sample_from_name(s);
+  case NK_FILL_SHAPE: return NAME_INDEX(fill_shape_names, s);
+  case NK_NGF_FORM: return mpm_material_ngf_form_from_name(s);
+  case NK_NGF_P_SAMPLE: return mpm_material_ngf_p_sample_from_name(s);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
-  case NK_DENSITY:
-    return mpm_material_density_rule_from_name(s);
-  case NK_EDGE: return list_index(edge_names, s);
-  case NK_DILATATION: return list_index(dilatation_names, s);
+  case NK_DENSITY: return mpm_material_density_rule_from_name(s);
+  case NK_DIFFUSION: return mpm_nonlocal_diffusion_from_name(s);
+  case NK_EDGE: return NAME_INDEX(edge_names, s);
+  case NK_DILATATION: return NAME_INDEX(dilatation_names, s);
   default: return -1;
   }
 }

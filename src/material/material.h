@@ -73,9 +73,17 @@ typedef struct mpm_material_type {
   void (*update)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                  mpm_mpoint *pt);
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
-   * the element fluidity of the dense points (nonlocal/nonlocal.h, dense flag
-   * from mpm_material_ngf_dense); local models ignore pt->lap. */
+   * the element fluidity of the points the model calls dense (nonlocal.h,
+   * mpm_nonlocal_field); local models ignore pt->lap. */
   int nonlocal;
+  /* Nonlocal models: 1 if a point with stress sigma_n and density rho_{n+1}
+   * contributes to the element field this step. */
+  int (*dense)(const mpm_material_params *par, mpm_sym3 sigma_n, double rho);
+  /* Models with a seeding phase: the local model run while t < par->t_seed,
+   * then the field of every dense point set once by seed(sigma, gdot_p)
+   * ([DK-silo] section 6: g = 0 is always a solution). NULL: none. */
+  const struct mpm_material_type *before_seed;
+  double (*seed)(mpm_sym3 sigma, double gdp);
 } mpm_material_type;
 
 /* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):
@@ -151,6 +159,9 @@ double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, doub
 
 /* Seeding from a local run: g = gdot_p / mu, mu = tau / p (0 if p <= 0 or tau = 0). */
 double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp);
+
+/* c = (dt/t0) A^2 d^2 [m^2]: a step dt diffuses g by c lap(g) (MODEL.md section 5). */
+double mpm_material_ngf_diffusivity(const mpm_material_params *par, double dt);
 
 /* Explicit-diffusion number (dt/n_sub) A^2 d^2 / t0 (2/dx^2 + 2/dy^2); the
  * update is stable when it is <= 1. */

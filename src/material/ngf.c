@@ -155,10 +155,15 @@ static void ngf_disconnect(mpm_sym3 D, mpm_mpoint *pt)
   pt->state = MPM_STATE_DISCONNECTED;
 }
 
+double mpm_material_ngf_diffusivity(const mpm_material_params *par, double dt)
+{
+  return dt / par->t0 * par->A * par->A * par->d * par->d;         /* (dt/t0) A^2 d^2 */
+}
+
 /* g* = max(0, g_n + (dt/t0) A^2 d^2 lap_e); NaN propagates to the stress. */
 static double ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap)
 {
-  double gs = g_n + dt / par->t0 * par->A * par->A * par->d * par->d * lap;
+  double gs = g_n + mpm_material_ngf_diffusivity(par, dt) * lap;   /* g_n + c lap */
   return gs < 0.0 ? 0.0 : gs;
 }
 
@@ -215,8 +220,7 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
 double mpm_material_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
                                          double dx, double dy)
 {
-  double D = par->A * par->A * par->d * par->d / par->t0;          /* A^2 d^2 / t0 */
-  return dt / n_sub * D * (2.0 / (dx * dx) + 2.0 / (dy * dy));
+  return mpm_material_ngf_diffusivity(par, dt / n_sub) * (2.0 / (dx * dx) + 2.0 / (dy * dy));
 }
 
 int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub,
@@ -237,8 +241,11 @@ int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, 
 const mpm_material_type mpm_material_ngf = {
   .name = "ngf",
   .description = "trans-phase nonlocal granular fluidity: Jaumann elastic, flow rule gdot_p = g mu, "
-                 "explicit diffusion and semi-implicit local update of g [DK-silo]",
+                 "diffusion of g (explicit or implicit) and semi-implicit local update of g [DK-silo]",
   .check = ngf_check,
   .update = ngf_update,
   .nonlocal = 1,
+  .dense = mpm_material_ngf_dense,
+  .before_seed = &mpm_material_mu_i,
+  .seed = mpm_material_ngf_seed,
 };

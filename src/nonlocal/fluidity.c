@@ -21,6 +21,7 @@
 
 #include "core/config.h"
 #include "core/names.h"
+#include "nonlocal/field.h"
 
 static const char *const rule_names[] = {"centre", "extent"};
 
@@ -65,6 +66,8 @@ void mpm_nonlocal_free(mpm_nonlocal *ws)
   free(ws->w);
   free(ws->dense);
   free(ws->pn);
+  if (ws->diffusion && ws->diffusion->free)
+    ws->diffusion->free(ws->diffusion_state);
   free(ws);
 }
 

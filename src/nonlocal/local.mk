@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_nonlocal.la
 libmpm_nonlocal_la_SOURCES = src/nonlocal/nonlocal.h src/nonlocal/fluidity.c \
-	src/nonlocal/implicit.h src/nonlocal/implicit.c
+	src/nonlocal/implicit.h src/nonlocal/implicit.c src/nonlocal/field.h src/nonlocal/field.c
 
 check_PROGRAMS += tests/test_nonlocal
 TESTS += tests/test_nonlocal

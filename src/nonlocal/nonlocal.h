@@ -98,6 +98,9 @@ typedef struct mpm_nonlocal {
   unsigned char *dense; /* [pcap] scratch for the caller's dense flags (fill after locate) */
   double *pn;           /* [pcap] scratch for the caller's point pressures p_n [Pa] */
   size_t pcap;          /* capacity of the per-point arrays */
+  const struct mpm_nonlocal_diffusion *diffusion;  /* solver of lap_e (field.h); NULL:
+                                                      explicit */
+  void *diffusion_state;  /* its state (the implicit factorisation), freed with ws */
 } mpm_nonlocal;
 
 /* Workspace for mesh m (set up) with room for cap points. edge[4] holds the

@@ -18,6 +18,7 @@
 #include "material/density.h"
 #include "material/material.h"
 #include "mesh/mesh.h"
+#include "nonlocal/field.h"
 #include "nonlocal/nonlocal.h"
 #include "shape/shape.h"
 

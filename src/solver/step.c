@@ -21,6 +21,7 @@
 #include "solver/solver.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -94,6 +95,8 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   const mpm_config *cfg = &s->cfg;
   int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
   int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, edge, cfg->material.g_average, s->pts->cap, err);
+  if (rc == MPM_OK)
+    rc = mpm_nonlocal_set_diffusion(s->nl, cfg->material.diffusion, err);
   if (rc != MPM_OK)
     return rc;
   return L_alloc(s, err);
@@ -649,16 +652,13 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   size_t n = P->n;
   update_density(s);
   for (int k = 0; k < s->n_sub; k++) {
-#pragma omp parallel for schedule(static)
-    for (size_t p = 0; p < n; p++) {                       /* p_n > 0, rho_{n+1} >= rho_c */
-      mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
-      nl->dense[p] = (unsigned char)mpm_material_ngf_dense(&s->par, sig, state_rho(s, p));
-      nl->pn[p] = mpm_sym3_pressure(sig);                  /* p_n */
+    *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, err);
+    if (*rc != MPM_OK) {                     /* g_e, lap_e, isp_e of the dense points */
+      char why[MPM_ERR_MSG];
+      snprintf(why, sizeof why, "%s", err ? err->msg : "");
+      mpm_err_set(err, *rc, "%s (step %ld, t = %.6g s)", why, s->step + 1, s->t + s->dt);
+      return -1;
     }
-    mpm_nonlocal_average(nl, n, P->mass, P->g, nl->dense);  /* g_e, point order */
-    mpm_nonlocal_laplacian(nl);                            /* lap_e */
-    if (s->par.p_sample == MPM_NGF_P_UNIT)
-      mpm_nonlocal_pressure(nl, n, P->mass, nl->pn, nl->dense);  /* isp_e */
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++) {
       mpm_mat3 L = stored_L(s, p);
@@ -691,19 +691,20 @@ static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm
   return bad;
 }
 
-/* NGF seeding ([DK-silo] section 6): g = 0 is always a solution, so the run
- * uses the local mu(I) update for t < t_seed and then sets g = gdot_p / mu
- * from it. Returns the model for this step. */
+/* Seeding ([DK-silo] section 6, for NGF: g = 0 is always a solution): a
+ * model with a seeding phase runs as its local model while t < t_seed, then
+ * sets the field of each dense point from that run (g = gdot_p / mu).
+ * Returns the model for this step. */
 static const mpm_material_type *seeding(mpm_sim *s)
 {
-  if (!s->mat->nonlocal || s->seeded)
+  if (!s->mat->before_seed || s->seeded)
     return s->mat;
   if (s->t < s->par.t_seed - 1e-9 * s->dt)
-    return &mpm_material_mu_i;
+    return s->mat->before_seed;
   mpm_points *P = s->pts;
   for (size_t p = 0; p < P->n; p++) {
     mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
-    P->g[p] = P->state[p] == MPM_STATE_DENSE ? mpm_material_ngf_seed(sig, P->gdp[p]) : 0.0;
+    P->g[p] = P->state[p] == MPM_STATE_DENSE ? s->mat->seed(sig, P->gdp[p]) : 0.0;
   }
   s->seeded = 1;
   return s->mat;
