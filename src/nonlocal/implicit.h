@@ -1,5 +1,5 @@
 /* implicit.h: backward-Euler diffusion of the element fluidity (docs/model.md,
- * "Implicit diffusion"; issue 15).
+ * "Implicit diffusion").
  *
  * The explicit scheme gives a point g* = g_n + c lap_e with c = k A^2 d^2,
  * k = dt_sub / t0, lap_e = L_h g_e the 5-point Laplacian with ghost rules
