@@ -15,3 +15,10 @@ tests_test_implicit_SOURCES = tests/test_implicit.c
 tests_test_implicit_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_implicit_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_mesh.la libmpm_core.la \
 	$(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
+
+check_PROGRAMS += tests/test_field
+TESTS += tests/test_field
+tests_test_field_SOURCES = tests/test_field.c
+tests_test_field_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_field_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_material.la libmpm_mesh.la \
+	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
