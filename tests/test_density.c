@@ -56,7 +56,7 @@ static void fill_units(pointset *ps, const mpm_mesh *m, int i0, int i1, int j0, 
 
 static void compute(mpm_material_density *ws, const mpm_mesh *m, int rule, pointset *ps)
 {
-  mpm_material_density_compute(ws, m, rule, ps->n, ps->x, ps->y, ps->m, ps->v, ps->rho);
+  mpm_material_density_compute(ws, m, rule, ps->n, ps->x, ps->y, NULL, ps->m, ps->v, ps->rho);
 }
 
 static mpm_material_density *density_ws(const mpm_mesh *m)

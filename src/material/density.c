@@ -76,19 +76,31 @@ int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mp
   return MPM_OK;
 }
 
+/* Unit of point p, i + nx j, from the caller's unit[] or its position; -1
+ * outside the mesh. */
+static long unit_of(const mpm_mesh *m, const int *unit, const double *x, const double *y, size_t p)
+{
+  int i, j;
+  if (unit)
+    return unit[p];
+  if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+    return -1;
+  return (long)i + (long)m->nx * j;
+}
+
 /* m_e, the point volume and the point count of every unit, in point order. */
 static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, size_t n, const double *x,
-                      const double *y, const double *mass, const double *vol)
+                      const double *y, const int *unit, const double *mass, const double *vol)
 {
   size_t nu = (size_t)ws->nx * (size_t)ws->ny;
   memset(ws->sm, 0, nu * sizeof *ws->sm);
   memset(ws->sv, 0, nu * sizeof *ws->sv);
   memset(ws->count, 0, nu * sizeof *ws->count);
   for (size_t p = 0; p < n; p++) {                    /* fixed order: thread-count free */
-    int i, j;
-    if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+    long u = unit_of(m, unit, x, y, p);
+    if (u < 0)
       continue;                                       /* leaving the mesh: not counted */
-    size_t e = (size_t)i + (size_t)ws->nx * (size_t)j;
+    size_t e = (size_t)u;
     ws->sm[e] += mass[p];                             /* m_e = sum m_p */
     ws->sv[e] += vol[p];
     ws->count[e]++;
@@ -126,26 +138,23 @@ static void mark_edges(mpm_material_density *ws, const mpm_mesh *m)
 }
 
 void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule, size_t n,
-                                  const double *x, const double *y, const double *mass,
-                                  const double *vol, double *rho)
+                                  const double *x, const double *y, const int *unit,
+                                  const double *mass, const double *vol, double *rho)
 {
   if (rule == MPM_DENSITY_POINT) {
     for (size_t p = 0; p < n; p++)
       rho[p] = mass[p] / vol[p];                      /* rho_p = m_p / V_p */
     return;
   }
-  unit_sums(ws, m, n, x, y, mass, vol);
+  unit_sums(ws, m, n, x, y, unit, mass, vol);
   if (rule == MPM_DENSITY_HYBRID)
     mark_edges(ws, m);
   const double iarea = 1.0 / ws->area;
 #pragma omp parallel for schedule(static)
   for (size_t p = 0; p < n; p++) {
-    int i, j;
-    size_t e = 0;
-    int in = mpm_mesh_unit(m, x[p], y[p], &i, &j) == MPM_OK;
-    if (in)
-      e = (size_t)i + (size_t)ws->nx * (size_t)j;
-    if (!in || (rule == MPM_DENSITY_HYBRID && ws->edge[e]))
+    long u = unit_of(m, unit, x, y, p);
+    size_t e = u < 0 ? 0 : (size_t)u;
+    if (u < 0 || (rule == MPM_DENSITY_HYBRID && ws->edge[e]))
       rho[p] = mass[p] / vol[p];                      /* local rule, eq. 3.34 */
     else if (rule == MPM_DENSITY_UNIT)
       rho[p] = ws->sm[e] / ws->sv[e];                 /* rho_u = sum m_p / sum V_p */

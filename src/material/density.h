@@ -38,10 +38,13 @@ int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mp
 void mpm_material_density_free(mpm_material_density *ws);  /* accepts NULL */
 
 /* rho[p] for the n points at (x, y) with mass and volume vol, by rule (enum
- * mpm_material_density_rule; ws may be NULL for MPM_DENSITY_POINT). A point outside the
- * mesh is not counted in any unit and gets m_p / V_p. */
-void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule, size_t n,
-                                  const double *x, const double *y, const double *mass,
-                                  const double *vol, double *rho);
+ * mpm_material_density_rule; ws may be NULL for MPM_DENSITY_POINT). unit[p]
+ * is the unit of point p, i + nx j, or -1 outside the mesh, when the caller
+ * has it (the solver's nonlocal phase: one unit index per point per step);
+ * NULL: from (x, y). A point outside the mesh is not counted in any unit and
+ * gets m_p / V_p. */
+void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule,
+                                  size_t n, const double *x, const double *y, const int *unit,
+                                  const double *mass, const double *vol, double *rho);
 
 #endif

@@ -548,13 +548,14 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
   return bad;
 }
 
-/* Element, hybrid or unit density of every point from x_{n+1}, V_{n+1}. */
-static void update_density(mpm_sim *s)
+/* Element, hybrid or unit density of every point from x_{n+1}, V_{n+1};
+ * unit: the points' units of x_{n+1} when already found (NULL: found here). */
+static void update_density(mpm_sim *s, const int *unit)
 {
   const mpm_points *P = s->pts;
   if (s->dens)
-    mpm_material_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x, P->y,
-                                 P->mass, P->vol, s->rho);
+    mpm_material_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x,
+                                 P->y, unit, P->mass, P->vol, s->rho);
 }
 
 /* L_p as stored for the substeps. */
@@ -650,7 +651,7 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   if ((*rc = mpm_sim_remove_points(s, s->t + s->dt, err)) != MPM_OK || (*rc = locate(s, err)) != MPM_OK)
     return -1;
   size_t n = P->n;
-  update_density(s);
+  update_density(s, nl->unit);  /* the units just frozen */
   for (int k = 0; k < s->n_sub; k++) {
     *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, err);
     if (*rc != MPM_OK) {                     /* g_e, lap_e, isp_e of the dense points */
@@ -681,7 +682,7 @@ static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm
   long bad = -1;
   if ((*rc = move_points(s, err)) != MPM_OK)
     return -1;
-  update_density(s);
+  update_density(s, NULL);
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = stored_L(s, p);
