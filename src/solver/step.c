@@ -6,9 +6,11 @@
  * velocity gradient) -> volume -> constitutive update -> periodic wrap.
  * The constitutive update runs in n_sub substeps of dt/n_sub with L fixed.
  * A nonlocal model (NGF, [DK-silo] section 5.2) moves the points first, freezes
- * their units, and per substep rebuilds the element g and its Laplacian from
- * the dense points before the point updates (nonlocal_phase); before t_seed
- * it runs as the local mu(I) model, then g is seeded from it (seeding).
+ * their units, and per substep has nonlocal/ rebuild the element field (the
+ * model's dense points, g_e, lap_e by the chosen diffusion solver: field.h)
+ * before the point updates (nonlocal_phase); a model with a seeding phase
+ * runs as its local model before t_seed, then seeds its field from it
+ * (seeding). The step names no model: it asks the material table.
  * The density a point's state is decided with is m / V_{n+1} by default;
  * with material.state_density = "element", "hybrid" ([D-thesis] §3.4) or "unit"
  * all points move first and the unit sums are taken from x_{n+1} before the
