@@ -174,6 +174,12 @@ START_TEST(t_errors)
   mpm_err_clear(&e);
   ck_assert_int_eq(e.code, MPM_OK);
   ck_assert_int_eq(mpm_err_set(NULL, MPM_EIO, "x"), MPM_EIO);
+  /* context put before the message from below, code replaced */
+  mpm_err_set(&e, MPM_EINVAL, "linalg: singular");
+  ck_assert_int_eq(mpm_err_prefix(&e, MPM_ESOLVE, "step %d, t = %g s", 7, 0.5), MPM_ESOLVE);
+  ck_assert_int_eq(e.code, MPM_ESOLVE);
+  ck_assert_str_eq(e.msg, "step 7, t = 0.5 s: linalg: singular");
+  ck_assert_int_eq(mpm_err_prefix(NULL, MPM_EIO, "x"), MPM_EIO);
 }
 END_TEST
 

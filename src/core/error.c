@@ -27,6 +27,20 @@ int mpm_err_set(mpm_err *err, int code, const char *fmt, ...)
   return code;
 }
 
+int mpm_err_prefix(mpm_err *err, int code, const char *fmt, ...)
+{
+  if (err) {
+    char below[MPM_ERR_MSG], context[MPM_ERR_MSG];
+    va_list ap;
+    snprintf(below, sizeof below, "%s", err->msg);
+    va_start(ap, fmt);
+    vsnprintf(context, sizeof context, fmt, ap);
+    va_end(ap);
+    mpm_err_set(err, code, "%s: %s", context, below);
+  }
+  return code;
+}
+
 void mpm_err_clear(mpm_err *err)
 {
   if (err) {

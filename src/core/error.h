@@ -39,6 +39,12 @@ const char *mpm_err_string(int code);
 int mpm_err_set(mpm_err *err, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* Put a printf-style context before err's message ("CONTEXT: message") and
+ * set its code; returns code. For a caller that adds what it knows (the
+ * step, the time) to an error from below. */
+int mpm_err_prefix(mpm_err *err, int code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
 /* Reset err to MPM_OK with an empty message. */
 void mpm_err_clear(mpm_err *err);
 

@@ -13,7 +13,6 @@
 #include "nonlocal/implicit.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 
 struct mpm_nonlocal_implicit {
@@ -192,12 +191,9 @@ int mpm_nonlocal_implicit_laplacian(mpm_nonlocal_implicit *im, mpm_nonlocal *ws,
         im->b[im->row[e]] = ws->ge[e];                 /* b = g_e */
     rc = mpm_linalg_spd_solve(im->spd, im->b, im->x, err);
   }
-  if (rc != MPM_OK) {
-    char why[MPM_ERR_MSG];
-    snprintf(why, sizeof why, "%s", err ? err->msg : "");
-    return mpm_err_set(err, rc, "nonlocal: implicit diffusion on %d filled units, c = %.6g m^2: %s",
-                       im->nf, c, why);
-  }
+  if (rc != MPM_OK)
+    return mpm_err_prefix(err, rc, "nonlocal: implicit diffusion on %d filled units, c = %.6g m^2",
+                          im->nf, c);
   for (size_t e = 0; e < im->nu; e++) {
     const int r = im->row[e];
     im->gs[e] = r >= 0 ? im->x[r] : 0.0;               /* g*_e */

@@ -23,7 +23,6 @@
 #include "solver/solver.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -657,9 +656,7 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   for (int k = 0; k < s->n_sub; k++) {
     *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, err);
     if (*rc != MPM_OK) {                     /* g_e, lap_e, isp_e of the dense points */
-      char why[MPM_ERR_MSG];
-      snprintf(why, sizeof why, "%s", err ? err->msg : "");
-      mpm_err_set(err, *rc, "%s (step %ld, t = %.6g s)", why, s->step + 1, s->t + s->dt);
+      mpm_err_prefix(err, *rc, "step %ld, t = %.6g s", s->step + 1, s->t + s->dt);
       return -1;
     }
 #pragma omp parallel for schedule(static) reduction(max : bad)
