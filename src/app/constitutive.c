@@ -159,10 +159,10 @@ static int parse_valued(const char *a, const char *v, opts *o)
     if (!mpm_app_arg_real(v, &o->atol) || !(o->atol > 0.0))
       return usage("--atol '%s': expected a tolerance > 0", v);
   } else if (strcmp(a, "--every") == 0) {
-    double e;
-    if (!mpm_app_arg_real(v, &e) || e < 1.0 || e != floor(e) || e > 1e9)
+    int e;
+    if (!mpm_app_arg_int(v, 1, 1000000000, &e))
       return usage("--every '%s': expected a whole number >= 1", v);
-    o->every = (long)e;
+    o->every = e;
   } else if (strcmp(a, "--converge") == 0) {
     o->nconv = parse_list(v, o->conv_dt, MAX_DT);
     if (o->nconv < 2)
