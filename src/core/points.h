@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "core/error.h"
+#include "core/tensor3.h"
 
 /* Point states (the `state` field). */
 enum mpm_point_state {
@@ -63,10 +64,16 @@ typedef struct mpm_points {
 #undef MPM_POINT_DECL_INT_
 } mpm_points;
 
+/* Stress of point i (plane strain: yz = zx = 0). */
+static inline mpm_sym3 mpm_points_stress(const mpm_points *pts, size_t i)
+{
+  return (mpm_sym3){pts->sxx[i], pts->syy[i], pts->szz[i], pts->sxy[i], 0.0, 0.0};
+}
+
 /* Pressure of point i: p = -(sxx + syy + szz) / 3, compression positive. */
 static inline double mpm_points_pressure(const mpm_points *pts, size_t i)
 {
-  return -(pts->sxx[i] + pts->syy[i] + pts->szz[i]) / 3.0;
+  return mpm_sym3_pressure(mpm_points_stress(pts, i));
 }
 
 /* Allocate an empty store with room for cap points (cap may be 0). */

@@ -102,7 +102,7 @@ int mpm_nonlocal_field(mpm_nonlocal *ws, const mpm_material_type *mt,
   const size_t n = P->n;
 #pragma omp parallel for schedule(static)
   for (size_t p = 0; p < n; p++) {
-    mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
+    mpm_sym3 sig = mpm_points_stress(P, p);
     double r = rho ? rho[p] : P->mass[p] / P->vol[p];              /* rho_{n+1} */
     ws->dense[p] = (unsigned char)mt->dense(par, sig, r);
     ws->pn[p] = mpm_sym3_pressure(sig);                            /* p_n */

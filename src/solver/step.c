@@ -504,7 +504,7 @@ static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, cons
 {
   mpm_points *P = s->pts;
   mpm_mpoint mp = {
-    .sigma = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0},
+    .sigma = mpm_points_stress(P, p),
     .rho = state_rho(s, p),
     .g = P->g[p], .lap = lap, .isp = isp, .gdp = P->gdp[p], .state = P->state[p],
   };
@@ -703,8 +703,8 @@ static const mpm_material_type *seeding(mpm_sim *s)
     return s->mat->before_seed;
   mpm_points *P = s->pts;
   for (size_t p = 0; p < P->n; p++) {
-    mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
-    P->g[p] = P->state[p] == MPM_STATE_DENSE ? s->mat->seed(sig, P->gdp[p]) : 0.0;
+    P->g[p] = P->state[p] == MPM_STATE_DENSE ? s->mat->seed(mpm_points_stress(P, p), P->gdp[p])
+                                              : 0.0;
   }
   s->seeded = 1;
   return s->mat;
