@@ -8,6 +8,14 @@
 #include "core/config.h"
 #include "material/material.h"
 
+/* An empty configuration: all zero, except what zero would switch on (the
+ * absorbing layer: above y = 0 would cover the whole mesh). */
+static inline void sim_config_clear(mpm_config *c)
+{
+  memset(c, 0, sizeof *c);
+  c->absorb.above = 1e9;
+}
+
 /* Material of the given model with the [DK15] Table 1 values (nu = 0.3,
  * mu_s = 0.3819, mu_2 = 0.6435, I0 = 0.279, d = 5 mm, rho_s = 2450,
  * rho_c = 1500) and NGF t0 = 1 ms; E is the test's own (small, for large

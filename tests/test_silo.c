@@ -170,7 +170,7 @@ END_TEST
  * gravity -9.8 without a ramp. */
 static void falling_config(mpm_config *c)
 {
-  memset(c, 0, sizeof *c);
+  sim_config_clear(c);
   c->mesh.nx = c->mesh.ny = 10;
   c->mesh.dx = c->mesh.dy = 0.1;
   strcpy(c->mesh.topology, "q4");

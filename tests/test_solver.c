@@ -24,7 +24,7 @@
  * ppu x ppu points of stress-free elastic material at velocity (vx, vy). */
 static void base_config(mpm_config *c, int nx, int ppu, double vx, double vy)
 {
-  memset(c, 0, sizeof *c);
+  sim_config_clear(c);
   c->mesh.nx = nx;
   c->mesh.ny = nx;
   c->mesh.dx = c->mesh.dy = 0.1;
@@ -109,6 +109,40 @@ START_TEST(t_pic_velocity_is_displacement_rate)
       ck_assert_double_le(worst, 1e-9);   /* x is O(0.1), dt 1e-4: round-off ~1e-12 / 1e-4 */
     else
       ck_assert_double_ge(worst, 0.1);
+    mpm_sim_free(s);
+  }
+}
+END_TEST
+
+/* absorb ([DK-silo] 7.1): after a step, a point at or above the line that
+ * moves up has its vy scaled by the factor; a point below it, or moving
+ * down, keeps the velocity of the same run without the layer (a free
+ * stress-free block under no gravity moves rigidly, so every point keeps its
+ * start velocity exactly). Four points at y = 0.125 and 0.175, the line at
+ * 0.15. */
+START_TEST(t_absorb_layer)
+{
+  const double factor[2] = {0.0, 0.5};
+  for (int k = 0; k < 2; k++) {
+    mpm_config c;
+    free_block_config(&c, 3, 0.1, 0.2);
+    c.absorb.above = 0.15;
+    c.absorb.factor = factor[k];
+    mpm_sim *s = NULL;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+    ck_assert_uint_eq(s->pts->n, 4);
+    for (int p = 0; p < 4; p++) {
+      s->pts->vx[p] = 0.3;
+      s->pts->vy[p] = (p & 1) ? 0.2 : -0.2;  /* up and down, in each row */
+    }
+    ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+    for (int p = 0; p < 4; p++) {
+      const int high = s->pts->y[p] >= 0.15, up = (p & 1);
+      const double vy = (p & 1) ? 0.2 : -0.2;
+      ck_assert_double_eq_tol(s->pts->vy[p], high && up ? factor[k] * vy : vy, 1e-12);
+      ck_assert_double_eq_tol(s->pts->vx[p], 0.3, 1e-12);
+    }
     mpm_sim_free(s);
   }
 }
@@ -438,6 +472,7 @@ int main(void)
   tcase_add_test(tc, t_wall_stops_flip_velocity);
   tcase_add_test(tc, t_pic_velocity_is_displacement_rate);
   tcase_add_test(tc, t_bbar_unit_dilatation);
+  tcase_add_test(tc, t_absorb_layer);
   tcase_add_test(tc, t_stop_at_rest);
   tcase_add_test(tc, t_stop_runs_to_end);
   tcase_add_test(tc, t_ngf_a0_is_mu_i);

@@ -25,7 +25,7 @@
 
 static void column_config(mpm_config *c, const char *topology, int ngf, int density)
 {
-  memset(c, 0, sizeof *c);
+  sim_config_clear(c);
   c->mesh.nx = 24;
   c->mesh.ny = 12;
   c->mesh.dx = c->mesh.dy = 0.01;

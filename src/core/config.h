@@ -141,6 +141,12 @@ typedef struct mpm_config {
     double xmin, xmax, ymin, ymax;  /* region whose mass is reported [m] */
     double m_hi, m_lo;         /* flow-rate fit between these masses [kg/m]; 0: none */
   } region;
+
+  struct {
+    double above;              /* elastic-wave absorbing layer: points at or above
+                                  this y [m] ... */
+    double factor;             /* ... have an upward velocity multiplied by this */
+  } absorb;
 } mpm_config;
 
 #endif

@@ -51,7 +51,7 @@
 
 enum section {
   S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_STOP, S_OUTPUT,
-  S_OUTLET, S_WALL, S_REMOVE, S_REGION, NSEC
+  S_OUTLET, S_WALL, S_REMOVE, S_REGION, S_ABSORB, NSEC
 };
 
 enum key_type {
@@ -92,7 +92,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 79
+#define NKEYS 81
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];

@@ -20,7 +20,8 @@
 
 const char *const mpm_io_in_sec_names[NSEC] = {"mesh",     "time", "gravity", "material",
                                                "boundary", "fill", "stop",    "output",
-                                               "outlet",   "wall", "remove",  "region"};
+                                               "outlet",   "wall", "remove",  "region",
+                                               "absorb"};
 
 #define C_(m) offsetof(mpm_config, m)
 #define F_(m) offsetof(mpm_fill_config, m)
@@ -137,6 +138,9 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_REGION, KT_REAL, "ymax", C_(region.ymax), 1e9, -1e9, 1e9, 0, "m"),
     NUM(S_REGION, KT_REAL, "m_hi", C_(region.m_hi), 0, 0, 1e9, 0, "kg/m"),
     NUM(S_REGION, KT_REAL, "m_lo", C_(region.m_lo), 0, 0, 1e9, 0, "kg/m"),
+
+    NUM(S_ABSORB, KT_REAL, "above", C_(absorb.above), 1e9, -1e9, 1e9, 0, "m"),
+    NUM(S_ABSORB, KT_REAL, "factor", C_(absorb.factor), 0, 0, 1, 0, "-"),
 };
 
 _Static_assert(sizeof mpm_io_in_keys / sizeof mpm_io_in_keys[0] == NKEYS,

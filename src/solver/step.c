@@ -520,11 +520,14 @@ static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, cons
   return isfinite(mp.sigma.xx + mp.sigma.yy + mp.sigma.zz + mp.sigma.xy);
 }
 
-/* Step 7 for point p: walls hold, periodic wrap. */
+/* Step 7 for point p: walls hold, periodic wrap, and the absorbing layer of
+ * [DK-silo] section 7.1 (upward motion high in a silo is elastic waves). */
 static void bookkeeping(mpm_sim *s, size_t p)
 {
   mpm_points *P = s->pts;
   mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p]);       /* walls hold */
+  if (P->y[p] >= s->cfg.absorb.above && P->vy[p] > 0.0)
+    P->vy[p] *= s->cfg.absorb.factor;
   if (s->mesh.periodic_x || s->mesh.periodic_y)
     mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
 }
