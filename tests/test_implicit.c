@@ -164,6 +164,8 @@ END_TEST
  * ends, -c/h^2 off it; solved by the Thomas algorithm into x. */
 static void thomas_1d(int n, double h, double c, int klo, int khi, const double *f, double *x)
 {
+  if (n < 1)
+    return;
   double *cp = malloc(n * sizeof *cp), *dp = malloc(n * sizeof *dp);
   const double off = -c / (h * h);
   for (int i = 0; i < n; i++) {
@@ -398,6 +400,70 @@ START_TEST(t_factor_reuse)
 }
 END_TEST
 
+/* An outlet opens in a no-slip floor (mpm_nonlocal_open_faces): with g_e = 1
+ * everywhere the explicit lap_e of a floor unit is 0 under an open face
+ * (free surface, Neumann) and (-1 - 1)/dy^2 under a closed one (Dirichlet);
+ * the implicit factor is redone (no new analysis: the same units) and
+ * satisfies (I - c L_h) g* = g_e with the new L_h; a floor open along its
+ * whole width gives the 1D Neumann solution. */
+START_TEST(t_open_outlet)
+{
+  const int nx = 6, ny = 5;
+  const double dx = 0.02, dy = 0.025, c = 30.0 * dx * dx;
+  mpm_mesh m = make_mesh(nx, ny, dx, dy, 0, 0);
+  int edge[4] = {MPM_BC_FRICTIONLESS, MPM_BC_FRICTIONLESS, MPM_BC_NOSLIP, MPM_BC_FREE};
+  mpm_nonlocal *ws = make_ws(&m, edge);
+  mpm_nonlocal_implicit *im = make_im(ws);
+  const size_t nu = (size_t)nx * ny;
+  for (size_t e = 0; e < nu; e++) {
+    ws->sm[e] = 1.0;
+    ws->ge[e] = 1.0;
+  }
+  mpm_nonlocal_open_faces(ws, BOTTOM, 2, 4);   /* columns 2 and 3 */
+  mpm_nonlocal_laplacian(ws);
+  for (int i = 0; i < nx; i++) {
+    const double want = i == 2 || i == 3 ? 0.0 : -2.0 / (dy * dy);
+    ck_assert_double_eq_tol(ws->lap[i], want, 1e-12 / (dy * dy));
+    ck_assert_double_eq_tol(ws->lap[i + nx], 0.0, 1e-12 / (dy * dy));
+  }
+  mpm_nonlocal_open_faces(ws, -1, 0, 0);       /* closed again */
+  solve(im, ws, c);
+  unsigned long seed = 11;
+  double *g = malloc(nu * sizeof *g);
+  for (size_t e = 0; e < nu; e++)
+    g[e] = ws->ge[e] = 1.0 + lcg(&seed);
+  mpm_nonlocal_open_faces(ws, BOTTOM, 2, 4);
+  solve(im, ws, c);
+  mpm_linalg_stats st = mpm_nonlocal_implicit_stats(im);
+  ck_assert_int_eq(st.analyses, 1);
+  ck_assert_int_eq(st.factors, 2);
+  const double *gs = mpm_nonlocal_implicit_gstar(im);
+  memcpy(ws->ge, gs, nu * sizeof *gs);
+  mpm_nonlocal_laplacian(ws);
+  double worst = 0.0;
+  for (size_t e = 0; e < nu; e++)
+    worst = fmax(worst, fabs(gs[e] - c * ws->lap[e] - g[e]) / 2.0);
+  printf("open outlet: max |(I - c L_h) g* - g_e| / max g = %.3g\n", worst);
+  ck_assert_double_le(worst, roundoff(c, dx, dy));
+  /* the whole floor open: every column is the 1D problem with Neumann ends */
+  double f[5], x[5];
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++)
+      ws->ge[i + nx * j] = f[j] = 1.0 + 0.5 * sin(0.9 * j);
+  mpm_nonlocal_open_faces(ws, BOTTOM, 0, nx);
+  solve(im, ws, c);
+  thomas_1d(ny, dy, c, 1, 1, f, x);
+  double err = 0.0;
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++)
+      err = fmax(err, fabs(gs[i + nx * j] - x[j]) / 1.5);
+  ck_assert_double_le(err, roundoff(c, dx, dy));
+  free(g);
+  mpm_nonlocal_implicit_free(im);
+  mpm_nonlocal_free(ws);
+}
+END_TEST
+
 /* No filled unit, c < 0 or not finite, another grid: errors; lap untouched;
  * the workspace still works afterwards. */
 START_TEST(t_errors)
@@ -443,6 +509,7 @@ int main(void)
   tcase_add_test(tc, t_1d_dirichlet_neumann);
   tcase_add_test(tc, t_matches_explicit_operator);
   tcase_add_test(tc, t_factor_reuse);
+  tcase_add_test(tc, t_open_outlet);
   tcase_add_test(tc, t_errors);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

@@ -151,6 +151,11 @@ START_TEST(t_outlet_masks)
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 4, 0)], both);
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 10, 0)], both);
   ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 1)], MPM_FIX_X);
+  /* the unit faces between free nodes 0 .. 3: columns 0, 1, 2 */
+  int lo = -1, hi = -1;
+  ck_assert_int_eq(mpm_bc_outlet_faces(&bc, &m, &lo, &hi), MPM_EDGE_BOTTOM);
+  ck_assert_int_eq(lo, 0);
+  ck_assert_int_eq(hi, 3);
   /* leaving below the floor: through the orifice only */
   ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.25, -1e-3), 1);
   ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.35, -1e-3), 0);

@@ -70,6 +70,12 @@ void mpm_bc_open_outlet(mpm_bc *bc);
 int mpm_bc_add_polygon(mpm_bc *bc, const mpm_mesh *m, int nv, const double *px,
                        const double *py, int kind, int *nheld, mpm_err *err);
 
+/* The unit faces of the outlet: faces lo .. hi-1 along its edge (unit
+ * columns on the bottom and top, rows on the left and right) have both end
+ * nodes in the outlet. Returns the edge (MPM_EDGE_*), or -1 with lo = hi = 0
+ * when there is no outlet. */
+int mpm_bc_outlet_faces(const mpm_bc *bc, const mpm_mesh *m, int *lo, int *hi);
+
 /* 1 if a point at (x, y) outside the mesh left through an open outlet. */
 int mpm_bc_left_through_outlet(const mpm_bc *bc, const mpm_mesh *m, double x, double y);
 

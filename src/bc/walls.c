@@ -103,6 +103,23 @@ void mpm_bc_open_outlet(mpm_bc *bc)
   }
 }
 
+int mpm_bc_outlet_faces(const mpm_bc *bc, const mpm_mesh *m, int *lo, int *hi)
+{
+  *lo = *hi = 0;
+  if (bc->out_edge < 0)
+    return -1;
+  const int vert = edge_is_vertical(bc->out_edge);
+  const int n = vert ? m->ny : m->nx;
+  const double h = vert ? m->dy : m->dx, s0 = vert ? m->y0 : m->x0;
+  for (int k = 0; k < n; k++)                    /* unit face k: nodes k and k + 1 */
+    if (in_outlet(bc, m, s0 + k * h) && in_outlet(bc, m, s0 + (k + 1) * h)) {
+      if (*hi == 0)
+        *lo = k;
+      *hi = k + 1;
+    }
+  return bc->out_edge;
+}
+
 int mpm_bc_left_through_outlet(const mpm_bc *bc, const mpm_mesh *m, double x, double y)
 {
   if (!bc->open || bc->out_edge < 0)

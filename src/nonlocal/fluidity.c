@@ -35,6 +35,14 @@ const char *mpm_nonlocal_rule_name(int rule)
   return mpm_names_at(rule_names, MPM_NAMES_COUNT(rule_names), rule);
 }
 
+void mpm_nonlocal_open_faces(mpm_nonlocal *ws, int edge, int lo, int hi)
+{
+  ws->open_edge = edge;
+  ws->open_lo = lo;
+  ws->open_hi = hi;
+  ws->ghost_stamp++;
+}
+
 int mpm_nonlocal_ghost_of_bc(int bc_kind)
 {
   switch (bc_kind) {
@@ -138,6 +146,7 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   mpm_nonlocal *ws = calloc(1, sizeof *ws);
   if (!ws)
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for the workspace");
+  ws->open_edge = -1;
   int rc = set_ghosts(ws, m, edge, err);
   if (rc != MPM_OK) {
     mpm_nonlocal_free(ws);
@@ -323,6 +332,9 @@ int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb
   else if (jj >= ws->ny)
     edge = 3;
   if (edge >= 0) {
+    const int along = edge <= 1 ? j : i;
+    if (edge == ws->open_edge && along >= ws->open_lo && along < ws->open_hi)
+      return 1;                                        /* open outlet: free surface */
     if (ws->ghost[edge] == MPM_GHOST_DIRICHLET)
       return -1;                                       /* g_ghost = -g_e: g = 0 on the face */
     if (ws->ghost[edge] == MPM_GHOST_NEUMANN)

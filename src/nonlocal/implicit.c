@@ -22,7 +22,8 @@ struct mpm_nonlocal_implicit {
   int *row;              /* [nu] row of each unit in the system, -1 when empty */
   int nf;                /* rows (filled units) */
   double c;              /* c of the factor */
-  int factored;          /* the factor holds the current rows and c */
+  int factored;          /* the factor holds the current rows, c and ghost rules */
+  unsigned stamp;        /* ghost_stamp of the workspace when factored */
   int *ti, *tj;          /* [5 nu] triplets of the lower triangle */
   double *tv;
   double *b, *x;         /* [nu] right-hand side and solution, in row order */
@@ -146,7 +147,7 @@ static size_t assemble(mpm_nonlocal_implicit *im, const mpm_nonlocal *ws, double
 static int prepare(mpm_nonlocal_implicit *im, const mpm_nonlocal *ws, double c, mpm_err *err)
 {
   const int new_set = !im->factored || !same_set(im, ws);
-  if (!new_set && c == im->c)
+  if (!new_set && c == im->c && im->stamp == ws->ghost_stamp)
     return MPM_OK;
   im->factored = 0;
   if (new_set)
@@ -160,6 +161,7 @@ static int prepare(mpm_nonlocal_implicit *im, const mpm_nonlocal *ws, double c, 
   if (rc != MPM_OK)
     return rc;
   im->c = c;
+  im->stamp = ws->ghost_stamp;
   im->factored = 1;
   return MPM_OK;
 }

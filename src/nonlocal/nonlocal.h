@@ -85,6 +85,9 @@ typedef struct mpm_nonlocal {
   double idx2, idy2;    /* 1/dx^2, 1/dy^2 [1/m^2] */
   int rule;             /* enum mpm_nonlocal_rule */
   int ghost[4];         /* left, right, bottom, top: enum mpm_nonlocal_ghost */
+  int open_edge;        /* edge with an open outlet (as ghost[]), -1: none ... */
+  int open_lo, open_hi; /* ... whose unit faces open_lo .. open_hi-1 are Neumann */
+  unsigned ghost_stamp; /* changes whenever the ghost rules do */
   double *sm;           /* [nx*ny] sum m of dense points [kg/m] */
   double *smg;          /* [nx*ny] sum m g [kg/(m s)] */
   double *ge;           /* [nx*ny] element fluidity g_e [1/s] (0 when empty) */
@@ -113,6 +116,12 @@ void mpm_nonlocal_free(mpm_nonlocal *ws);  /* accepts NULL */
 
 /* Grow the per-point arrays to at least cap points (contents not kept). */
 int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err);
+
+/* An outlet opens: the faces lo .. hi-1 of edge `edge` (left, right,
+ * bottom, top; along it, unit columns on the bottom and top, rows on the
+ * left and right) become a free surface, Neumann for g, whatever the
+ * edge's own rule. */
+void mpm_nonlocal_open_faces(mpm_nonlocal *ws, int edge, int lo, int hi);
 
 /* Ghost rule of an edge kind (enum mpm_bc_kind); -1 if unknown. */
 int mpm_nonlocal_ghost_of_bc(int bc_kind);
@@ -149,7 +158,8 @@ enum mpm_nonlocal_side { MPM_SIDE_W = 0, MPM_SIDE_E, MPM_SIDE_S, MPM_SIDE_N };
  * (i, j), either a filled neighbour, whose index i' + nx j' (periodic edges
  * wrapped) goes to *nb and 0 is returned, or a ghost g_ghost = k g_e with
  * k = +1 (Neumann: empty neighbour, free edge, frictionless or symmetry
- * wall) or k = -1 (Dirichlet: no-slip wall), and k is returned (*nb unset).
+ * wall, open outlet) or k = -1 (Dirichlet: no-slip wall), and k is returned
+ * (*nb unset).
  * On a periodic axis of two units both sides along it lead to the same
  * neighbour (the mesh allows no periodic axis of one unit). */
 int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb);

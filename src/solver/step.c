@@ -719,8 +719,14 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   if (rc != MPM_OK)
     return rc;
   if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc.open &&
-      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt)
+      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt) {
     mpm_bc_open_outlet(&s->bc);                              /* the orifice opens */
+    if (s->nl) {                                             /* a free surface for g */
+      int lo, hi;
+      const int e = mpm_bc_outlet_faces(&s->bc, &s->mesh, &lo, &hi);
+      mpm_nonlocal_open_faces(s->nl, e, lo, hi);
+    }
+  }
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
   if (s->ug && (rc = unit_gradients(s, err)) != MPM_OK)
