@@ -3,6 +3,7 @@
  * frictionless and symmetry fix the normal one. */
 #include "bc/bc.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -108,13 +109,26 @@ static int is_wall(int kind)
   return kind == MPM_BC_NOSLIP || kind == MPM_BC_FRICTIONLESS || kind == MPM_BC_SYMMETRY;
 }
 
-void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y)
+void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, double *vx,
+                  double *vy)
 {
   double xhi = m->x0 + m->lx, yhi = m->y0 + m->ly;
   if (mpm_bc_left_through_outlet(bc, m, *x, *y))
     return;                                  /* leaves through the open outlet */
-  if (*x < m->x0 && is_wall(bc->edge[MPM_EDGE_LEFT])) *x = m->x0;
-  if (*x > xhi && is_wall(bc->edge[MPM_EDGE_RIGHT])) *x = xhi;
-  if (*y < m->y0 && is_wall(bc->edge[MPM_EDGE_BOTTOM])) *y = m->y0;
-  if (*y > yhi && is_wall(bc->edge[MPM_EDGE_TOP])) *y = yhi;
+  if (*x < m->x0 && is_wall(bc->edge[MPM_EDGE_LEFT])) {
+    *x = m->x0;
+    *vx = fmax(*vx, 0.0);
+  }
+  if (*x > xhi && is_wall(bc->edge[MPM_EDGE_RIGHT])) {
+    *x = xhi;
+    *vx = fmin(*vx, 0.0);
+  }
+  if (*y < m->y0 && is_wall(bc->edge[MPM_EDGE_BOTTOM])) {
+    *y = m->y0;
+    *vy = fmax(*vy, 0.0);
+  }
+  if (*y > yhi && is_wall(bc->edge[MPM_EDGE_TOP])) {
+    *y = yhi;
+    *vy = fmin(*vy, 0.0);
+  }
 }

@@ -525,7 +525,7 @@ static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, cons
 static void bookkeeping(mpm_sim *s, size_t p)
 {
   mpm_points *P = s->pts;
-  mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p]);       /* walls hold */
+  mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p], &P->vx[p], &P->vy[p]);  /* walls hold */
   if (P->y[p] >= s->cfg.absorb.above && P->vy[p] > 0.0)
     P->vy[p] *= s->cfg.absorb.factor;
   if (s->mesh.periodic_x || s->mesh.periodic_y)
