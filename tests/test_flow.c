@@ -11,6 +11,7 @@
 
 #include "core/points.h"
 #include "diag/flow.h"
+#include "diag/jam.h"
 #include "mesh/mesh.h"
 #include "shape/shape.h"
 
@@ -102,6 +103,100 @@ START_TEST(t_flow_means)
   ck_close(f.mu, 0.3);
   ck_close(f.flow_mass, 1.0);
   mpm_points_free(pts);
+}
+END_TEST
+
+/* Mean vy of the dense points: masses 1 and 3 at vy 2 and 4, the
+ * disconnected point (vy -1) left out: (2 + 12) / 4. */
+START_TEST(t_dense_vy)
+{
+  mpm_points *pts = mpm_points_alloc(0);
+  push(pts, 0, 0.5, 0.0, 2.0, 1.0);
+  push(pts, 0, 0.25, 0.0, 4.0, 3.0);
+  size_t i = push(pts, 0, 0.75, 0.0, -1.0, 4.0);
+  pts->state[i] = MPM_STATE_DISCONNECTED;
+  ck_close(mpm_diag_dense_vy(pts), 14.0 / 4.0);
+  pts->state[0] = pts->state[1] = MPM_STATE_DISCONNECTED;
+  ck_assert(isnan(mpm_diag_dense_vy(pts)));
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* [DK-silo] 7.2 on 101 frames at t = k/100: the last tenth is the 11 frames
+ * from t = 0.9 on. vbar = 0 at t = 0 (skipped), -1 after, turning to +1 at
+ * frame kz: the crossing is halfway, at (kz - 0.5)/100. Points leave at
+ * `rate` per frame from frame 90 on (5 per frame before). */
+static mpm_jam jam_case(int kz, int rate)
+{
+  double t[101], v[101];
+  size_t n[101];
+  n[0] = 100000;
+  for (int k = 0; k <= 100; k++) {
+    t[k] = k / 100.0;
+    v[k] = k == 0 ? 0.0 : k >= kz ? 1.0 : -1.0;
+    if (k > 0)
+      n[k] = n[k - 1] - (size_t)(k >= 90 ? rate : 5);
+  }
+  mpm_jam j;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_diag_jam(101, t, v, n, &j, &err), MPM_OK);
+  ck_assert_int_eq(j.frames, 11);
+  ck_close(j.t_end, 1.0);
+  ck_close(j.leaving, rate);
+  return j;
+}
+
+START_TEST(t_jam_classes)
+{
+  mpm_jam j = jam_case(96, 0);                     /* crossing at 0.955, nothing leaves */
+  ck_close(j.t_zero, 0.955);
+  ck_assert_int_eq(j.v_vote, MPM_JAM_STATIC);
+  ck_assert_int_eq(j.n_vote, MPM_JAM_STATIC);
+  ck_assert_int_eq(j.cls, MPM_JAM_STATIC);
+  j = jam_case(91, 1);                             /* crossing at 0.905: in the last tenth; 1 <= 1 */
+  ck_assert_int_eq(j.cls, MPM_JAM_STATIC);
+  j = jam_case(200, 20);                           /* no crossing, 20 per frame */
+  ck_assert(isnan(j.t_zero));
+  ck_assert_int_eq(j.cls, MPM_JAM_FLOWING);
+  j = jam_case(30, 11);                            /* crossing at 0.295 < 0.5; 11 > 10 */
+  ck_assert_int_eq(j.cls, MPM_JAM_FLOWING);
+  j = jam_case(71, 0);                             /* crossing at 0.705: unsure */
+  ck_assert_int_eq(j.v_vote, MPM_JAM_UNSURE);
+  ck_assert_int_eq(j.n_vote, MPM_JAM_STATIC);
+  ck_assert_int_eq(j.cls, MPM_JAM_UNSURE);
+  j = jam_case(200, 10);                           /* 10 is not > 10 */
+  ck_assert_int_eq(j.v_vote, MPM_JAM_FLOWING);
+  ck_assert_int_eq(j.n_vote, MPM_JAM_UNSURE);
+  ck_assert_int_eq(j.cls, MPM_JAM_UNSURE);
+  j = jam_case(96, 20);                            /* the votes disagree */
+  ck_assert_int_eq(j.cls, MPM_JAM_UNSURE);
+  ck_assert_str_eq(mpm_diag_jam_name(MPM_JAM_STATIC), "static");
+  ck_assert_str_eq(mpm_diag_jam_name(MPM_JAM_FLOWING), "flowing");
+  ck_assert_str_eq(mpm_diag_jam_name(MPM_JAM_UNSURE), "unsure");
+}
+END_TEST
+
+/* A crossing interpolated between unequal values, frames without dense
+ * material skipped: -3 at t = 0.2, NaN at 0.3, +1 at 0.4: vbar = 0 at
+ * 0.2 + 0.2 * 3/4 = 0.35; errors for too few frames, time going back and a
+ * count that grows. */
+START_TEST(t_jam_crossing_and_errors)
+{
+  const double t[5] = {0.0, 0.1, 0.2, 0.3, 0.4};
+  const double v[5] = {0.0, -1.0, -3.0, NAN, 1.0};
+  const size_t n[5] = {10, 10, 9, 9, 9};
+  mpm_jam j;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_diag_jam(5, t, v, n, &j, &err), MPM_OK);
+  ck_close(j.t_zero, 0.35);
+  ck_assert_int_eq(j.frames, 1);                   /* t >= 0.36: the last frame only */
+  ck_assert_int_eq(mpm_diag_jam(1, t, v, n, &j, &err), MPM_EINVAL);
+  const double tb[3] = {0.0, 0.2, 0.2};
+  ck_assert_int_eq(mpm_diag_jam(3, tb, v, n, &j, &err), MPM_EINVAL);
+  ck_assert_ptr_nonnull(strstr(err.msg, "frame 2"));
+  const size_t ng[3] = {10, 9, 10};
+  ck_assert_int_eq(mpm_diag_jam(3, t, v, ng, &j, &err), MPM_EINVAL);
+  ck_assert_ptr_nonnull(strstr(err.msg, "more than"));
 }
 END_TEST
 
@@ -367,6 +462,9 @@ int main(void)
   TCase *tc = tcase_create("flow");
   tcase_add_test(tc, t_profile_bagnold_bins);
   tcase_add_test(tc, t_flow_means);
+  tcase_add_test(tc, t_dense_vy);
+  tcase_add_test(tc, t_jam_classes);
+  tcase_add_test(tc, t_jam_crossing_and_errors);
   tcase_add_test(tc, t_flow_mu_normal_deviator);
   tcase_add_test(tc, t_front_isolated);
   tcase_add_test(tc, t_heap_slope);

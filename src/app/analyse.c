@@ -1,8 +1,9 @@
 /* analyse.c: `granmpm extract` measurements of a run directory
  * (docs/diagnostics.md): a frame's velocity profile across the depth, its
  * free surface, its points with nodally smoothed pressure ([DK15] eqs.
- * 4.1-4.3), and a per-frame series of depth-averaged speed and acceleration,
- * mean mu of the flowing layer, front position and heap slope. Frames are
+ * 4.1-4.3), a per-frame series of depth-averaged speed and acceleration,
+ * mean mu of the flowing layer, front position and heap slope, and the
+ * silo classifier of [DK-silo] section 7.2 (static, flowing or unsure). Frames are
  * read back with io/frame.c; the numbers come from diag/flow.c. */
 #define _POSIX_C_SOURCE 200809L
 #include "app/analyse.h"
@@ -14,15 +15,16 @@
 
 #include "app/args.h"
 #include "diag/flow.h"
+#include "diag/jam.h"
 #include "io/io.h"
 #include "shape/shape.h"
 
-enum mode { MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES };
+enum mode { MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES, MODE_JAM };
 
 /* The options that ask for a measurement, by mode; --profile takes a value. */
 static const char *const mode_option[] = {
   [MODE_PROFILE] = "--profile", [MODE_SURFACE] = "--surface", [MODE_SMOOTH] = "--smooth",
-  [MODE_SERIES] = "--series",
+  [MODE_SERIES] = "--series", [MODE_JAM] = "--jam",
 };
 
 typedef struct opts {
@@ -99,7 +101,7 @@ static int parse_valued(const char *a, const char *v, opts *o)
 
 static int mode_of(const char *a)
 {
-  for (int m = MODE_PROFILE; m <= MODE_SERIES; m++)
+  for (int m = MODE_PROFILE; m <= MODE_JAM; m++)
     if (strcmp(a, mode_option[m]) == 0)
       return m;
   return MODE_NONE;
@@ -286,6 +288,35 @@ static int do_series(const opts *o, mpm_io_run *r, const mpm_mesh *m, mpm_err *e
   return rc;
 }
 
+/* --jam: the mean vy of the dense points and the point count of every frame,
+ * classified (diag/jam.h); one CSV row with the evidence. */
+static int do_jam(mpm_io_run *r, mpm_err *err)
+{
+  const int nf = mpm_io_run_nframes(r);
+  double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
+  size_t *n = calloc((size_t)nf + 1, sizeof *n);
+  mpm_points *pts = mpm_points_alloc(0);
+  int rc = (!t || !v || !n || !pts) ? mpm_err_set(err, MPM_ENOMEM, "out of memory") : MPM_OK;
+  for (int k = 0; rc == MPM_OK && k < nf; k++) {
+    rc = mpm_io_run_frame(r, k, pts, &t[k], err);
+    v[k] = mpm_diag_dense_vy(pts);
+    n[k] = pts->n;
+  }
+  mpm_jam j;
+  if (rc == MPM_OK)
+    rc = mpm_diag_jam((size_t)nf, t, v, n, &j, err);
+  if (rc == MPM_OK) {
+    printf("class,t_zero,t_end,velocity_vote,leaving_per_frame,outflow_vote,frames\n");
+    printf("%s,%.6g,%.6g,%s,%.6g,%s,%d\n", mpm_diag_jam_name(j.cls), j.t_zero, j.t_end,
+           mpm_diag_jam_name(j.v_vote), j.leaving, mpm_diag_jam_name(j.n_vote), nf);
+  }
+  mpm_points_free(pts);
+  free(t);
+  free(v);
+  free(n);
+  return rc;
+}
+
 int mpm_app_analyse(int argc, char **argv)
 {
   opts o;
@@ -301,13 +332,14 @@ int mpm_app_analyse(int argc, char **argv)
   int rc = pts ? mpm_io_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
   if (rc == MPM_OK)
     rc = mpm_io_run_mesh(r, &m, shape, sizeof shape, &err);
-  if (rc == MPM_OK && o.mode != MODE_SERIES)
+  if (rc == MPM_OK && o.mode != MODE_SERIES && o.mode != MODE_JAM)
     rc = mpm_io_run_frame(r, o.frame, pts, &t, &err);
   if (rc == MPM_OK) {
     switch (o.mode) {
     case MODE_PROFILE: rc = do_profile(&o, pts, &m, &err); break;
     case MODE_SURFACE: rc = do_surface(&o, pts, &m, &err); break;
     case MODE_SMOOTH: rc = do_smooth(pts, &m, shape, t, &err); break;
+    case MODE_JAM: rc = do_jam(r, &err); break;
     default: rc = do_series(&o, r, &m, &err); break;
     }
   }

@@ -39,6 +39,8 @@ static const char usage_text[] =
   "                 [--slope XA:XB|auto] [--width W]\n"
   "        measurements: velocity profile, free surface, smoothed pressure,\n"
   "        per-frame speed, acceleration, mu, front, slope (docs/diagnostics.md)\n"
+  "  extract RUNDIR --jam\n"
+  "        silo classifier of [DK-silo] 7.2: static, flowing or unsure, with evidence\n"
   "  state INPUT RUNDIR [--frame N|last]\n"
   "        nodal density projected back to the points of one frame, and the\n"
   "        state it gives (dense / disconnected), as CSV\n"

@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_diag.la
 libmpm_diag_la_SOURCES = src/diag/diag.c src/diag/diag.h src/diag/flow.c src/diag/flow.h \
-	src/diag/region.c src/diag/region.h
+	src/diag/region.c src/diag/region.h src/diag/jam.c src/diag/jam.h
 
 check_PROGRAMS += tests/test_diag tests/test_flow
 TESTS += tests/test_diag tests/test_flow
