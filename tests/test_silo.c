@@ -160,19 +160,23 @@ START_TEST(t_outlet_masks)
   ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.25, -1e-3), 1);
   ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.35, -1e-3), 0);
   double x = 0.35, y = -1e-3, vx = 0.2, vy = -3.0;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy);
+  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
   ck_assert_double_eq(y, 0.0);                                   /* held by the floor */
-  ck_assert_double_eq(vy, 0.0);                                  /* no speed into it */
+  ck_assert_double_eq(vy, -0.5);                                 /* no faster into it than the grid */
   ck_assert_double_eq(vx, 0.2);                                  /* slides on */
   x = 0.35;
   y = -1e-3;
-  vy = 0.5;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy);
-  ck_assert_double_eq(vy, 0.5);                                  /* moving off it: kept */
+  vy = -0.2;
+  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
+  ck_assert_double_eq(vy, -0.2);                                 /* slower than the grid: kept */
+  y = -1e-3;
+  vy = -3.0;
+  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, 0.3);
+  ck_assert_double_eq(vy, 0.0);                                  /* grid moving off: none into it */
   x = 0.25;
   y = -1e-3;
   vy = -3.0;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy);
+  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
   ck_assert_double_eq(y, -1e-3);                                 /* falls through */
   ck_assert_double_eq(vy, -3.0);
   mpm_bc_clear(&bc);

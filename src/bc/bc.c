@@ -110,25 +110,25 @@ static int is_wall(int kind)
 }
 
 void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, double *vx,
-                  double *vy)
+                  double *vy, double gvx, double gvy)
 {
   double xhi = m->x0 + m->lx, yhi = m->y0 + m->ly;
   if (mpm_bc_left_through_outlet(bc, m, *x, *y))
     return;                                  /* leaves through the open outlet */
   if (*x < m->x0 && is_wall(bc->edge[MPM_EDGE_LEFT])) {
     *x = m->x0;
-    *vx = fmax(*vx, 0.0);
+    *vx = fmax(*vx, fmin(gvx, 0.0));
   }
   if (*x > xhi && is_wall(bc->edge[MPM_EDGE_RIGHT])) {
     *x = xhi;
-    *vx = fmin(*vx, 0.0);
+    *vx = fmin(*vx, fmax(gvx, 0.0));
   }
   if (*y < m->y0 && is_wall(bc->edge[MPM_EDGE_BOTTOM])) {
     *y = m->y0;
-    *vy = fmax(*vy, 0.0);
+    *vy = fmax(*vy, fmin(gvy, 0.0));
   }
   if (*y > yhi && is_wall(bc->edge[MPM_EDGE_TOP])) {
     *y = yhi;
-    *vy = fmin(*vy, 0.0);
+    *vy = fmin(*vy, fmax(gvy, 0.0));
   }
 }

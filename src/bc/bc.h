@@ -44,15 +44,16 @@ void mpm_bc_clear(mpm_bc *bc);  /* frees the mask; safe on a zeroed struct */
 void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
 
 /* Move a point that crossed a wall edge (no-slip, frictionless, symmetry)
- * back onto it, and drop the part of its velocity (vx, vy) that points into
- * that wall. Positions are advanced with interpolated grid velocity, which
- * near a wall can carry a point a fraction of a step past it (next to an
- * open outlet, where the nearest node is free, every step); without the
- * velocity part a point held there would keep gathering speed into the
- * wall. Free edges are left alone (leaving through them is an error for the
+ * back onto it, and let its velocity (vx, vy) point into that wall no faster
+ * than the grid velocity (gvx, gvy) that carried it there. Positions are
+ * advanced with interpolated grid velocity, which near a wall can carry a
+ * point a fraction of a step past it (next to an open outlet, where the
+ * nearest node is free, every step); FLIP would otherwise keep adding the
+ * free node's acceleration to a point that stands still, without bound.
+ * Free edges are left alone (leaving through them is an error for the
  * caller). */
 void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, double *vx,
-                  double *vy);
+                  double *vy, double gvx, double gvy);
 
 /* Outlet: the nodes of edge e (MPM_EDGE_*) whose coordinate along the edge
  * lies in [from, to] (ends included) become a wall of kind `closed` (noslip

@@ -443,7 +443,7 @@ static void grid_phase(mpm_sim *s, double bx, double by)
  * velocity sum S v_i when time.flip < 1); x_p += dt sum S v_i;
  * L_p = sum v_i (x) gradS (its in-plane part; L is zero otherwise);
  * V_p *= exp(dt tr L_p). */
-static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
+static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L, double vgrid[2])
 {
   mpm_points *P = s->pts;
   const mpm_shape_stencil *st = s->st;
@@ -482,6 +482,8 @@ static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L)
   P->vy[p] = fl * (P->vy[p] + dt * ay) + (1.0 - fl) * vy;
   P->x[p] += dt * vx;
   P->y[p] += dt * vy;
+  vgrid[0] = vx;
+  vgrid[1] = vy;
   P->vol[p] *= exp(dt * (lxx + lyy));                     /* V *= exp(dt tr L) */
   L->m[0][0] = lxx;
   L->m[0][1] = lxy;
@@ -520,12 +522,22 @@ static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, cons
   return isfinite(mp.sigma.xx + mp.sigma.yy + mp.sigma.zz + mp.sigma.xy);
 }
 
-/* Step 7 for point p: walls hold, periodic wrap, and the absorbing layer of
- * [DK-silo] section 7.1 (upward motion high in a silo is elastic waves). */
-static void bookkeeping(mpm_sim *s, size_t p)
+/* Step 7 for point p, moved by the grid velocity vgrid: walls hold, periodic
+ * wrap, and the absorbing layer of [DK-silo] section 7.1 (upward motion high
+ * in a silo is elastic waves). */
+static void bookkeeping(mpm_sim *s, size_t p, const double vgrid[2])
 {
   mpm_points *P = s->pts;
-  mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p], &P->vx[p], &P->vy[p]);  /* walls hold */
+  /* Walls hold. A disconnected point is a free particle: nothing but the
+   * wall stops it, so its velocity into the wall is limited to the grid's.
+   * A dense one keeps its FLIP velocity, whose wall part the held nodes'
+   * a_i already take back (step 3). */
+  double vx = P->vx[p], vy = P->vy[p];
+  mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p], &vx, &vy, vgrid[0], vgrid[1]);
+  if (P->state[p] != MPM_STATE_DENSE) {
+    P->vx[p] = vx;
+    P->vy[p] = vy;
+  }
   if (P->y[p] >= s->cfg.absorb.above && P->vy[p] > 0.0)
     P->vy[p] *= s->cfg.absorb.factor;
   if (s->mesh.periodic_x || s->mesh.periodic_y)
@@ -544,10 +556,11 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = {{{0.0}}};
-    grid_to_point(s, p, &L);
+    double vgrid[2];
+    grid_to_point(s, p, &L, vgrid);
     if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0, 0.0))
       bad = (long)p > bad ? (long)p : bad;
-    bookkeeping(s, p);
+    bookkeeping(s, p, vgrid);
   }
   return bad;
 }
@@ -609,12 +622,13 @@ static int move_points(mpm_sim *s, mpm_err *err)
 #pragma omp parallel for schedule(static)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = {{{0.0}}};
-    grid_to_point(s, p, &L);
+    double vgrid[2];
+    grid_to_point(s, p, &L, vgrid);
     s->lxx[p] = L.m[0][0];
     s->lxy[p] = L.m[0][1];
     s->lyx[p] = L.m[1][0];
     s->lyy[p] = L.m[1][1];
-    bookkeeping(s, p);
+    bookkeeping(s, p, vgrid);
   }
   return MPM_OK;
 }
