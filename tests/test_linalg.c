@@ -3,7 +3,7 @@
  * given by one triangle in mixed order with duplicates summed; the analysis
  * and the factorisation are done only when asked, and counted; a symmetric
  * matrix that is not positive definite but regular is solved through the
- * LU fallback, which is reported with the column where Cholesky stopped; a
+ * QR fallback, which is reported with the column where Cholesky stopped; a
  * singular matrix (exactly, or the singular 1D Neumann Laplacian) and an
  * empty or non-finite system are errors that name the size, never a crash. */
 #include <check.h>
@@ -170,7 +170,7 @@ START_TEST(t_reuse_counts)
 }
 END_TEST
 
-/* Symmetric, regular, indefinite: Cholesky stops, LU solves, the flag says
+/* Symmetric, regular, indefinite: Cholesky stops, QR solves, the flag says
  * so; SPD values on the same pattern afterwards go back to Cholesky. */
 START_TEST(t_indefinite_fallback)
 {
@@ -193,7 +193,7 @@ START_TEST(t_indefinite_fallback)
   ck_assert(st.failed_col >= 0 && st.failed_col < n);
   ck_assert_int_eq(mpm_linalg_spd_solve(s, b, x, &err), MPM_OK);
   double r = rel_residual(&t, n, x, b);
-  ck_assert_msg(r < 10 * DBL_EPSILON, "LU relative residual %g", r);
+  ck_assert_msg(r < 10 * DBL_EPSILON, "QR relative residual %g", r);
   trip_free(&t);
   t = grid_matrix(m, 0.5);
   ck_assert_int_eq(mpm_linalg_spd_set(s, n, t.n, t.r, t.c, t.v, &err), MPM_OK);

@@ -1,10 +1,11 @@
 /* linalg.c: sparse SPD solves with CHOLMOD (simplicial LL', AMD ordering)
- * and a CSparse LU fallback (see linalg.h).
+ * and a CSparse QR fallback (see linalg.h).
  *
  *   A = L L' (P A P' with the AMD permutation P): analyse once per pattern,
  *   factor once per set of values, then x = P' L'^-1 L^-1 P b per solve.
- *   Fallback where Cholesky stops: A(:, q) = P_r' L U (partial pivoting,
- *   AMD on A + A'), x = q U^-1 L^-1 P_r b.
+ *   Fallback where Cholesky stops: P_r A(:, q) = Q R (Householder
+ *   reflections H_0 ... H_{n-1}, Q = H_0 ... H_{n-1}; column order AMD on
+ *   A'A), x = q R^-1 Q' P_r b.
  * CHOLMOD is told not to print (print level 0, no error handler). */
 #include "linalg/linalg.h"
 
@@ -26,7 +27,7 @@ struct mpm_linalg_spd {
   int pat_n;
   int same_pattern;      /* A has the analysed pattern */
   int factored;          /* the factor holds A's current values */
-  cs_dis *S;             /* LU fallback: ordering, factor and work vector */
+  cs_dis *S;             /* QR fallback: ordering, factor and work vector */
   cs_din *N;
   double *work;
   mpm_linalg_stats st;
@@ -55,7 +56,7 @@ mpm_linalg_spd *mpm_linalg_spd_alloc(mpm_err *err)
   return s;
 }
 
-static void free_lu(mpm_linalg_spd *s)
+static void free_qr(mpm_linalg_spd *s)
 {
   s->N = cs_di_nfree(s->N);
   s->S = cs_di_sfree(s->S);
@@ -66,7 +67,7 @@ void mpm_linalg_spd_free(mpm_linalg_spd *s)
 {
   if (!s)
     return;
-  free_lu(s);
+  free_qr(s);
   free(s->work);
   free(s->pat_p);
   free(s->pat_i);
@@ -141,7 +142,7 @@ int mpm_linalg_spd_set(mpm_linalg_spd *s, int n, size_t nnz, const int *row, con
   s->A = A;
   s->same_pattern = pattern_is_analysed(s);
   s->factored = 0;
-  free_lu(s);
+  free_qr(s);
   s->st.n = n;
   return MPM_OK;
 }
@@ -183,10 +184,11 @@ int mpm_linalg_spd_analyse(mpm_linalg_spd *s, mpm_err *err)
   return MPM_OK;
 }
 
-/* LU of the full matrix (both triangles of A) with partial pivoting. On
- * failure returns MPM_ENOMEM or MPM_ESOLVE (a pivot zero or below n eps
- * times the largest) and says why in why[len]. */
-static int factor_lu(mpm_linalg_spd *s, char *why, size_t len)
+/* Householder QR of the full matrix (both triangles of A), rows and
+ * columns ordered by CSparse (AMD on A'A). On failure returns MPM_ENOMEM or
+ * MPM_ESOLVE (a diagonal entry of R zero or below n eps times the largest)
+ * and says why in why[len]. */
+static int factor_qr(mpm_linalg_spd *s, char *why, size_t len)
 {
   const cholmod_sparse *A = s->A;
   const int n = (int)A->ncol;
@@ -194,10 +196,7 @@ static int factor_lu(mpm_linalg_spd *s, char *why, size_t len)
   const double *ax = A->x;
   cs_di *T = cs_di_spalloc(n, n, 2 * ap[n] > 0 ? 2 * ap[n] : 1, 1, 1);
   cs_di *C = NULL;
-  double *w = realloc(s->work, (size_t)n * sizeof *w);
-  if (w)
-    s->work = w;
-  if (T && w) {
+  if (T) {
     for (int j = 0; j < n; j++)
       for (int k = ap[j]; k < ap[j + 1]; k++) {
         cs_di_entry(T, ai[k], j, ax[k]);       /* lower entry (i, j) */
@@ -207,37 +206,39 @@ static int factor_lu(mpm_linalg_spd *s, char *why, size_t len)
     C = cs_di_compress(T);
   }
   cs_di_spfree(T);
-  if (!C) {
-    snprintf(why, len, "no memory for the LU fallback");
+  s->S = C ? cs_di_sqr(3, C, 1) : NULL;        /* AMD on A'A, QR analysis */
+  double *w = s->S ? realloc(s->work, (size_t)s->S->m2 * sizeof *w) : NULL;
+  if (w)
+    s->work = w;
+  if (!C || !s->S || !w) {
+    cs_di_spfree(C);
+    free_qr(s);
+    snprintf(why, len, "no memory for the QR fallback");
     return MPM_ENOMEM;
   }
-  s->S = cs_di_sqr(1, C, 0);                   /* AMD on A + A' */
-  s->N = s->S ? cs_di_lu(C, s->S, 1.0) : NULL; /* partial pivoting */
+  s->N = cs_di_qr(C, s->S);
   cs_di_spfree(C);
   if (!s->N) {
-    free_lu(s);
-    snprintf(why, len, "singular for LU too (zero pivot)");
-    return MPM_ESOLVE;
+    free_qr(s);
+    snprintf(why, len, "no memory for the QR fallback");
+    return MPM_ENOMEM;
   }
-  const cs_di *U = s->N->U;
-  double umax = 0.0, umin = INFINITY;
+  const cs_di *R = s->N->U;
+  double rmax = 0.0, rmin = INFINITY;
   int kmin = 0;
   for (int k = 0; k < n; k++) {
-    double d = 0.0;
-    for (int q = U->p[k]; q < U->p[k + 1]; q++)
-      if (U->i[q] == k)
-        d = fabs(U->x[q]);                     /* u_kk */
-    umax = fmax(umax, d);
-    if (d < umin) {
-      umin = d;
+    double d = R->p[k + 1] > R->p[k] ? fabs(R->x[R->p[k + 1] - 1]) : 0.0;  /* |r_kk|, last */
+    rmax = fmax(rmax, d);
+    if (d < rmin) {
+      rmin = d;
       kmin = k;
     }
   }
-  if (!(umin > n * DBL_EPSILON * umax)) {
+  if (!(rmin > n * DBL_EPSILON * rmax)) {
     int col = s->S->q ? s->S->q[kmin] : kmin;
-    free_lu(s);
-    snprintf(why, len, "singular for LU too (pivot %.3g of largest %.3g at column %d)", umin,
-             umax, col);
+    free_qr(s);
+    snprintf(why, len, "singular for QR too (|r_kk| %.3g of largest %.3g at column %d)", rmin,
+             rmax, col);
     return MPM_ESOLVE;
   }
   s->st.fallback = 1;
@@ -250,7 +251,7 @@ int mpm_linalg_spd_factor(mpm_linalg_spd *s, mpm_err *err)
     return mpm_err_set(err, MPM_EINVAL, "linalg: factor of a pattern not analysed");
   const int n = (int)s->A->ncol;
   s->factored = 0;
-  free_lu(s);
+  free_qr(s);
   s->st.factors++;
   s->st.failed_col = -1;
   if (!cholmod_factorize(s->A, s->L, &s->cm) || s->cm.status < 0)
@@ -259,7 +260,7 @@ int mpm_linalg_spd_factor(mpm_linalg_spd *s, mpm_err *err)
     s->st.failed_col = (long)s->L->minor;     /* first column where L L' stopped */
     s->st.fallbacks++;
     char why[MPM_ERR_MSG / 2];
-    int rc = factor_lu(s, why, sizeof why);
+    int rc = factor_qr(s, why, sizeof why);
     if (rc != MPM_OK)
       return mpm_err_set(err, rc,
                          "linalg: Cholesky of a %d x %d matrix failed at column %ld (not "
@@ -274,13 +275,16 @@ int mpm_linalg_spd_factor(mpm_linalg_spd *s, mpm_err *err)
   return MPM_OK;
 }
 
-/* x = A^-1 b with the LU fallback. */
-static void solve_lu(const mpm_linalg_spd *s, int n, const double *b, double *x)
+/* x = A^-1 b with the QR fallback: x = q R^-1 Q' P_r b. */
+static void solve_qr(const mpm_linalg_spd *s, int n, const double *b, double *x)
 {
   double *w = s->work;
-  cs_di_ipvec(s->N->pinv, b, w, n);          /* w = P_r b */
-  cs_di_lsolve(s->N->L, w);                  /* L^-1 */
-  cs_di_usolve(s->N->U, w);                  /* U^-1 */
+  for (int i = 0; i < s->S->m2; i++)
+    w[i] = 0.0;                              /* fictitious rows of the analysis stay 0 */
+  cs_di_ipvec(s->S->pinv, b, w, n);          /* w = P_r b */
+  for (int k = 0; k < n; k++)
+    cs_di_happly(s->N->L, k, s->N->B[k], w); /* w = H_k w: Q' P_r b */
+  cs_di_usolve(s->N->U, w);                  /* R^-1 */
   cs_di_ipvec(s->S->q, w, x, n);             /* x = q w */
 }
 
@@ -290,7 +294,7 @@ int mpm_linalg_spd_solve(mpm_linalg_spd *s, const double *b, double *x, mpm_err 
     return mpm_err_set(err, MPM_EINVAL, "linalg: solve without a factorisation");
   const int n = (int)s->A->ncol;
   if (s->st.fallback) {
-    solve_lu(s, n, b, x);
+    solve_qr(s, n, b, x);
   } else {
     if (!s->B || (int)s->B->nrow != n) {
       cholmod_free_dense(&s->B, &s->cm);

@@ -1,5 +1,6 @@
 /* linalg.h: sparse symmetric positive definite systems A x = b, the only
- * code that talks to SuiteSparse (CHOLMOD, with CSparse as the fallback).
+ * code that talks to SuiteSparse (CHOLMOD, with a CSparse QR as the
+ * fallback, as [D-thesis] section 3.5.2 does).
  *
  * A is n x n, symmetric, given as triplets (row, column, value) of ONE
  * triangle (lower or upper, mixed freely: an entry (i, j) stands for both
@@ -13,9 +14,9 @@
  * The Cholesky factor is simplicial LL' (no BLAS, so results do not depend
  * on the thread count of a BLAS library). If A is not positive definite,
  * CHOLMOD stops at a column; the factorisation then falls back to a CSparse
- * LU with partial pivoting of the full matrix and reports it in
- * mpm_linalg_stats.fallback. If LU also finds a zero or negligible pivot
- * (|u_jj| <= n eps max_k |u_kk|) A is taken as singular: MPM_ESOLVE naming
+ * Householder QR of the full matrix and reports it in
+ * mpm_linalg_stats.fallback. If R has a zero or negligible diagonal entry
+ * (|r_jj| <= n eps max_k |r_kk|) A is taken as singular: MPM_ESOLVE naming
  * the size and the column; the caller adds where and when (step, time).
  * An empty system (n = 0) or non-finite values are errors too. */
 #ifndef MPM_LINALG_LINALG_H
@@ -31,10 +32,10 @@ typedef struct mpm_linalg_spd mpm_linalg_spd;   /* opaque */
 typedef struct mpm_linalg_stats {
   int n;              /* size of the current matrix (0: none) */
   long analyses;      /* symbolic analyses done */
-  long factors;       /* numeric factorisations done (Cholesky, with or without LU) */
-  long fallbacks;     /* of these, the ones that fell back to LU */
+  long factors;       /* numeric factorisations done (Cholesky, with or without QR) */
+  long fallbacks;     /* of these, the ones that fell back to QR */
   long solves;        /* solves done */
-  int fallback;       /* 1 when the current factor is the LU fallback */
+  int fallback;       /* 1 when the current factor is the QR fallback */
   long failed_col;    /* column where the last Cholesky stopped, -1 if it did not */
 } mpm_linalg_stats;
 
@@ -52,7 +53,7 @@ int mpm_linalg_spd_set(mpm_linalg_spd *s, int n, size_t nnz, const int *row, con
 int mpm_linalg_spd_analyse(mpm_linalg_spd *s, mpm_err *err);
 
 /* Numeric factorisation of the current values (the pattern must be the one
- * analysed: MPM_EINVAL otherwise). Cholesky, else LU (see the top). */
+ * analysed: MPM_EINVAL otherwise). Cholesky, else QR (see the top). */
 int mpm_linalg_spd_factor(mpm_linalg_spd *s, mpm_err *err);
 
 /* x = A^-1 b with the current factor (b and x of length n; they may be the

@@ -47,7 +47,7 @@ int mpm_nonlocal_implicit_laplacian(mpm_nonlocal_implicit *im, mpm_nonlocal *ws,
 const double *mpm_nonlocal_implicit_gstar(const mpm_nonlocal_implicit *im);
 
 /* Counts of analyses, factorisations and solves, and whether the last
- * factor fell back to LU (the matrix was not found positive definite). */
+ * factor fell back to QR (the matrix was not found positive definite). */
 mpm_linalg_stats mpm_nonlocal_implicit_stats(const mpm_nonlocal_implicit *im);
 
 #endif
