@@ -19,6 +19,10 @@ static void usage(FILE *f)
   fputs("usage: ngf1d chute|vchute|hstop [options]\n"
         "  --n N           grid intervals (400)\n"
         "  --form F        dk ([DK-silo], default) or hs21 (linearised [HS21])\n"
+        "  --equation E    ngf (steady NGF, default) or kk (vchute: the linear steady form\n"
+        "                  l^2 g'' = |P| (g - g_loc) of [D-thesis] eq. 2.29-2.30)\n"
+        "  --b B           sets I0 = (mu_2 - mu_s) / B (b of the linear law mu_s + b I)\n"
+        "  --local         print the local (A = 0) velocity x,v in closed form instead\n"
         "  --A --d --mu_s --mu_2 --I0 --rho_s   material (m, kg/m^3)\n"
         "  --rho --grav    bulk density [kg/m^3] (1500), gravity [m/s^2] (9.81)\n"
         "chute:  --theta DEG (27)  --H M | --H-rel R (H = R Hstop; default 3)\n"
@@ -39,7 +43,7 @@ static int parse_double(const char *s, double *out)
 }
 
 enum { O_N = 1, O_FORM, O_A, O_D, O_MUS, O_MU2, O_I0, O_RHOS, O_RHO, O_GRAV, O_THETA, O_H,
-       O_HREL, O_L, O_P, O_WALL, O_PTOP, O_HELP };
+       O_HREL, O_L, O_P, O_WALL, O_PTOP, O_EQ, O_B, O_LOCAL, O_HELP };
 
 static const struct option options[] = {
   {"n", required_argument, NULL, O_N},       {"form", required_argument, NULL, O_FORM},
@@ -50,13 +54,20 @@ static const struct option options[] = {
   {"theta", required_argument, NULL, O_THETA}, {"H", required_argument, NULL, O_H},
   {"H-rel", required_argument, NULL, O_HREL}, {"L", required_argument, NULL, O_L},
   {"p", required_argument, NULL, O_P},       {"wall", required_argument, NULL, O_WALL},
-  {"p-top", required_argument, NULL, O_PTOP},
+  {"p-top", required_argument, NULL, O_PTOP}, {"equation", required_argument, NULL, O_EQ},
+  {"b", required_argument, NULL, O_B},      {"local", no_argument, NULL, O_LOCAL},
   {"help", no_argument, NULL, O_HELP},       {NULL, 0, NULL, 0}};
 
-/* Option c with argument s into pb; *hrel collects --H-rel. 0 or -1. */
-static int apply(ngf1d_problem *pb, int c, const char *s, double *hrel)
+/* Option c with argument s into pb; *hrel collects --H-rel, *b --b. 0 or -1. */
+static int apply(ngf1d_problem *pb, int c, const char *s, double *hrel, double *b)
 {
   double v;
+  if (c == O_EQ) {
+    if (strcmp(s, "ngf") && strcmp(s, "kk"))
+      return -1;
+    pb->equation = strcmp(s, "kk") ? NGF1D_EQ_NGF : NGF1D_EQ_KK;
+    return 0;
+  }
   if (c == O_FORM) {
     if (strcmp(s, "dk") && strcmp(s, "hs21"))
       return -1;
@@ -75,7 +86,7 @@ static int apply(ngf1d_problem *pb, int c, const char *s, double *hrel)
                             [O_MU2] = &pb->mu_2, [O_I0] = &pb->I0, [O_RHOS] = &pb->rho_s,
                             [O_RHO] = &pb->rho, [O_GRAV] = &pb->grav, [O_H] = &pb->H,
                             [O_L] = &pb->L, [O_P] = &pb->p, [O_HREL] = hrel,
-                            [O_PTOP] = &pb->p_top};
+                            [O_PTOP] = &pb->p_top, [O_B] = b};
   if (c == O_N) {
     if (v != floor(v) || v < 4 || v > 1e8)
       return -1;
@@ -92,9 +103,9 @@ static int apply(ngf1d_problem *pb, int c, const char *s, double *hrel)
 
 static void print_header(const ngf1d_problem *pb)
 {
-  printf("# ngf1d %s, form %s: A %g d %g mu_s %g mu_2 %g I0 %g rho_s %g rho %g grav %g n %d\n",
+  printf("# ngf1d %s, form %s, equation %s: A %g d %g mu_s %g mu_2 %g I0 %g rho_s %g rho %g grav %g n %d\n",
          pb->geometry == NGF1D_CHUTE ? "chute" : "vchute", pb->form == NGF1D_DK ? "dk" : "hs21",
-         pb->A, pb->d, pb->mu_s, pb->mu_2, pb->I0, pb->rho_s, pb->rho, pb->grav, pb->n);
+         pb->equation == NGF1D_EQ_KK ? "kk" : "ngf", pb->A, pb->d, pb->mu_s, pb->mu_2, pb->I0, pb->rho_s, pb->rho, pb->grav, pb->n);
   if (pb->geometry == NGF1D_CHUTE)
     printf("# theta %g deg, H %.9g m, Hstop %.9g m (eq. 3.1), H/Hstop %.6g, p_top %g Pa\n",
            pb->theta * 180.0 / M_PI, pb->H, ngf1d_hstop(pb), pb->H / ngf1d_hstop(pb), pb->p_top);
@@ -131,14 +142,19 @@ int main(int argc, char **argv)
   int geom = strcmp(argv[1], "vchute") ? NGF1D_CHUTE : NGF1D_VCHUTE;
   ngf1d_problem pb;
   ngf1d_defaults(&pb, geom);
-  double hrel = 0.0;
+  double hrel = 0.0, b = 0.0;
+  int local = 0;
   int c;
   while ((c = getopt_long(argc - 1, argv + 1, "", options, NULL)) != -1) {
     if (c == O_HELP) {
       usage(stdout);
       return 0;
     }
-    if (c == '?' || apply(&pb, c, optarg, &hrel)) {
+    if (c == O_LOCAL) {
+      local = 1;
+      continue;
+    }
+    if (c == '?' || apply(&pb, c, optarg, &hrel, &b)) {
       fprintf(stderr, "ngf1d: bad option or value%s%s\n", c == '?' ? "" : ": ",
               c == '?' ? "" : optarg);
       return 2;
@@ -148,6 +164,13 @@ int main(int argc, char **argv)
     fprintf(stderr, "ngf1d: unexpected argument '%s'\n", argv[optind + 1]);
     return 2;
   }
+  if (b != 0.0) {
+    if (!(b > 0.0)) {
+      fprintf(stderr, "ngf1d: --b must be > 0\n");
+      return 2;
+    }
+    pb.I0 = (pb.mu_2 - pb.mu_s) / b;                      /* b = (mu_2 - mu_s) / I0 */
+  }
   if (geom == NGF1D_CHUTE && hrel > 0.0)
     pb.H = hrel * ngf1d_hstop(&pb);
   if (strcmp(argv[1], "hstop") == 0) {
@@ -156,6 +179,20 @@ int main(int argc, char **argv)
     return 0;
   }
   char msg[256];
+  if (local) {                  /* closed-form local profile on the grid of the solver */
+    if (ngf1d_validate(&pb, msg, sizeof msg)) {
+      fprintf(stderr, "ngf1d: %s\n", msg);
+      return 1;
+    }
+    print_header(&pb);
+    printf("# local (A = 0) profile in closed form\n%s,v\n", geom == NGF1D_CHUTE ? "z" : "x");
+    double lo = geom == NGF1D_CHUTE ? 0.0 : -0.5 * pb.L, span = geom == NGF1D_CHUTE ? pb.H : pb.L;
+    for (int i = 0; i <= pb.n; i++) {
+      double x = lo + span * i / pb.n;
+      printf("%.12g,%.12g\n", x, ngf1d_local_v(&pb, x));
+    }
+    return 0;
+  }
   ngf1d_result r;
   int rc = ngf1d_solve(&pb, NULL, &r, msg, sizeof msg);
   if (rc)

@@ -12,9 +12,11 @@
  *          g = a + b xi^2), local part 4 H^2 (P g int xi + Q g^2 int xi/sqrt(p))
  *          over the cell, the integrals exact
  *          (int xi/sqrt(p) dxi = sqrt(p)/(kappa H)).
- *   vchute: uniform x, kap = 1/h, local part |cell| (P g + Q g^2/sqrt(p)).
+ *   vchute: uniform x, kap = 1/h, local part |cell| (P g + Q g^2/sqrt(p)),
+ *          or for the kk equation |cell| |P| (g - g_loc).
  * Residual F_i = l^2 (kap_{i+1/2}(g_{i+1}-g_i) - kap_{i-1/2}(g_i-g_{i-1}))
- *              - c1_i g_i - c2_i g_i^2; Jacobian J symmetric tridiagonal.
+ *              - c1_i g_i - c2_i g_i^2 + c0_i; Jacobian J symmetric tridiagonal
+ * (the kk equation is linear: c2 = 0, and the first Newton step solves it).
  * Pseudo time: M dg/dtau = F(g), implicit Euler linearised once per step,
  *   (M/dtau - J) delta = F, g <- max(g + delta, 0),
  * with dtau kept small enough that M/dtau - J is positive definite (the step
@@ -36,7 +38,8 @@ typedef struct grid {
   int n, nu;        /* intervals, unknowns (g_0 .. g_{nu-1}) */
   double l2;        /* (A d)^2 [m^2] */
   double *kap;      /* [n] face i+1/2 */
-  double *c1, *c2;  /* [n+1] local part c1 g + c2 g^2 */
+  double *c1, *c2;  /* [n+1] local part c1 g + c2 g^2 ... */
+  double *c0;       /* [n+1] ... - c0 (the kk equation's source) */
   double *mass;     /* [n+1] pseudo-time mass */
   double *pos, *mu; /* [n+1] */
   double *vw;       /* [n+1] velocity: dv = gdot vw d(index) (trapezoid weights) */
@@ -47,6 +50,7 @@ static void grid_free(grid *G)
   free(G->kap);
   free(G->c1);
   free(G->c2);
+  free(G->c0);
   free(G->mass);
   free(G->pos);
   free(G->mu);
@@ -60,11 +64,12 @@ static int grid_alloc(grid *G, int n)
   G->kap = calloc(m, sizeof(double));
   G->c1 = calloc(m, sizeof(double));
   G->c2 = calloc(m, sizeof(double));
+  G->c0 = calloc(m, sizeof(double));
   G->mass = calloc(m, sizeof(double));
   G->pos = calloc(m, sizeof(double));
   G->mu = calloc(m, sizeof(double));
   G->vw = calloc(m, sizeof(double));
-  if (!G->kap || !G->c1 || !G->c2 || !G->mass || !G->pos || !G->mu || !G->vw) {
+  if (!G->kap || !G->c1 || !G->c2 || !G->c0 || !G->mass || !G->pos || !G->mu || !G->vw) {
     grid_free(G);
     return -1;
   }
@@ -126,6 +131,8 @@ int ngf1d_validate(const ngf1d_problem *pb, char *msg, size_t len)
     bad = "chute: need H > 0, 0 < theta < 90 degrees and p_top >= 0";
   else if (pb->geometry == NGF1D_CHUTE && pb->form == NGF1D_DK && tan(pb->theta) >= pb->mu_2)
     bad = "chute, dk form: tan(theta) must be < mu_2 (no steady flow above)";
+  else if (pb->equation == NGF1D_EQ_KK && pb->geometry != NGF1D_VCHUTE)
+    bad = "the kk equation is solved for the vertical chute only";
   else if (pb->geometry == NGF1D_VCHUTE && !(pb->L > 0.0 && pb->p > 0.0))
     bad = "vchute: need L > 0 and p > 0";
   else if (pb->geometry == NGF1D_VCHUTE && pb->form == NGF1D_DK &&
@@ -163,6 +170,34 @@ static void build_chute(const ngf1d_problem *pb, grid *G)
   G->nu = n;                                                      /* g_n = 0 at the base */
 }
 
+/* kk equation, vertical chute: c1 = int |P| dx and c0 = int |P| g_loc dx over
+ * [lo, hi] (g_loc = I_loc(mu) sqrt(p/(rho_s d^2)) / mu, mu = rho grav x / p).
+ * Both integrands have a kink at mu = mu_s, where the nodes fall anywhere:
+ * sampled at the node, that kink costs the scheme its regular second-order
+ * error (the orders under refinement scatter). So each cell is split there and
+ * each piece, smooth, integrated by 4-point Gauss-Legendre. */
+static const double gauss4_x[4] = {-0.8611363115940526, -0.3399810435848563,
+                                   0.3399810435848563, 0.8611363115940526};
+static const double gauss4_w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                   0.3478548451374538};
+
+static void kk_cell(const ngf1d_problem *pb, double lo, double hi, double *c1, double *c0)
+{
+  const double k = pb->rho * pb->grav / pb->p, xc = pb->mu_s / k;   /* mu(xc) = mu_s */
+  const double cut[3] = {lo, fmin(fmax(xc, lo), hi), hi};
+  const double sp = sqrt(pb->p) / (pb->d * sqrt(pb->rho_s));         /* sqrt(p/(rho_s d^2)) */
+  *c1 = *c0 = 0.0;
+  for (int piece = 0; piece < 2; piece++) {
+    double a = cut[piece], b = cut[piece + 1], half = 0.5 * (b - a), mid = 0.5 * (a + b);
+    for (int q = 0; q < 4 && half > 0.0; q++) {
+      double mu = k * (mid + half * gauss4_x[q]), P = fabs(coef_P(pb, mu));
+      double gloc = mu > 0.0 ? local_I(pb, mu) * sp / mu : 0.0;
+      *c1 += half * gauss4_w[q] * P;
+      *c0 += half * gauss4_w[q] * P * gloc;
+    }
+  }
+}
+
 /* Vertical chute on x = (L/2) i/n. */
 static void build_vchute(const ngf1d_problem *pb, grid *G)
 {
@@ -173,8 +208,13 @@ static void build_vchute(const ngf1d_problem *pb, grid *G)
   for (int i = 0; i <= n; i++) {
     double x = i * h, mu = pb->rho * pb->grav * x / pb->p;        /* mu = rho grav x / p */
     double w = (i == 0 || i == n) ? 0.5 * h : h;
-    G->c1[i] = coef_P(pb, mu) * w;
-    G->c2[i] = coef_Q(pb, mu) * w * isp;
+    if (pb->equation == NGF1D_EQ_KK) {                            /* |P| (g - g_loc) */
+      double lo = i == 0 ? 0.0 : x - 0.5 * h, hi = i == n ? x : x + 0.5 * h;
+      kk_cell(pb, lo, hi, &G->c1[i], &G->c0[i]);
+    } else {
+      G->c1[i] = coef_P(pb, mu) * w;
+      G->c2[i] = coef_Q(pb, mu) * w * isp;
+    }
     G->mass[i] = w;
     G->pos[i] = x;
     G->mu[i] = mu;
@@ -206,9 +246,9 @@ static double residual(const grid *G, const double *g, double *F)
     double kl = i > 0 ? G->kap[i - 1] : 0.0, kr = i < G->n ? G->kap[i] : 0.0;
     double gl = i > 0 ? g[i - 1] : 0.0, gr = i < G->n ? g[i + 1] : 0.0;
     double flux = G->l2 * (kr * (gr - g[i]) - kl * (g[i] - gl));  /* l^2 (q+ - q-) */
-    F[i] = flux - G->c1[i] * g[i] - G->c2[i] * g[i] * g[i];
+    F[i] = flux - G->c1[i] * g[i] - G->c2[i] * g[i] * g[i] + G->c0[i];
     double s = G->l2 * (kr * (fabs(gr) + fabs(g[i])) + kl * (fabs(g[i]) + fabs(gl)))
-             + fabs(G->c1[i] * g[i]) + fabs(G->c2[i]) * g[i] * g[i];
+             + fabs(G->c1[i] * g[i]) + fabs(G->c2[i]) * g[i] * g[i] + fabs(G->c0[i]);
     double r = s > 0.0 ? fabs(F[i]) / s : 0.0;
     rmax = rmax > r ? rmax : r;
   }
@@ -323,11 +363,14 @@ static double first_dtau(const grid *G)
   return 1e-3 * t;
 }
 
-/* Local solution g_loc = -P sqrt(p)/Q where mu > mu_s, as a starting guess. */
+/* Local solution g_loc = -P sqrt(p)/Q (kk: c0/c1) where mu > mu_s, as a
+ * starting guess. */
 static void local_guess(const grid *G, double *g)
 {
   for (int i = 0; i <= G->n; i++)
-    g[i] = i < G->nu && G->c1[i] < 0.0 && G->c2[i] > 0.0 ? -G->c1[i] / G->c2[i] : 0.0;
+    g[i] = i < G->nu && G->c1[i] < 0.0 && G->c2[i] > 0.0 ? -G->c1[i] / G->c2[i]
+         : i < G->nu && G->c0[i] > 0.0                  ? G->c0[i] / G->c1[i]
+                                                        : 0.0;
   if (max_of(g, G->n + 1) == 0.0)
     for (int i = 0; i < G->nu; i++)
       g[i] = 1.0;                        /* nothing flows locally: any positive start */
@@ -373,6 +416,33 @@ static int iterate(const grid *G, double *g, ngf1d_result *res, char *msg, size_
   if (rc && !msg[0])
     snprintf(msg, len, "no convergence: residual %.3g after %d iterations", res->residual,
              res->iters);
+  work_free(&w);
+  return rc;
+}
+
+/* The kk equation is linear (c2 = 0) and -J = -dF/dg is symmetric positive
+ * definite (c1 >= 0, not all 0, or a Dirichlet end): one Newton step from g
+ * solves it exactly, which the pseudo-time iteration only approaches (its
+ * stopping test is relative to the flux terms, which grow as 1/h^2). */
+static int solve_linear(const grid *G, double *g, ngf1d_result *res, char *msg, size_t len)
+{
+  work w;
+  if (work_alloc(&w, G->n)) {
+    snprintf(msg, len, "out of memory");
+    return -1;
+  }
+  int rc = 0;
+  residual(G, g, w.F);
+  system_matrix(G, g, 0.0, w.diag, w.off);                        /* -J */
+  if (!positive_definite(w.diag, w.off, G->nu) || solve_tridiag(&w, G->nu) != GSL_SUCCESS) {
+    snprintf(msg, len, "kk equation: the matrix is not positive definite");
+    rc = -1;
+  } else {
+    for (int i = 0; i < G->nu; i++)
+      g[i] += w.delta[i];
+    res->iters = 1;
+    res->residual = residual(G, g, w.F);
+  }
   work_free(&w);
   return rc;
 }
@@ -431,7 +501,8 @@ int ngf1d_solve(const ngf1d_problem *pb, const double *guess, ngf1d_result *res,
       res->g[i] = i < G.nu && guess[i] > 0.0 ? guess[i] : 0.0;
   else
     local_guess(&G, res->g);
-  int rc = iterate(&G, res->g, res, msg, len);
+  int rc = pb->equation == NGF1D_EQ_KK ? solve_linear(&G, res->g, res, msg, len)
+                                        : iterate(&G, res->g, res, msg, len);
   gsl_set_error_handler(old);
   finish(&G, res);
   grid_free(&G);

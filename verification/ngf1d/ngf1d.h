@@ -7,6 +7,13 @@
  *   P = Delta_mu (mu_s - mu)/(mu_2 - mu)  ("dk", [DK-silo] eq. 2.1), or
  *   P = mu_s - mu                         ("hs21", [HS21] eq. 6, linearised),
  * flow rule gdot = g mu.
+ * Or (--equation kk, vchute only) the steady form [D-thesis] solves, Kamrin
+ * and Koval's linear equation ([D-thesis] eq. 2.28-2.30, MODEL.md section 6):
+ *   l^2 g'' = |P(mu)| (g - g_loc),   g_loc = I_loc(mu) sqrt(p/(rho_s d^2)) / mu,
+ * I_loc the local law of the form (mu >= mu_s; 0 below). With the hs21 form
+ * this is the thesis' xi = A d / sqrt(|mu - mu_s|) and
+ * g_loc = sqrt(p/(rho_s d^2)) (mu - mu_s)/(b mu): the linearisation of the
+ * steady NGF equation about g_loc, with the same local limit.
  * Geometries:
  *   chute:  inclined layer of depth H at tilt theta; mu = tan(theta),
  *           p = p_top + rho grav cos(theta) (H - z) (p_top = 0: free surface);
@@ -21,10 +28,12 @@
 #include <stddef.h>
 
 enum ngf1d_form { NGF1D_DK = 0, NGF1D_HS21 };
+enum ngf1d_equation { NGF1D_EQ_NGF = 0, NGF1D_EQ_KK };
 enum ngf1d_geometry { NGF1D_CHUTE = 0, NGF1D_VCHUTE };
 
 typedef struct ngf1d_problem {
   int geometry, form;
+  int equation;                        /* enum ngf1d_equation */
   double A, d, mu_s, mu_2, I0, rho_s;  /* material: -, m, -, -, -, kg/m^3 */
   double rho, grav;                    /* bulk density [kg/m^3], gravity [m/s^2] */
   double theta, H;                     /* chute: tilt [rad], depth [m] */

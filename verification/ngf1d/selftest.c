@@ -1,8 +1,9 @@
 /* selftest.c: checks of the steady 1D NGF reference solver (ngf1d.h).
  *
  * 1. Second-order convergence under grid refinement: chute ([DK-silo] form,
- *    H = 3 Hstop) and vertical chute ([D-thesis] values, linearised form; and
- *    the [DK-silo] form): observed orders of max|g_n - g_2n| and max|v_n - v_2n|
+ *    H = 3 Hstop) and vertical chute ([D-thesis] values, linearised form; the
+ *    [DK-silo] form; the linear kk equation of [D-thesis] with either wall
+ *    condition): observed orders of max|g_n - g_2n| and max|v_n - v_2n|
  *    on the coarse nodes, the last two levels within 2 +- 0.1.
  * 2. Hstop ([DK-silo] eq. 3.1): the discrete threshold of the linear operator
  *    converges to it at second order; the nonlinear solver finds g = 0 only at
@@ -91,6 +92,13 @@ static void check_orders(tally *t)
   pb.p = 15000.0;
   pb.d = 0.01;
   order(t, "vchute dk, p = 15 kPa, d = 1 cm", pb, 100, lv);
+  ngf1d_defaults(&pb, NGF1D_VCHUTE);              /* [D-thesis] Table 4.1, b = 18.754 */
+  pb.equation = NGF1D_EQ_KK;
+  pb.I0 = (pb.mu_2 - pb.mu_s) / 18.754;
+  pb.wall_neumann = 1;
+  order(t, "vchute kk [D-thesis] eq. 2.29, g' = 0 at walls", pb, 100, lv);
+  pb.wall_neumann = 0;
+  order(t, "vchute kk [D-thesis] eq. 2.29, g = 0 at walls", pb, 100, lv);
 }
 
 /* ---- 2. Hstop ------------------------------------------------------------- */
