@@ -5,6 +5,9 @@
  * (a model added to the table is picked up by the loops, nothing here names
  * the models except the key lists of check 4):
  *
+ * The update that takes the fluidity of a steady solve (update_steady, MODEL.md
+ * section 6) is checked as one more model where a model has one.
+ *
  *  1. Frame indifference: the update commutes with a rotation Q about z,
  *     update(Q sigma Q^T, Q L Q^T) = Q update(sigma, L) Q^T, with g, gdot_p
  *     and the state unchanged, for states below and above yield, loose, in
@@ -155,11 +158,35 @@ static int rate_close(double a, double b, double scale)
   return fabs(a - b) <= TOL * m;
 }
 
-static mpm_mpoint run(const mpm_material_type *t, const mpm_material_params *par,
+static mpm_mpoint run(mpm_material_update_fn update, const mpm_material_params *par,
                       const mpm_mat3 *L, double dt, mpm_mpoint pt)
 {
-  t->update(par, L, dt, &pt);
+  update(par, L, dt, &pt);
   return pt;
+}
+
+/* Every update of the table: each model's update, and the update with the
+ * fluidity of a steady solve where a model has one ("<model>/steady", which
+ * reads pt->g as g_{n+1}). Checks 1-3 hold for all of them. */
+typedef struct variant {
+  char name[48];
+  mpm_material_update_fn update;
+} variant;
+
+#define NVARIANT 16
+
+static int variants(variant v[NVARIANT])
+{
+  int n = 0;
+  for (const mpm_material_type *const *t = mpm_material_table; *t && n < NVARIANT - 1; t++) {
+    snprintf(v[n].name, sizeof v[n].name, "%s", (*t)->name);
+    v[n++].update = (*t)->update;
+    if ((*t)->update_steady) {
+      snprintf(v[n].name, sizeof v[n].name, "%s/steady", (*t)->name);
+      v[n++].update = (*t)->update_steady;
+    }
+  }
+  return n;
 }
 
 /* ------------------------------------------- 1. frame indifference */
@@ -206,19 +233,21 @@ END_TEST
 
 START_TEST(t_frame_indifference)
 {
+  variant v[NVARIANT];
+  const int nv = variants(v);
   const double pi = acos(-1.0);
   const double angles[] = {0.3, pi / 6, pi / 2, 2.5, pi, -1.1, 4.0};
   const size_t ncase = sizeof obj_cases / sizeof obj_cases[0];
   const size_t nang = sizeof angles / sizeof angles[0];
-  for (const mpm_material_type *const *t = mpm_material_table; *t; t++)
+  for (const variant *t = v; t < v + nv; t++)
     for (int form = 0; mpm_material_ngf_form_name(form); form++) {
       const mpm_material_params par = table1(1e6, form);
       for (size_t c = 0; c < ncase; c++) {
         const obj_case *oc = &obj_cases[c];
         const mpm_mpoint p0 = {.sigma = oc->sigma, .rho = oc->rho, .g = oc->g,
                                .lap = oc->lap, .isp = oc->isp};
-        const mpm_mpoint a = run(*t, &par, &oc->L, oc->dt, p0);
-        ck_assert_msg(sym3_finite(a.sigma), "%s: %s: non-finite stress", (*t)->name,
+        const mpm_mpoint a = run(t->update, &par, &oc->L, oc->dt, p0);
+        ck_assert_msg(sym3_finite(a.sigma), "%s: %s: non-finite stress", t->name,
                       oc->what);
         const double ssc = fmax(sym3_maxabs(oc->sigma), sym3_maxabs(a.sigma));
         const double rsc = mat3_maxabs(&oc->L);
@@ -227,21 +256,21 @@ START_TEST(t_frame_indifference)
           mpm_mpoint pr = p0;
           pr.sigma = sym3_rotate(&Q, oc->sigma);
           const mpm_mat3 Lr = mat3_rotate(&Q, &oc->L);
-          const mpm_mpoint b = run(*t, &par, &Lr, oc->dt, pr);
+          const mpm_mpoint b = run(t->update, &par, &Lr, oc->dt, pr);
           const double e = sym3_dist(b.sigma, sym3_rotate(&Q, a.sigma));
           ck_assert_msg(e <= TOL * ssc,
                         "%s (form %s): %s, theta = %g: |sigma(Q.Q^T) - Q sigma Q^T| = %g Pa"
                         " > %g Pa",
-                        (*t)->name, mpm_material_ngf_form_name(form), oc->what, angles[k], e,
+                        t->name, mpm_material_ngf_form_name(form), oc->what, angles[k], e,
                         TOL * ssc);
           ck_assert_msg(rate_close(a.g, b.g, rsc), "%s (form %s): %s, theta = %g: g %.17g vs %.17g",
-                        (*t)->name, mpm_material_ngf_form_name(form), oc->what, angles[k], a.g,
+                        t->name, mpm_material_ngf_form_name(form), oc->what, angles[k], a.g,
                         b.g);
           ck_assert_msg(rate_close(a.gdp, b.gdp, rsc),
-                        "%s (form %s): %s, theta = %g: gdot_p %.17g vs %.17g", (*t)->name,
+                        "%s (form %s): %s, theta = %g: gdot_p %.17g vs %.17g", t->name,
                         mpm_material_ngf_form_name(form), oc->what, angles[k], a.gdp, b.gdp);
           ck_assert_msg(a.state == b.state, "%s (form %s): %s, theta = %g: state %d vs %d",
-                        (*t)->name, mpm_material_ngf_form_name(form), oc->what, angles[k], a.state,
+                        t->name, mpm_material_ngf_form_name(form), oc->what, angles[k], a.state,
                         b.state);
         }
       }
@@ -257,26 +286,28 @@ END_TEST
  * gdot_p = sqrt(2 D0:D0) = 0, and ngf sets g = 0. */
 START_TEST(t_zero_stays_zero)
 {
+  variant v[NVARIANT];
+  const int nv = variants(v);
   const double dts[] = {0.0, 1e-7, 1e-4, 1.0, 1e3};
   const double rhos[] = {RHO_D, RHO_L};
   const mpm_mat3 L = {{{0.0}}};
-  for (const mpm_material_type *const *t = mpm_material_table; *t; t++) {
+  for (const variant *t = v; t < v + nv; t++) {
     const mpm_material_params par = table1(1e6, MPM_NGF_DK);
     for (size_t i = 0; i < sizeof dts / sizeof dts[0]; i++)
       for (size_t j = 0; j < sizeof rhos / sizeof rhos[0]; j++) {
         const mpm_mpoint p0 = {.sigma = mpm_sym3_zero(), .rho = rhos[j]};
-        const mpm_mpoint a = run(*t, &par, &L, dts[i], p0);
+        const mpm_mpoint a = run(t->update, &par, &L, dts[i], p0);
         const mpm_sym3 s = a.sigma;
         ck_assert_msg(s.xx == 0.0 && s.yy == 0.0 && s.zz == 0.0 && s.xy == 0.0 &&
                           s.yz == 0.0 && s.zx == 0.0,
                       "%s: dt = %g, rho = %g: sigma = (%g %g %g %g %g %g), not 0",
-                      (*t)->name, dts[i], rhos[j], s.xx, s.yy, s.zz, s.xy, s.yz, s.zx);
+                      t->name, dts[i], rhos[j], s.xx, s.yy, s.zz, s.xy, s.yz, s.zx);
         ck_assert_msg(a.gdp == 0.0, "%s: dt = %g, rho = %g: gdot_p = %g, not 0",
-                      (*t)->name, dts[i], rhos[j], a.gdp);
-        ck_assert_msg(a.g == 0.0, "%s: dt = %g, rho = %g: g = %g, not 0", (*t)->name,
+                      t->name, dts[i], rhos[j], a.gdp);
+        ck_assert_msg(a.g == 0.0, "%s: dt = %g, rho = %g: g = %g, not 0", t->name,
                       dts[i], rhos[j], a.g);
         ck_assert_msg(a.state == MPM_STATE_DENSE || a.state == MPM_STATE_DISCONNECTED,
-                      "%s: state %d", (*t)->name, a.state);
+                      "%s: state %d", t->name, a.state);
       }
   }
 }
@@ -304,9 +335,11 @@ static const el_case el_cases[] = {
 
 START_TEST(t_elastic_step)
 {
+  variant v[NVARIANT];
+  const int nv = variants(v);
   const double dt = 1e-3, E = 1e6, nu = MPM_DK15_NU;
   const double G = E / (2.0 * (1.0 + nu)), K = E / (3.0 * (1.0 - 2.0 * nu));
-  for (const mpm_material_type *const *t = mpm_material_table; *t; t++)
+  for (const variant *t = v; t < v + nv; t++)
     for (int form = 0; mpm_material_ngf_form_name(form); form++) {
       const mpm_material_params par = table1(E, form);
       for (size_t c = 0; c < sizeof el_cases / sizeof el_cases[0]; c++) {
@@ -332,19 +365,19 @@ START_TEST(t_elastic_step)
         /* g_n = 0, lap = 0: ngf's g* = 0 and tau_tr < mu_2 p, where g = 0 is
          * kept (no spontaneous fluidisation), so tau = tau_tr */
         const mpm_mpoint p0 = {.sigma = ec->sigma, .rho = RHO_D};
-        const mpm_mpoint a = run(*t, &par, &ec->L, dt, p0);
+        const mpm_mpoint a = run(t->update, &par, &ec->L, dt, p0);
         const double e = sym3_dist(a.sigma, want), tol = TOL * sym3_maxabs(ec->sigma);
         const mpm_sym3 df = mpm_sym3_axpy(a.sigma, -1.0, want);
         ck_assert_msg(e <= tol,
                       "%s (form %s): %s: |sigma - sigma_n - dt (C:D + W s - s W)| = %g Pa"
                       " > %g Pa (got - want: xx %g yy %g zz %g xy %g yz %g zx %g)",
-                      (*t)->name, mpm_material_ngf_form_name(form), ec->what, e, tol, df.xx, df.yy,
+                      t->name, mpm_material_ngf_form_name(form), ec->what, e, tol, df.xx, df.yy,
                       df.zz, df.xy, df.yz, df.zx);
-        ck_assert_msg(a.gdp == 0.0, "%s: %s: gdot_p = %g below yield", (*t)->name,
+        ck_assert_msg(a.gdp == 0.0, "%s: %s: gdot_p = %g below yield", t->name,
                       ec->what, a.gdp);
-        ck_assert_msg(a.g == 0.0, "%s: %s: g = %g from g_n = 0, lap = 0", (*t)->name,
+        ck_assert_msg(a.g == 0.0, "%s: %s: g = %g from g_n = 0, lap = 0", t->name,
                       ec->what, a.g);
-        ck_assert_msg(a.state == MPM_STATE_DENSE, "%s: %s: state %d", (*t)->name,
+        ck_assert_msg(a.state == MPM_STATE_DENSE, "%s: %s: state %d", t->name,
                       ec->what, a.state);
       }
     }

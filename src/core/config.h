@@ -43,6 +43,7 @@ typedef struct mpm_fill_config {
   double density;              /* initial density [kg/m^3] */
   double vx, vy;               /* initial velocity [m/s] */
   int lithostatic;             /* 1: pre-stress from the weight above (K0 = nu/(1-nu)) */
+  double pressure;             /* isotropic initial pressure [Pa] (0: none) */
   char name[MPM_NAME_MAX];     /* title of the fill section ("fill NAME { ... }") */
 } mpm_fill_config;
 
@@ -90,8 +91,14 @@ typedef struct mpm_config {
     int g_average;             /* NGF point shares in the unit averages, enum
                                   mpm_nonlocal_rule ("centre" | "extent") */
     double t_seed;             /* NGF: local mu(I) update while t < t_seed [s] */
-    int diffusion;             /* NGF diffusion of g, enum mpm_nonlocal_diffusion_kind
-                                  ("explicit" | "implicit") */
+    int diffusion;             /* NGF fluidity solver, enum mpm_nonlocal_diffusion_kind
+                                  ("explicit" | "implicit" | "steady") */
+    int g_wall;                /* NGF g on no-slip walls, enum mpm_nonlocal_wall
+                                  ("dirichlet": g = 0 | "neumann": zero flux) */
+    int g_sample;              /* steady solve: how points read g, enum
+                                  mpm_nonlocal_steady_sample ("element" | "linear") */
+    int g_mass;                /* steady solve: the w S S term, enum
+                                  mpm_nonlocal_steady_mass ("consistent" | "lumped") */
     int n_sub;                 /* constitutive substeps per MPM step (L fixed) */
     double dt_sub;             /* target substep [s]: n_sub = ceil(dt / dt_sub); 0: use n_sub */
     int state_density;         /* density of the state decision, enum mpm_material_density_rule

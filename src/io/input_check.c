@@ -10,6 +10,7 @@
 #include "bc/bc.h"
 #include "io/input_internal.h"
 #include "material/material.h"
+#include "nonlocal/field.h"
 
 #define MAX_NODES 1e8  /* (nx + 1)(ny + 1) */
 #define GEOM_TOL 1e-9  /* fills may overshoot the mesh by this many units */
@@ -155,6 +156,17 @@ static int check_material(in_ctx *c, mpm_config *cfg)
     return mpm_io_in_fail_key(c, &w, "mu_s = %s >= mu_2 = %s (allowed: mu_s < mu_2)",
                               mpm_io_in_num(cfg->material.mu_s).s,
                               mpm_io_in_num(cfg->material.mu_2).s);
+  }
+  /* The steady solve is [D-thesis]'s equation, whose local law is the linear
+   * mu = mu_s + b I of the hs21 form; the dk form has no steady fluidity at
+   * mu >= mu_2. */
+  if (cfg->material.diffusion == MPM_DIFFUSION_STEADY && cfg->material.form != MPM_NGF_HS21) {
+    where w = blame(c, cfg, -1, key_index(S_MATERIAL, "form"), key_index(S_MATERIAL, "diffusion"));
+    return mpm_io_in_fail_key(c, &w,
+                              "diffusion = \"steady\" with form = \"%s\": the steady equation "
+                              "of [D-thesis] has the linear local law (allowed: form = \"hs21\", "
+                              "or diffusion = \"explicit\" or \"implicit\")",
+                              mpm_material_ngf_form_name(cfg->material.form));
   }
   return MPM_OK;
 }
@@ -312,6 +324,14 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
                               "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
                               "lithostatic = false)",
                               mpm_io_in_num(cfg->gravity.t_ramp).s);
+  }
+  int kp = key_index(S_FILL, "pressure");
+  if (f->lithostatic && f->pressure > 0.0) {
+    where w = blame(c, cfg, i, kp, kl);
+    return mpm_io_in_fail_key(c, &w,
+                              "lithostatic = true with pressure = %s Pa: two initial stresses "
+                              "(allowed: one of them)",
+                              mpm_io_in_num(f->pressure).s);
   }
   return MPM_OK;
 }

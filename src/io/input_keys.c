@@ -14,6 +14,7 @@
 #include "mesh/mesh.h"
 #include "nonlocal/field.h"
 #include "nonlocal/nonlocal.h"
+#include "nonlocal/steady.h"
 #include "shape/shape.h"
 
 /* ------------------------------------------------------------ the key table */
@@ -76,6 +77,9 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_MATERIAL, KT_ENUM, "g_average", C_(material.g_average), NK_NGF_G_AVERAGE, "centre"),
     NUM(S_MATERIAL, KT_REAL, "t_seed", C_(material.t_seed), 0, 0, 1e9, KF_T0X10, "s"),
     NAMED(S_MATERIAL, KT_ENUM, "diffusion", C_(material.diffusion), NK_DIFFUSION, "explicit"),
+    NAMED(S_MATERIAL, KT_ENUM, "g_wall", C_(material.g_wall), NK_G_WALL, "dirichlet"),
+    NAMED(S_MATERIAL, KT_ENUM, "g_sample", C_(material.g_sample), NK_G_SAMPLE, "element"),
+    NAMED(S_MATERIAL, KT_ENUM, "g_mass", C_(material.g_mass), NK_G_MASS, "consistent"),
     NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
     NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
     NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
@@ -100,6 +104,7 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
     NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
     NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
+    NUM(S_FILL, KT_REAL, "pressure", F_(pressure), 0, 0, 1e9, 0, "Pa"),
 
     NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),
     NUM(S_STOP, KT_REAL, "t_min", C_(stop.t_min), 0, 0, 1e9, 0, "s"),
@@ -182,6 +187,9 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_name(i);
   case NK_DENSITY: return mpm_material_density_rule_name(i);
   case NK_DIFFUSION: return mpm_nonlocal_diffusion_name(i);
+  case NK_G_WALL: return mpm_nonlocal_wall_name(i);
+  case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_name(i);
+  case NK_G_MASS: return mpm_nonlocal_steady_mass_name(i);
   case NK_SHAPE:
     while (j < i && mpm_shape_table[j])
       j++;
@@ -210,6 +218,9 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
   case NK_DENSITY: return mpm_material_density_rule_from_name(s);
   case NK_DIFFUSION: return mpm_nonlocal_diffusion_from_name(s);
+  case NK_G_WALL: return mpm_nonlocal_wall_from_name(s);
+  case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_from_name(s);
+  case NK_G_MASS: return mpm_nonlocal_steady_mass_from_name(s);
   case NK_EDGE: return NAME_INDEX(edge_names, s);
   case NK_DILATATION: return NAME_INDEX(dilatation_names, s);
   default: return -1;

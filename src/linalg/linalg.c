@@ -147,6 +147,11 @@ int mpm_linalg_spd_set(mpm_linalg_spd *s, int n, size_t nnz, const int *row, con
   return MPM_OK;
 }
 
+int mpm_linalg_spd_pattern_changed(const mpm_linalg_spd *s)
+{
+  return !s->A || !s->same_pattern;
+}
+
 int mpm_linalg_spd_analyse(mpm_linalg_spd *s, mpm_err *err)
 {
   if (!s->A)

@@ -49,6 +49,10 @@ void mpm_linalg_spd_free(mpm_linalg_spd *s);   /* accepts NULL */
 int mpm_linalg_spd_set(mpm_linalg_spd *s, int n, size_t nnz, const int *row, const int *col,
                        const double *val, mpm_err *err);
 
+/* 1 if the current matrix's pattern is not the one last analysed (or none
+ * was): the caller must call _analyse before _factor. */
+int mpm_linalg_spd_pattern_changed(const mpm_linalg_spd *s);
+
 /* AMD ordering and symbolic factorisation of the current pattern. */
 int mpm_linalg_spd_analyse(mpm_linalg_spd *s, mpm_err *err);
 

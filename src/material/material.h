@@ -63,6 +63,10 @@ typedef struct mpm_mpoint {
   int state;       /* enum mpm_point_state (output) */
 } mpm_mpoint;
 
+/* One constitutive update: sigma_n -> sigma_{n+1} of pt over dt with L fixed. */
+typedef void (*mpm_material_update_fn)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                                       mpm_mpoint *pt);
+
 typedef struct mpm_material_type {
   const char *name;
   const char *description;
@@ -70,8 +74,7 @@ typedef struct mpm_material_type {
   int (*check)(const mpm_material_params *par, mpm_err *err);
   /* sigma_n -> sigma_{n+1} over dt with L fixed. Never fails: physical limits
    * (p -> 0, disconnection) are states, not errors. */
-  void (*update)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                 mpm_mpoint *pt);
+  mpm_material_update_fn update;
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
    * the element fluidity of the points the model calls dense (nonlocal.h,
    * mpm_nonlocal_field); local models ignore pt->lap. */
@@ -84,6 +87,15 @@ typedef struct mpm_material_type {
    * ([DK-silo] section 6: g = 0 is always a solution). NULL: none. */
   const struct mpm_material_type *before_seed;
   double (*seed)(mpm_sym3 sigma, double gdp);
+  /* Nonlocal models with a steady form (material.diffusion = "steady",
+   * nonlocal/steady.h, MODEL.md section 6), NULL otherwise:
+   * steady_terms: the coefficient c = |F(mu)| = (A d / xi)^2 and the local
+   *   fluidity g_loc [1/s] of A^2 d^2 lap(g) = c (g - g_loc) at stress sigma
+   *   (the start of the step), both 0 where p <= 0;
+   * update_steady: the update with pt->g the fluidity the steady solve gives
+   *   the point for the step (input; g_{n+1} = pt->g when it is dense). */
+  void (*steady_terms)(const mpm_material_params *par, mpm_sym3 sigma, double *c, double *gloc);
+  mpm_material_update_fn update_steady;
 } mpm_material_type;
 
 /* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):

@@ -167,6 +167,22 @@ static double ngf_gstar(const mpm_material_params *par, double dt, double g_n, d
   return gs < 0.0 ? 0.0 : gs;
 }
 
+/* The return for fluidity x >= 0 of a dense point with trial stress s_tr,
+ * p = p_tr > 0: tau = tau_tr p / (G dt x + p) (eq. 5.5: tau_{n+1} =
+ * tau_tr - G dt gdot_p with gdot_p = x mu_{n+1}), sigma = (tau/tau_tr)
+ * sigma0_tr - p I, g = x, gdot_p = x mu_{n+1}. */
+static void ngf_return(const mpm_material_params *par, double dt, mpm_sym3 s_tr, double p,
+                       double x, mpm_mpoint *pt)
+{
+  mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
+  double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
+  double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
+  pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);     /* (tau/tau_tr) s0_tr - p I */
+  pt->g = x;
+  pt->gdp = x * r * tau_tr / p;                                    /* gdot_p = x mu(x) */
+  pt->state = MPM_STATE_DENSE;
+}
+
 static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                        mpm_mpoint *pt)
 {
@@ -184,15 +200,48 @@ static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double
     ngf_disconnect(D, pt);
     return;
   }
-  pt->state = MPM_STATE_DENSE;
-  mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
-  double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
+  double tau_tr = mpm_sym3_tau(s_tr);                              /* tau_tr */
   double gs = ngf_gstar(par, dt, g_n, pt->lap);                    /* g* */
   double x = mpm_material_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt->isp);  /* g_{n+1} */
-  double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
-  pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);     /* (tau/tau_tr) s0_tr - p I */
-  pt->g = x;
-  pt->gdp = x * r * tau_tr / p;                                    /* gdot_p = x mu(x) */
+  ngf_return(par, dt, s_tr, p, x, pt);
+}
+
+/* Steady form ([D-thesis] eq. 2.28-2.30; MODEL.md section 6), the linear
+ * local law mu = mu_s + b I of form "hs21" (input_check allows no other):
+ *   c = |mu - mu_s| = (A d / xi)^2,
+ *   g_loc = sqrt(p / (rho_s d^2)) (mu - mu_s) / (b mu) for mu > mu_s, else 0,
+ * from sigma at the start of the step, as [D-thesis] Algorithm 2. Dividing
+ * by xi^2 is never needed: the solve multiplies by c, so mu = mu_s (xi
+ * infinite) is c = 0, no guard. */
+static void ngf_steady_terms(const mpm_material_params *par, mpm_sym3 sigma, double *c,
+                             double *gloc)
+{
+  double p = mpm_sym3_pressure(sigma);
+  *c = *gloc = 0.0;
+  if (!(p > 0.0))
+    return;
+  double mu = mpm_sym3_tau(sigma) / p;
+  *c = fabs(mu - par->mu_s);                                       /* |mu - mu_s| */
+  if (mu > par->mu_s)                                              /* sqrt(p/(rho_s d^2)) (mu-mu_s)/(b mu) */
+    *gloc = sqrt(p / par->rho_s) / par->d * (mu - par->mu_s) / (par->b * mu);
+}
+
+/* The update with the fluidity of a steady solve: pt->g is g_{n+1}. */
+static void ngf_update_steady(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                              mpm_mpoint *pt)
+{
+  mpm_sym3 D = mpm_mat3_sym(L);
+  if (!(pt->rho >= par->rho_c)) {                                   /* rho_{n+1} < rho_c */
+    ngf_disconnect(D, pt);
+    return;
+  }
+  mpm_sym3 s_tr = mpm_material_trial(par, D, L, pt->sigma, dt);   /* sigma_tr */
+  double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
+  if (!(p > 0.0)) {
+    ngf_disconnect(D, pt);
+    return;
+  }
+  ngf_return(par, dt, s_tr, p, pt->g > 0.0 ? pt->g : 0.0, pt);     /* g_{n+1} = max(g, 0) */
 }
 
 static int ngf_check(const mpm_material_params *par, mpm_err *err)
@@ -248,4 +297,6 @@ const mpm_material_type mpm_material_ngf = {
   .dense = mpm_material_ngf_dense,
   .before_seed = &mpm_material_mu_i,
   .seed = mpm_material_ngf_seed,
+  .steady_terms = ngf_steady_terms,
+  .update_steady = ngf_update_steady,
 };

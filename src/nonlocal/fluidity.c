@@ -24,6 +24,17 @@
 #include "nonlocal/field.h"
 
 static const char *const rule_names[] = {"centre", "extent"};
+static const char *const wall_names[] = {"dirichlet", "neumann"};
+
+int mpm_nonlocal_wall_from_name(const char *name)
+{
+  return mpm_names_index(wall_names, MPM_NAMES_COUNT(wall_names), name);
+}
+
+const char *mpm_nonlocal_wall_name(int wall)
+{
+  return mpm_names_at(wall_names, MPM_NAMES_COUNT(wall_names), wall);
+}
 
 int mpm_nonlocal_rule_from_name(const char *name)
 {
@@ -41,6 +52,31 @@ void mpm_nonlocal_open_faces(mpm_nonlocal *ws, int edge, int lo, int hi)
   ws->open_lo = lo;
   ws->open_hi = hi;
   ws->ghost_stamp++;
+}
+
+void mpm_nonlocal_walls_neumann(mpm_nonlocal *ws)
+{
+  for (int k = 0; k < 4; k++)
+    if (ws->ghost[k] == MPM_GHOST_DIRICHLET)
+      ws->ghost[k] = MPM_GHOST_NEUMANN;
+  ws->ghost_stamp++;
+}
+
+void mpm_nonlocal_held_nodes(const mpm_nonlocal *ws, const mpm_mesh *m, unsigned char *held)
+{
+  for (int i = 0; i < m->nnodes; i++)
+    held[i] = 0;
+  for (int e = 0; e < 4; e++) {
+    if (ws->ghost[e] != MPM_GHOST_DIRICHLET)
+      continue;
+    const int len = e <= 1 ? m->ny : m->nx;            /* nodes 0 .. len along the edge */
+    for (int a = 0; a <= len; a++) {
+      if (e == ws->open_edge && a >= ws->open_lo && a <= ws->open_hi)
+        continue;                                      /* the faces lo .. hi-1 of an open outlet */
+      const int i = e == 0 ? 0 : e == 1 ? m->nx : a, j = e == 2 ? 0 : e == 3 ? m->ny : a;
+      held[mpm_mesh_node(m, i, j)] = 1;
+    }
+  }
 }
 
 int mpm_nonlocal_ghost_of_bc(int bc_kind)

@@ -123,6 +123,23 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err);
  * edge's own rule. */
 void mpm_nonlocal_open_faces(mpm_nonlocal *ws, int edge, int lo, int hi);
 
+/* material.g_wall: g on no-slip walls, 0 ([DK-silo] section 4) or zero flux
+ * ([D-thesis] App. A.2). */
+enum mpm_nonlocal_wall { MPM_NONLOCAL_WALL_DIRICHLET = 0, MPM_NONLOCAL_WALL_NEUMANN };
+
+/* "dirichlet" | "neumann" <-> enum mpm_nonlocal_wall; -1 / NULL if unknown. */
+int mpm_nonlocal_wall_from_name(const char *name);
+const char *mpm_nonlocal_wall_name(int wall);
+
+/* MPM_NONLOCAL_WALL_NEUMANN: every no-slip edge becomes zero flux for g too,
+ * instead of g = 0. */
+void mpm_nonlocal_walls_neumann(mpm_nonlocal *ws);
+
+/* The mesh nodes where g is held at 0 by the edge rules, for a solve on the
+ * nodes (steady.h): held[i] = 1 on the edges with the Dirichlet rule, except
+ * the nodes of an open outlet; 0 elsewhere. held has m->nnodes entries. */
+void mpm_nonlocal_held_nodes(const mpm_nonlocal *ws, const mpm_mesh *m, unsigned char *held);
+
 /* Ghost rule of an edge kind (enum mpm_bc_kind); -1 if unknown. */
 int mpm_nonlocal_ghost_of_bc(int bc_kind);
 

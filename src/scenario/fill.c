@@ -5,6 +5,8 @@
  * uGIMP extent r1 = (dx/2n, 0), r2 = (0, dy/2n). A lithostatic pre-stress sets
  * sigma_yy = rho g_y (y_top - y) with y_top the top of the fill above the point
  * and sigma_xx = sigma_zz = K0 sigma_yy, K0 = nu / (1 - nu) (uniaxial strain).
+ * An isotropic pre-stress (`pressure`) sets sigma = -p I ([D-thesis] ch. 4:
+ * "initially isotropically compressed").
  * The pre-stressed material is compressed consistently with the hypoelastic
  * law dp = K drho / rho: rho = rho_fill exp(p / K), so the mass grows. */
 #include "scenario/scenario.h"
@@ -109,5 +111,10 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
     return mpm_err_set(err, MPM_EINPUT, "fill: region contains no point centre at ppu = %d", n);
   if (f->lithostatic && lithostatic(pts, first, m, n, f, par, gy) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory");
+  if (f->pressure > 0.0)
+    for (size_t p = first; p < pts->n; p++) {               /* sigma = -p I */
+      pts->sxx[p] = pts->syy[p] = pts->szz[p] = -f->pressure;
+      pts->mass[p] *= exp(f->pressure / par->K);            /* rho = rho_fill exp(p/K) */
+    }
   return MPM_OK;
 }

@@ -100,6 +100,14 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
     rc = mpm_nonlocal_set_diffusion(s->nl, cfg->material.diffusion, err);
   if (rc != MPM_OK)
     return rc;
+  if (cfg->material.g_wall == MPM_NONLOCAL_WALL_NEUMANN)
+    mpm_nonlocal_walls_neumann(s->nl);
+  if (mpm_nonlocal_is_steady(s->nl)) {     /* g from the stress each step: nothing to seed */
+    if (!s->mat->steady_terms || !s->mat->update_steady)
+      return mpm_err_set(err, MPM_EINPUT, "material.diffusion = \"steady\": model '%s' has no "
+                         "steady form", s->mat->name);
+    s->seeded = 1;
+  }
   return L_alloc(s, err);
 }
 
@@ -498,10 +506,11 @@ static double state_rho(const mpm_sim *s, size_t p)
   return s->dens ? s->rho[p] : s->pts->mass[p] / s->pts->vol[p];  /* rho_{n+1} */
 }
 
-/* Step 6 for point p: n substeps of length h of model mat with L fixed; lap
- * is the Laplacian of g its unit sees and isp the p^-1/2 of its g^2 term (0:
- * its own; nonlocal models only). Returns 0 when the stress became non-finite. */
-static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, const mpm_mat3 *L,
+/* Step 6 for point p: n substeps of length h of a model's update with L
+ * fixed; lap is the Laplacian of g its unit sees and isp the p^-1/2 of its
+ * g^2 term (0: its own; nonlocal models only). Returns 0 when the stress
+ * became non-finite. */
+static int constitutive(mpm_sim *s, mpm_material_update_fn update, size_t p, const mpm_mat3 *L,
                         double h, int n, double lap, double isp)
 {
   mpm_points *P = s->pts;
@@ -511,7 +520,7 @@ static int constitutive(mpm_sim *s, const mpm_material_type *mat, size_t p, cons
     .g = P->g[p], .lap = lap, .isp = isp, .gdp = P->gdp[p], .state = P->state[p],
   };
   for (int k = 0; k < n; k++)
-    mat->update(&s->par, L, h, &mp);
+    update(&s->par, L, h, &mp);
   P->sxx[p] = mp.sigma.xx;
   P->syy[p] = mp.sigma.yy;
   P->szz[p] = mp.sigma.zz;
@@ -558,7 +567,7 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
     mpm_mat3 L = {{{0.0}}};
     double vgrid[2];
     grid_to_point(s, p, &L, vgrid);
-    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0, 0.0))
+    if (!constitutive(s, mat->update, p, &L, h, s->n_sub, 0.0, 0.0))
       bad = (long)p > bad ? (long)p : bad;
     bookkeeping(s, p, vgrid);
   }
@@ -655,13 +664,24 @@ static int locate(mpm_sim *s, mpm_err *err)
 /* Steps 4-7 for a nonlocal model ([DK-silo] section 5.2; MODEL.md section 5):
  * grid-to-point and bookkeeping first (L_p stored), membership frozen, then
  * per substep: dense flags, element g (summed in point order: no dependence on
- * the thread count), its Laplacian, and the point updates with lap_e. */
+ * the thread count), its Laplacian, and the point updates with lap_e.
+ * With the steady solver (MODEL.md section 6, [D-thesis] Algorithm 2) the
+ * field is solved once, before the points move: from the stress at the start
+ * of the step, on the nodes of the step's stencil, each point's g set to
+ * what it reads there; the substeps then run the model's update_steady. */
 static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
 {
   mpm_points *P = s->pts;
   mpm_nonlocal *nl = s->nl;
   const double h = s->dt / s->n_sub;
+  const int steady = mpm_nonlocal_is_steady(nl);
   long bad = -1;
+  if (steady && (*rc = mpm_nonlocal_steady_field(nl, s->mat, &s->par, P, s->st, &s->mesh,
+                                                 s->cfg.material.g_sample,
+                                                 s->cfg.material.g_mass, err)) != MPM_OK) {
+    mpm_err_prefix(err, *rc, "step %ld, t = %.6g s", s->step + 1, s->t);
+    return -1;
+  }
   if ((*rc = move_points(s, err)) != MPM_OK)
     return -1;
   /* Points leaving through an outlet go before the units are frozen: outside
@@ -670,6 +690,15 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
     return -1;
   size_t n = P->n;
   update_density(s, nl->unit);  /* the units just frozen */
+  if (steady) {                              /* g given: the substeps with L fixed */
+#pragma omp parallel for schedule(static) reduction(max : bad)
+    for (size_t p = 0; p < n; p++) {
+      mpm_mat3 L = stored_L(s, p);
+      if (!constitutive(s, s->mat->update_steady, p, &L, h, s->n_sub, 0.0, 0.0))
+        bad = (long)p > bad ? (long)p : bad;
+    }
+    return bad;
+  }
   for (int k = 0; k < s->n_sub; k++) {
     *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, err);
     if (*rc != MPM_OK) {                     /* g_e, lap_e, isp_e of the dense points */
@@ -679,7 +708,7 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++) {
       mpm_mat3 L = stored_L(s, p);
-      if (!constitutive(s, s->mat, p, &L, h, 1, mpm_nonlocal_point_lap(nl, p),
+      if (!constitutive(s, s->mat->update, p, &L, h, 1, mpm_nonlocal_point_lap(nl, p),
                         mpm_nonlocal_point_isp(nl, p)))
         bad = (long)p > bad ? (long)p : bad;
     }
@@ -702,7 +731,7 @@ static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t p = 0; p < P->n; p++) {
     mpm_mat3 L = stored_L(s, p);
-    if (!constitutive(s, mat, p, &L, h, s->n_sub, 0.0, 0.0))
+    if (!constitutive(s, mat->update, p, &L, h, s->n_sub, 0.0, 0.0))
       bad = (long)p > bad ? (long)p : bad;
   }
   return bad;
