@@ -10,5 +10,6 @@ include verification/ngf1d/local.mk
 include verification/V7-ngf-chute/local.mk
 include verification/V5-silo/local.mk
 include verification/V6-hourglass-slug/local.mk
+include verification/V8-vertical-chute/local.mk
 include verification/V9-steady-galerkin/local.mk
 include verification/V10-silo-jam/local.mk

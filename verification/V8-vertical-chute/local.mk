@@ -1,0 +1,2 @@
+VERIFY_CASES += verification/V8-vertical-chute
+TESTS += verification/V8-vertical-chute/check
