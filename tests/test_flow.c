@@ -11,6 +11,7 @@
 
 #include "core/points.h"
 #include "diag/flow.h"
+#include "diag/rough.h"
 #include "diag/jam.h"
 #include "mesh/mesh.h"
 #include "shape/shape.h"
@@ -456,11 +457,71 @@ START_TEST(t_smooth_ugimp)
 }
 END_TEST
 
+
+/* Roughness (diag/rough.h), from its definition on hand-made fields.
+ *  - A row of points h apart, r = 1.5 h: two neighbours inside, one at the
+ *    ends. p = 1 + a (-1)^i: the neighbours of i both hold 1 - a (-1)^i, so
+ *    |p_i - median| = 2a everywhere and the mean of p over an even count is
+ *    1: roughness = 2a exactly.
+ *  - The same row with p linear in x: the median of the two neighbours is
+ *    p_i (symmetric), only the two ends differ, by h dp/dx each.
+ *  - Disconnected points are neither counted nor neighbours; the dense
+ *    fraction counts them. */
+static void row(mpm_points *P, int n, double h)
+{
+  for (int i = 0; i < n; i++) {
+    size_t q;
+    mpm_points_push(P, &q);
+    P->x[q] = i * h;
+    P->y[q] = 0.3;
+    P->state[q] = MPM_STATE_DENSE;
+  }
+}
+
+static void set_p(mpm_points *P, size_t q, double p)
+{
+  P->sxx[q] = P->syy[q] = P->szz[q] = -p;
+}
+
+START_TEST(t_roughness)
+{
+  const int n = 10;
+  const double h = 0.01, a = 0.2;
+  mpm_points *P = mpm_points_alloc(16);
+  row(P, n, h);
+  for (int i = 0; i < n; i++)
+    set_p(P, (size_t)i, 1.0 + (i % 2 ? -a : a));
+  mpm_roughness r;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_diag_roughness(P, 1.5 * h, &r, &err), MPM_OK);
+  ck_assert_double_eq_tol(r.roughness, 2.0 * a, 1e-14);
+  ck_assert_double_eq_tol(r.mean_p, 1.0, 1e-14);
+  ck_assert_uint_eq(r.nused, (size_t)n);
+  ck_assert_double_eq(r.dense_fraction, 1.0);
+  for (int i = 0; i < n; i++)              /* p = 100 (1 + x) */
+    set_p(P, (size_t)i, 100.0 * (1.0 + i * h));
+  ck_assert_int_eq(mpm_diag_roughness(P, 1.5 * h, &r, &err), MPM_OK);
+  const double mean = 100.0 * (1.0 + 0.5 * (n - 1) * h);
+  ck_assert_double_eq_tol(r.roughness, (2.0 * 100.0 * h / n) / mean, 1e-12);
+  P->state[3] = MPM_STATE_DISCONNECTED;    /* 2 and 4 keep one neighbour each */
+  ck_assert_int_eq(mpm_diag_roughness(P, 1.5 * h, &r, &err), MPM_OK);
+  ck_assert_uint_eq(r.ndense, (size_t)n - 1);
+  ck_assert_uint_eq(r.nused, (size_t)n - 1);
+  ck_assert_double_eq_tol(r.dense_fraction, (n - 1.0) / n, 1e-15);
+  ck_assert_double_eq_tol(r.roughness,       /* ends 0, 9 and now 2, 4 off by h dp/dx */
+                          (4.0 * 100.0 * h / (n - 1)) / ((n * mean - 100.0 * (1.0 + 3 * h)) / (n - 1)),
+                          1e-12);
+  ck_assert_int_eq(mpm_diag_roughness(P, 0.0, &r, &err), MPM_EINVAL);
+  mpm_points_free(P);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("flow");
   TCase *tc = tcase_create("flow");
   tcase_add_test(tc, t_profile_bagnold_bins);
+  tcase_add_test(tc, t_roughness);
   tcase_add_test(tc, t_flow_means);
   tcase_add_test(tc, t_dense_vy);
   tcase_add_test(tc, t_jam_classes);

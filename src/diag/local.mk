@@ -1,6 +1,7 @@
 noinst_LTLIBRARIES += libmpm_diag.la
 libmpm_diag_la_SOURCES = src/diag/diag.c src/diag/diag.h src/diag/flow.c src/diag/flow.h \
-	src/diag/region.c src/diag/region.h src/diag/jam.c src/diag/jam.h
+	src/diag/region.c src/diag/region.h src/diag/jam.c src/diag/jam.h src/diag/rough.c \
+	src/diag/rough.h
 
 check_PROGRAMS += tests/test_diag tests/test_flow
 TESTS += tests/test_diag tests/test_flow
