@@ -65,22 +65,35 @@ double mpm_material_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm
   return par->xi * sqrt(p) * (mu - par->mu_s) / (par->mu_2 - mu);  /* mu(I) inverted */
 }
 
-/* Small root of tau^2 - B tau + H = 0 for tau_tr > S0 >= 0 (see banner). The
- * inputs are first scaled by a power of two near the largest of them (exact), so
- * that the products in H and B^2 cannot underflow or overflow when p -> 0+. */
-static double mu_i_return_tau(double tau_tr, double S0, double S2, double alpha)
+/* Small root of tau^2 - B tau + H = 0 for tau_tr > S0 >= 0 (see banner),
+ * with B = S2 + tau_tr + alpha and H = S2 tau_tr + S0 alpha. */
+static inline double mu_i_small_root(double tau_tr, double S0, double S2, double alpha)
 {
-  int e;
-  frexp(fmax(fmax(tau_tr, S2), alpha), &e);
-  tau_tr = ldexp(tau_tr, -e);
-  S0 = ldexp(S0, -e);
-  S2 = ldexp(S2, -e);
-  alpha = ldexp(alpha, -e);
   double B = S2 + tau_tr + alpha;                                  /* B */
   double H = S2 * tau_tr + S0 * alpha;                             /* H */
   double disc = (S2 - tau_tr) * (S2 - tau_tr)                      /* B^2 - 4H */
               + alpha * (alpha + 2.0 * (S2 - S0) + 2.0 * (tau_tr - S0));
-  return ldexp(2.0 * H / (B + sqrt(disc)), e);                     /* 2H / (B + sqrt) */
+  return 2.0 * H / (B + sqrt(disc));                               /* 2H / (B + sqrt) */
+}
+
+/* The small root, guarded for p -> 0+: while the largest input
+ * m = max(tau_tr, S2, alpha) lies in [2^-300, 2^300] and H >= 2^-900, no
+ * square or product it needs can overflow or lose precision to underflow, and
+ * the root is taken as it is. Otherwise (stresses near 1e-90 Pa or below, or
+ * above 1e90 Pa) the inputs are first scaled by the power of two of m, so
+ * that nothing under- or overflows, and the root scaled back; both are exact,
+ * and a scaling changes no rounding where nothing under- or overflows, so the
+ * guard does not change the result of any input it lets through. */
+static inline double mu_i_return_tau(double tau_tr, double S0, double S2, double alpha)
+{
+  double m = tau_tr > S2 ? tau_tr : S2;
+  m = alpha > m ? alpha : m;                                       /* max(tau_tr, S2, alpha) */
+  if (m >= 0x1p-300 && m <= 0x1p300 && S2 * tau_tr + S0 * alpha >= 0x1p-900)
+    return mu_i_small_root(tau_tr, S0, S2, alpha);
+  int e;
+  frexp(m, &e);                                                    /* m = f 2^e, f in [1/2, 1) */
+  double tau = mu_i_small_root(ldexp(tau_tr, -e), ldexp(S0, -e), ldexp(S2, -e), ldexp(alpha, -e));
+  return ldexp(tau, e);
 }
 
 static void mu_i_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,

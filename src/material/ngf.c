@@ -72,15 +72,32 @@ double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp)
 /* Quadratic a x^2 + b x + c = 0 and its discriminant, scaled together. */
 typedef struct ngf_quad { double a, b, c, disc; } ngf_quad;
 
-/* Exact power-of-two scale so that b^2 and a c are near 1 (no under/overflow
- * as p -> 0+). t[] are the terms whose sum makes b. */
+/* Power-of-two exponent e of the quadratic's size: b^2 and a c scaled by
+ * 2^-2e are near 1. 0 while the size of b, S = |t[0]| + |t[1]| + |t[2]| (t
+ * the terms whose sum makes b), and |a| lie in [2^-300, 2^300] and |c| below
+ * 2^300: then no square or product the root needs can overflow, and what
+ * underflows is below 2^-400 of b^2, so the quadratic is taken as it is.
+ * Otherwise (p -> 0+, or absurd stresses) the exponent of
+ * S + sqrt|a| sqrt|c|, and the terms are scaled by it, exactly; where
+ * nothing under- or overflows, a scaling changes no rounding, so the guard
+ * does not change the result of any input it lets through. */
 static int quad_exponent(double a, double c, const double t[3])
 {
-  double m = fabs(t[0]) + fabs(t[1]) + fabs(t[2]) + sqrt(fabs(a)) * sqrt(fabs(c));
+  double S = fabs(t[0]) + fabs(t[1]) + fabs(t[2]);
+  if (S >= 0x1p-300 && S <= 0x1p300 && fabs(a) >= 0x1p-300 && fabs(a) <= 0x1p300 &&
+      fabs(c) <= 0x1p300)
+    return 0;
+  double m = S + sqrt(fabs(a)) * sqrt(fabs(c));
   int e = 0;
   if (m > 0.0 && isfinite(m))
     frexp(m, &e);
   return e;
+}
+
+/* x 2^-e; x itself when e = 0 (the common case: no libm call). */
+static inline double scale2(double x, int e)
+{
+  return e ? ldexp(x, -e) : x;
 }
 
 /* dk form: terms T1 = beta (tau_tr - S2), T2 = mu_2 Gb g*, T3 = f (tau_tr - S0). */
@@ -94,10 +111,10 @@ static ngf_quad quad_dk(const mpm_material_params *par, double Gb, double p, dou
   double c = gs * (tau_tr - par->mu_2 * p);                         /* c' */
   int e = quad_exponent(a, c, t);
   for (int i = 0; i < 3; i++)
-    t[i] = ldexp(t[i], -e);
-  double r = ldexp(f * par->dmu * tau_tr, -e) * ldexp(Gb * gs, -e);  /* f dmu Gb g* tau_tr */
+    t[i] = scale2(t[i], e);
+  double r = scale2(f * par->dmu * tau_tr, e) * scale2(Gb * gs, e);  /* f dmu Gb g* tau_tr */
   double bb = t[0] - t[1] + t[2];
-  return (ngf_quad){ldexp(a, -e), -(t[0] + t[1] + t[2]), ldexp(c, -e), bb * bb + 4.0 * r};
+  return (ngf_quad){scale2(a, e), -(t[0] + t[1] + t[2]), scale2(c, e), bb * bb + 4.0 * r};
 }
 
 /* hs21 form: terms T1 = beta p, T2 = -Gb g*, T3 = k (S0 - tau_tr). */
@@ -109,9 +126,9 @@ static ngf_quad quad_hs21(const mpm_material_params *par, double Gb, double p, d
   double c = -gs * p;                                               /* c' */
   int e = quad_exponent(a, c, t);
   for (int i = 0; i < 3; i++)
-    t[i] = ldexp(t[i], -e);
-  a = ldexp(a, -e);
-  c = ldexp(c, -e);
+    t[i] = scale2(t[i], e);
+  a = scale2(a, e);
+  c = scale2(c, e);
   double b = t[0] + t[1] + t[2];
   return (ngf_quad){a, b, c, b * b - 4.0 * a * c};                  /* -4ac' >= 0 */
 }
