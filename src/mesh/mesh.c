@@ -171,8 +171,7 @@ void mpm_mesh_node_pos(const mpm_mesh *m, int i, int j, double *x, double *y)
 
 /* ------------------------------------------------------------- location */
 
-/* Distance s = x - o wrapped into [0, len) (or len after round-off). */
-static double axis_wrap(double s, double len)
+double mpm_mesh_axis_wrap(double s, double len)
 {
   if (!(s >= 0.0 && s < len)) {
     s -= len * floor(s / len);  /* s mod len */
@@ -182,149 +181,40 @@ static double axis_wrap(double s, double len)
   return s;
 }
 
-/* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of
- * origin o, length len, unit size 1/ih. Periodic axes wrap first; a point on
- * the upper end belongs to the last unit. Returns 0, or -1 outside (or NaN). */
-static inline int axis_locate(double x, double o, double len, double ih, int n,
-                              int periodic, int *k, double *u)
-{
-  double s;
-  if (periodic) {
-    s = axis_wrap(x - o, len);
-    if (!(s >= 0.0 && s <= len))
-      return -1;                /* non-finite */
-  } else {
-    if (!(x >= o && x <= o + len))
-      return -1;
-    s = x - o;
-  }
-  double xi = s * ih;           /* position in units */
-  int kk = (int)xi;
-  if (kk > n - 1)
-    kk = n - 1;
-  double f = xi - kk;
-  *k = kk;
-  *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
-  return 0;
-}
-
 void mpm_mesh_wrap(const mpm_mesh *m, double *x, double *y)
 {
   if (m->periodic_x && isfinite(*x)) {
     double s = *x - m->x0;
     if (!(s >= 0.0 && s < m->lx))
-      *x = m->x0 + axis_wrap(s, m->lx);
+      *x = m->x0 + mpm_mesh_axis_wrap(s, m->lx);
   }
   if (m->periodic_y && isfinite(*y)) {
     double s = *y - m->y0;
     if (!(s >= 0.0 && s < m->ly))
-      *y = m->y0 + axis_wrap(s, m->ly);
+      *y = m->y0 + mpm_mesh_axis_wrap(s, m->ly);
   }
 }
 
 int mpm_mesh_unit(const mpm_mesh *m, double x, double y, int *i, int *j)
 {
   double u, v;
-  if (axis_locate(x, m->x0, m->lx, m->idx, m->nx, m->periodic_x, i, &u) ||
-      axis_locate(y, m->y0, m->ly, m->idy, m->ny, m->periodic_y, j, &v))
-    return MPM_EOUTSIDE;
-  return MPM_OK;
-}
-
-/* "/" (1) or "\\" (0) for unit column i (the rule does not depend on the row). */
-static inline int unit_is_slash(const mpm_mesh *m, int i)
-{
-  switch (m->diagonal) {
-  case MPM_DIAG_SLASH:
-    return 1;
-  case MPM_DIAG_BACKSLASH:
-    return 0;
-  default:  /* mirror: "/" when the unit centre is left of x = mirror_x */
-    return m->x0 + (i + 0.5) * m->dx < m->mirror_x;
-  }
+  return mpm_mesh_locate(m, x, y, i, j, &u, &v) ? MPM_EOUTSIDE : MPM_OK;
 }
 
 int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j)
 {
   (void)j;
-  return unit_is_slash(m, i);
+  return mpm_mesh_column_is_slash(m, i);
 }
 
 /* ---------------------------------------------------------------- basis */
-
-/* Q4 at local (u, v); corner order (0,0) (1,0) (1,1) (0,1). */
-static void basis_q4(const mpm_mesh *m, double u, double v, const int c[4],
-                     int node[4], double N[4], double dNx[4], double dNy[4])
-{
-  const double ix = m->idx, iy = m->idy;
-  /* N = (1-u)(1-v), u(1-v), uv, (1-u)v; grad = (dN/du / dx, dN/dv / dy) */
-  N[0] = (1.0 - u) * (1.0 - v);
-  N[1] = u * (1.0 - v);
-  N[2] = u * v;
-  N[3] = (1.0 - u) * v;
-  dNx[0] = -(1.0 - v) * ix;
-  dNx[1] = (1.0 - v) * ix;
-  dNx[2] = v * ix;
-  dNx[3] = -v * ix;
-  dNy[0] = -(1.0 - u) * iy;
-  dNy[1] = -u * iy;
-  dNy[2] = u * iy;
-  dNy[3] = (1.0 - u) * iy;
-  for (int a = 0; a < 4; a++)
-    node[a] = c[a];
-}
-
-/* T3: the half of the unit containing (u, v); ties on the diagonal go to the
- * lower triangle. Corner order of c[] as in basis_q4. The slopes dN/du and
- * dN/dv are -1, 0 or 1, so grad N = (dN/du / dx, dN/dv / dy) is -1/dx, 0 or
- * 1/dx (likewise in y). */
-static void basis_t3(const mpm_mesh *m, int slash, double u, double v,
-                     const int c[4], int node[4], double N[4], double dNx[4],
-                     double dNy[4])
-{
-  const double ix = m->idx, iy = m->idy;
-  if (slash && u >= v) {         /* (0,0) (1,0) (1,1): N = 1-u, u-v, v */
-    node[0] = c[0]; node[1] = c[1]; node[2] = c[2];
-    N[0] = 1.0 - u; N[1] = u - v; N[2] = v;
-    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0;
-    dNy[0] = 0.0; dNy[1] = -iy; dNy[2] = iy;
-  } else if (slash) {            /* (0,0) (1,1) (0,1): N = 1-v, u, v-u */
-    node[0] = c[0]; node[1] = c[2]; node[2] = c[3];
-    N[0] = 1.0 - v; N[1] = u; N[2] = v - u;
-    dNx[0] = 0.0; dNx[1] = ix; dNx[2] = -ix;
-    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = iy;
-  } else if (u + v <= 1.0) {     /* (0,0) (1,0) (0,1): N = 1-u-v, u, v */
-    node[0] = c[0]; node[1] = c[1]; node[2] = c[3];
-    N[0] = 1.0 - u - v; N[1] = u; N[2] = v;
-    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0;
-    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = iy;
-  } else {                       /* (1,0) (1,1) (0,1): N = 1-v, u+v-1, 1-u */
-    node[0] = c[1]; node[1] = c[2]; node[2] = c[3];
-    N[0] = 1.0 - v; N[1] = u + v - 1.0; N[2] = 1.0 - u;
-    dNx[0] = 0.0; dNx[1] = ix; dNx[2] = -ix;
-    dNy[0] = -iy; dNy[1] = iy; dNy[2] = 0.0;
-  }
-}
 
 int mpm_mesh_basis(const mpm_mesh *m, double x, double y, int node[4],
                    double N[4], double dNx[4], double dNy[4])
 {
   int i, j;
   double u, v;
-  if (axis_locate(x, m->x0, m->lx, m->idx, m->nx, m->periodic_x, &i, &u) ||
-      axis_locate(y, m->y0, m->ly, m->idy, m->ny, m->periodic_y, &j, &v))
+  if (mpm_mesh_locate(m, x, y, &i, &j, &u, &v))
     return -1;
-  int i1 = i + 1, j1 = j + 1;
-  if (m->periodic_x && i1 == m->nx)
-    i1 = 0;                      /* node nx aliases node 0 */
-  if (m->periodic_y && j1 == m->ny)
-    j1 = 0;
-  const int r0 = j * m->snx, r1 = j1 * m->snx;
-  const int c[4] = {r0 + i, r0 + i1, r1 + i1, r1 + i};
-  if (m->topology == MPM_TOPO_Q4) {
-    basis_q4(m, u, v, c, node, N, dNx, dNy);
-    return 4;
-  }
-  basis_t3(m, unit_is_slash(m, i), u, v, c, node, N, dNx, dNy);
-  return 3;
+  return mpm_mesh_basis_at(m, i, j, u, v, node, N, dNx, dNy);
 }

@@ -64,8 +64,163 @@ int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j);
 
 /* Linear (T3) or bilinear (Q4) basis of the element containing (x, y):
  * writes the storage ids of its nodes, N and grad N; returns the node count
- * (3 or 4), or -1 when (x, y) is outside a non-periodic direction. */
+ * (3 or 4), or -1 when (x, y) is outside a non-periodic direction.
+ * The same as mpm_mesh_locate followed by mpm_mesh_basis_at. */
 int mpm_mesh_basis(const mpm_mesh *m, double x, double y,
                    int node[4], double N[4], double dNx[4], double dNy[4]);
+
+/* ---- the same, in pieces, inline for the hot loops (stencils, the step) ---- */
+
+/* Distance s wrapped into [0, len) along a periodic axis (len after
+ * round-off of a tiny negative s is the same point: 0). */
+double mpm_mesh_axis_wrap(double s, double len);
+
+/* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of
+ * origin o, length len, unit size 1/ih. Periodic axes wrap first; a point on
+ * the upper end belongs to the last unit. Returns 0, or -1 outside (or NaN). */
+static inline int mpm_mesh_axis_locate(double x, double o, double len, double ih, int n,
+                                       int periodic, int *k, double *u)
+{
+  double s;
+  if (periodic) {
+    s = x - o;
+    if (!(s >= 0.0 && s < len))
+      s = mpm_mesh_axis_wrap(s, len);
+    if (!(s >= 0.0 && s <= len))
+      return -1;                /* non-finite */
+  } else {
+    if (!(x >= o && x <= o + len))
+      return -1;
+    s = x - o;
+  }
+  double xi = s * ih;           /* position in units */
+  int kk = (int)xi;
+  if (kk > n - 1)
+    kk = n - 1;
+  double f = xi - kk;
+  *k = kk;
+  *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
+  return 0;
+}
+
+/* Unit (i, j) of (x, y) (after wrapping) and the local coordinates (u, v) in
+ * [0, 1]^2 of the point in it; 0, or -1 outside a non-periodic direction. */
+static inline int mpm_mesh_locate(const mpm_mesh *m, double x, double y, int *i, int *j,
+                                  double *u, double *v)
+{
+  return mpm_mesh_axis_locate(x, m->x0, m->lx, m->idx, m->nx, m->periodic_x, i, u) ||
+         mpm_mesh_axis_locate(y, m->y0, m->ly, m->idy, m->ny, m->periodic_y, j, v) ? -1 : 0;
+}
+
+/* 1 if the T3 units of column i are cut along "/", 0 along "\" (the rule
+ * does not depend on the row). */
+static inline int mpm_mesh_column_is_slash(const mpm_mesh *m, int i)
+{
+  switch (m->diagonal) {
+  case MPM_DIAG_SLASH:
+    return 1;
+  case MPM_DIAG_BACKSLASH:
+    return 0;
+  default:  /* mirror: "/" when the unit centre is left of x = mirror_x */
+    return m->x0 + (i + 0.5) * m->dx < m->mirror_x;
+  }
+}
+
+/* Storage ids of the corners of unit (i, j) in the order (i, j), (i+1, j),
+ * (i+1, j+1), (i, j+1), with periodic aliasing. */
+static inline void mpm_mesh_unit_corners(const mpm_mesh *m, int i, int j, int c[4])
+{
+  int i1 = i + 1, j1 = j + 1;
+  if (m->periodic_x && i1 == m->nx)
+    i1 = 0;                      /* node nx aliases node 0 */
+  if (m->periodic_y && j1 == m->ny)
+    j1 = 0;
+  const int r0 = j * m->snx, r1 = j1 * m->snx;
+  c[0] = r0 + i;
+  c[1] = r0 + i1;
+  c[2] = r1 + i1;
+  c[3] = r1 + i;
+}
+
+/* Basis of unit column i at local (u, v) on the four unit corners, in the
+ * order of mpm_mesh_unit_corners: N and grad N = (dN/du / dx, dN/dv / dy).
+ * Returns the mask of the corners of the element (bit a for corner a): all
+ * four for Q4; for T3 the three of the triangle holding (u, v) (ties on the
+ * diagonal go to the lower one), the fourth getting N = grad N = 0.
+ * T3 slopes dN/du, dN/dv are -1, 0 or 1, so grad N is -1/dx, 0 or 1/dx
+ * (likewise in y). */
+static inline unsigned mpm_mesh_basis_corners(const mpm_mesh *m, int i, double u, double v,
+                                              double N[4], double dNx[4], double dNy[4])
+{
+  const double ix = m->idx, iy = m->idy;
+  if (m->topology == MPM_TOPO_Q4) {
+    /* N = (1-u)(1-v), u(1-v), uv, (1-u)v */
+    N[0] = (1.0 - u) * (1.0 - v);
+    N[1] = u * (1.0 - v);
+    N[2] = u * v;
+    N[3] = (1.0 - u) * v;
+    dNx[0] = -(1.0 - v) * ix;
+    dNx[1] = (1.0 - v) * ix;
+    dNx[2] = v * ix;
+    dNx[3] = -v * ix;
+    dNy[0] = -(1.0 - u) * iy;
+    dNy[1] = -u * iy;
+    dNy[2] = u * iy;
+    dNy[3] = (1.0 - u) * iy;
+    return 0xfu;
+  }
+  const int slash = mpm_mesh_column_is_slash(m, i);
+  if (slash && u >= v) {         /* corners 0 1 2: N = 1-u, u-v, v */
+    N[0] = 1.0 - u; N[1] = u - v; N[2] = v; N[3] = 0.0;
+    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0; dNx[3] = 0.0;
+    dNy[0] = 0.0; dNy[1] = -iy; dNy[2] = iy; dNy[3] = 0.0;
+    return 0x7u;
+  }
+  if (slash) {                   /* corners 0 2 3: N = 1-v, u, v-u */
+    N[0] = 1.0 - v; N[1] = 0.0; N[2] = u; N[3] = v - u;
+    dNx[0] = 0.0; dNx[1] = 0.0; dNx[2] = ix; dNx[3] = -ix;
+    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = 0.0; dNy[3] = iy;
+    return 0xdu;
+  }
+  if (u + v <= 1.0) {            /* corners 0 1 3: N = 1-u-v, u, v */
+    N[0] = 1.0 - u - v; N[1] = u; N[2] = 0.0; N[3] = v;
+    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0; dNx[3] = 0.0;
+    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = 0.0; dNy[3] = iy;
+    return 0xbu;
+  }
+  /* corners 1 2 3: N = 1-v, u+v-1, 1-u */
+  N[0] = 0.0; N[1] = 1.0 - v; N[2] = u + v - 1.0; N[3] = 1.0 - u;
+  dNx[0] = 0.0; dNx[1] = 0.0; dNx[2] = ix; dNx[3] = -ix;
+  dNy[0] = 0.0; dNy[1] = -iy; dNy[2] = iy; dNy[3] = 0.0;
+  return 0xeu;
+}
+
+/* The basis of a located point (unit (i, j), local (u, v)) as a node list:
+ * the element's nodes in corner order, their N and grad N; returns the count
+ * (4 for Q4, 3 for T3). */
+static inline int mpm_mesh_basis_at(const mpm_mesh *m, int i, int j, double u, double v,
+                                    int node[4], double N[4], double dNx[4], double dNy[4])
+{
+  int c[4];
+  mpm_mesh_unit_corners(m, i, j, c);
+  if (m->topology == MPM_TOPO_Q4) {
+    mpm_mesh_basis_corners(m, i, u, v, N, dNx, dNy);
+    for (int a = 0; a < 4; a++)
+      node[a] = c[a];
+    return 4;
+  }
+  double Nc[4], gx[4], gy[4];
+  const unsigned mask = mpm_mesh_basis_corners(m, i, u, v, Nc, gx, gy);
+  int k = 0;
+  for (int a = 0; a < 4; a++)
+    if (mask >> a & 1u) {
+      node[k] = c[a];
+      N[k] = Nc[a];
+      dNx[k] = gx[a];
+      dNy[k] = gy[a];
+      k++;
+    }
+  return k;
+}
 
 #endif
