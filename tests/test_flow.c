@@ -398,10 +398,10 @@ START_TEST(t_smooth_hand)
   st->S[0] = 0.5;
   st->S[1] = 0.5;
   st->count[1] = 2;
-  st->node[MPM_STENCIL_W + 0] = 1;
-  st->node[MPM_STENCIL_W + 1] = 2;
-  st->S[MPM_STENCIL_W + 0] = 0.25;
-  st->S[MPM_STENCIL_W + 1] = 0.75;
+  st->node[st->w + 0] = 1;
+  st->node[st->w + 1] = 2;
+  st->S[st->w + 0] = 0.25;
+  st->S[st->w + 1] = 0.75;
   ck_assert_int_eq(mpm_diag_smooth(st, 2, mass, f, 3, nm, nmf, out, &err), MPM_OK);
   ck_close(nm[1], 1.25);
   ck_close(nmf[1], 5.2);

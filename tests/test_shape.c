@@ -405,7 +405,7 @@ START_TEST(t_stencil_matches_eval)
       const int n = mpm_shape_ugimp.eval(&m, pts->x[p], pts->y[p], r, node, S, gx,
                                          gy);
       ck_assert_int_eq(st->count[p], n);
-      const size_t o = p * MPM_STENCIL_W;
+      const size_t o = p * (size_t)st->w;
       for (int k = 0; k < n; k++) {
         ck_assert_int_eq(st->node[o + k], node[k]);
         ck_assert(st->S[o + k] == S[k]);  /* same arithmetic: bit-identical */

@@ -194,9 +194,9 @@ START_TEST(t_bbar_unit_dilatation)
       int n2 = mpm_mesh_node(&s->mesh, i + 1, j + 1), n3 = mpm_mesh_node(&s->mesh, i, j + 1);
       for (int at = 0; at < 2; at++) {
         const double a = at ? 0.5 : xi[p], b = at ? 0.5 : eta[p];
-        (at ? ctr : trl)[p] = ((1.0 - b) * (s->nvx[n1] - s->nvx[n0]) + b * (s->nvx[n2] - s->nvx[n3]))
+        (at ? ctr : trl)[p] = ((1.0 - b) * (s->nq[n1][0] - s->nq[n0][0]) + b * (s->nq[n2][0] - s->nq[n3][0]))
                                 / c.mesh.dx
-                            + ((1.0 - a) * (s->nvy[n3] - s->nvy[n0]) + a * (s->nvy[n2] - s->nvy[n1]))
+                            + ((1.0 - a) * (s->nq[n3][1] - s->nq[n0][1]) + a * (s->nq[n2][1] - s->nq[n1][1]))
                                 / c.mesh.dy;
       }
     }

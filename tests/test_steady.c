@@ -130,7 +130,7 @@ static mpm_linalg_stats cosine_case(int mode, double w, int mass)
   for (size_t p = 0; p < P->n; p++) {                  /* g_loc: the interpolant of c */
     in.gloc[p] = 0.0;
     for (int q = 0; q < st->count[p]; q++)
-      in.gloc[p] += st->S[p * MPM_STENCIL_W + q] * c[st->node[p * MPM_STENCIL_W + q]];
+      in.gloc[p] += st->S[p * (size_t)st->w + q] * c[st->node[p * (size_t)st->w + q]];
   }
   mpm_err err = {0};
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);

@@ -88,19 +88,8 @@ void mpm_bc_clear(mpm_bc *bc)
 
 void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay)
 {
-  for (int i = 0; i < bc->nnodes; i++) {
-    unsigned char f = bc->fix[i];
-    if ((f & MPM_FIX_N) && (f & (MPM_FIX_X | MPM_FIX_Y)))
-      f = MPM_FIX_X | MPM_FIX_Y;                    /* two independent normals */
-    if (f & MPM_FIX_N) {
-      const double nx = bc->normal[2 * i], ny = bc->normal[2 * i + 1];
-      const double an = ax[i] * nx + ay[i] * ny;
-      ax[i] -= an * nx;
-      ay[i] -= an * ny;
-    }
-    if (f & MPM_FIX_X) ax[i] = 0.0;
-    if (f & MPM_FIX_Y) ay[i] = 0.0;
-  }
+  for (int i = 0; i < bc->nnodes; i++)
+    mpm_bc_apply_node(bc, i, &ax[i], &ay[i]);
 }
 
 /* 1 if an edge of this kind is a wall that material cannot cross. */

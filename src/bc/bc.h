@@ -43,6 +43,32 @@ void mpm_bc_clear(mpm_bc *bc);  /* frees the mask; safe on a zeroed struct */
  * x and y, or the normal one, (ax, ay) -= ((ax, ay) . n) n. */
 void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
 
+/* The same for the vector (*ax, *ay) of node i alone (inline: the grid
+ * update applies it node by node). */
+static inline void mpm_bc_apply_node(const mpm_bc *bc, int i, double *ax, double *ay)
+{
+  unsigned char f = bc->fix[i];
+  if ((f & MPM_FIX_N) && (f & (MPM_FIX_X | MPM_FIX_Y)))
+    f = MPM_FIX_X | MPM_FIX_Y;                    /* two independent normals */
+  if (f & MPM_FIX_N) {
+    const double nx = bc->normal[2 * i], ny = bc->normal[2 * i + 1];
+    const double an = *ax * nx + *ay * ny;
+    *ax -= an * nx;
+    *ay -= an * ny;
+  }
+  if (f & MPM_FIX_X)
+    *ax = 0.0;
+  if (f & MPM_FIX_Y)
+    *ay = 0.0;
+}
+
+/* 1 if (x, y) lies outside the mesh's closed rectangle (a point there may
+ * need mpm_bc_clamp; inside it never does). */
+static inline int mpm_bc_outside(const mpm_mesh *m, double x, double y)
+{
+  return x < m->x0 || x > m->x0 + m->lx || y < m->y0 || y > m->y0 + m->ly;
+}
+
 /* Move a point that crossed a wall edge (no-slip, frictionless, symmetry)
  * back onto it, and let its velocity (vx, vy) point into that wall no faster
  * than the grid velocity (gvx, gvy) that carried it there. Positions are

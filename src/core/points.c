@@ -87,3 +87,21 @@ void mpm_points_compact(mpm_points *pts, const unsigned char *keep)
   }
   pts->n = j;
 }
+
+void mpm_points_permute(mpm_points *pts, const int *order, void *scratch)
+{
+  const size_t n = pts->n;
+  double *td = scratch;
+  int *ti = scratch;
+#define MPM_POINT_PERMUTE_(t, f)                                         \
+  for (size_t k = 0; k < n; k++)                                         \
+    t[k] = pts->f[order[k]];                                             \
+  memcpy(pts->f, t, n * sizeof *t);
+#define MPM_POINT_PERMUTE_REAL_(f, nm, d, u) MPM_POINT_PERMUTE_(td, f)
+#define MPM_POINT_PERMUTE_INT_(f, nm, d, u) MPM_POINT_PERMUTE_(ti, f)
+  MPM_POINT_REAL_FIELDS(MPM_POINT_PERMUTE_REAL_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_PERMUTE_INT_)
+#undef MPM_POINT_PERMUTE_REAL_
+#undef MPM_POINT_PERMUTE_INT_
+#undef MPM_POINT_PERMUTE_
+}

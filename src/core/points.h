@@ -90,4 +90,8 @@ int mpm_points_push(mpm_points *pts, size_t *idx);
 /* Remove every point i with keep[i] == 0, preserving the order of the rest. */
 void mpm_points_compact(mpm_points *pts, const unsigned char *keep);
 
+/* Reorder the points: point k becomes the former point order[k], for order
+ * a permutation of 0 .. n-1. scratch: allocated room for n doubles. */
+void mpm_points_permute(mpm_points *pts, const int *order, void *scratch);
+
 #endif

@@ -291,8 +291,8 @@ int mpm_diag_smooth(const mpm_shape_stencil *st, size_t n, const double *mass, c
   memset(nmf, 0, (size_t)nnodes * sizeof *nmf);
   for (size_t p = 0; p < n; p++)
     for (int k = 0; k < st->count[p]; k++) {
-      int i = st->node[p * MPM_STENCIL_W + k];
-      double Sm = st->S[p * MPM_STENCIL_W + k] * mass[p];
+      int i = st->node[p * (size_t)st->w + k];
+      double Sm = st->S[p * (size_t)st->w + k] * mass[p];
       if (i < 0 || i >= nnodes)
         return mpm_err_set(err, MPM_EINVAL, "smooth: node %d of point %zu outside 0..%d", i,
                            p, nnodes - 1);
@@ -304,7 +304,7 @@ int mpm_diag_smooth(const mpm_shape_stencil *st, size_t n, const double *mass, c
   for (size_t p = 0; p < n; p++) {
     double s = 0.0;
     for (int k = 0; k < st->count[p]; k++)
-      s += st->S[p * MPM_STENCIL_W + k] * nmf[st->node[p * MPM_STENCIL_W + k]];
+      s += st->S[p * (size_t)st->w + k] * nmf[st->node[p * (size_t)st->w + k]];
     out[p] = s;                            /* out_p = sum S_ip f_i  (4.3) */
   }
   return MPM_OK;

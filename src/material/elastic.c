@@ -5,8 +5,8 @@
 
 #include "core/points.h"
 
-static void elastic_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                           mpm_mpoint *pt)
+MPM_MATERIAL_KERNEL void elastic_update(const mpm_material_params *par, const mpm_mat3 *L,
+                                        double dt, mpm_mpoint *pt)
 {
   mpm_sym3 D = mpm_mat3_sym(L);
   pt->sigma = mpm_material_trial(par, D, L, pt->sigma, dt);      /* no yield, no disconnection */
@@ -14,9 +14,17 @@ static void elastic_update(const mpm_material_params *par, const mpm_mat3 *L, do
   pt->state = MPM_STATE_DENSE;
 }
 
+/* A batch of plane-strain points, the update above inlined. */
+static void elastic_update_plane(const mpm_material_params *par, double dt, int nsub,
+                                 const mpm_material_batch *b)
+{
+  mpm_material_plane_loop(par, dt, nsub, b, elastic_update);
+}
+
 const mpm_material_type mpm_material_elastic = {
   .name = "elastic",
   .description = "linear elastic, Jaumann hypoelastic rate form",
   .check = mpm_material_check_elastic,
   .update = elastic_update,
+  .update_plane = elastic_update_plane,
 };

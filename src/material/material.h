@@ -8,6 +8,8 @@
 #ifndef MPM_MATERIAL_MATERIAL_H
 #define MPM_MATERIAL_MATERIAL_H
 
+#include <stddef.h>
+
 #include "core/config.h"
 #include "core/error.h"
 #include "core/tensor3.h"
@@ -67,6 +69,75 @@ typedef struct mpm_mpoint {
 typedef void (*mpm_material_update_fn)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                                        mpm_mpoint *pt);
 
+/* n plane-strain points (no out-of-plane velocity gradient or shear stress),
+ * as structure-of-arrays views: entry k of each array is point k. */
+typedef struct mpm_material_batch {
+  size_t n;
+  const double *lxx, *lxy, *lyx, *lyy;  /* L = grad v, the in-plane entries [1/s] */
+  const double *rho;                     /* rho_{n+1} [kg/m^3] */
+  const double *lap, *isp;               /* nonlocal inputs (mpm_mpoint); NULL: 0 */
+  double *sxx, *syy, *szz, *sxy;         /* stress, in: sigma_n, out: sigma_{n+1} [Pa] */
+  double *g, *gdp;                       /* fluidity and gdot_p, as in mpm_mpoint */
+  int *state;
+} mpm_material_batch;
+
+/* A model's update written to be inlined into mpm_material_plane_loop
+ * (its update_plane) whatever its size; also usable as the table's update. */
+#if defined(__GNUC__)
+#define MPM_MATERIAL_KERNEL static inline __attribute__((always_inline))
+#else
+#define MPM_MATERIAL_KERNEL static inline
+#endif
+
+/* One pass of f over the points of b (nonlocal: lap and isp read). */
+MPM_MATERIAL_KERNEL void mpm_material_plane_pass(const mpm_material_params *par, double dt,
+                                                 const mpm_material_batch *b,
+                                                 mpm_material_update_fn f, int nonlocal)
+{
+  const size_t n = b->n;
+  const double *restrict lxx = b->lxx, *restrict lxy = b->lxy, *restrict lyx = b->lyx;
+  const double *restrict lyy = b->lyy, *restrict rho = b->rho;
+  const double *restrict lap = b->lap, *restrict isp = b->isp;
+  double *restrict sxx = b->sxx, *restrict syy = b->syy, *restrict szz = b->szz;
+  double *restrict sxy = b->sxy, *restrict g = b->g, *restrict gdp = b->gdp;
+  int *restrict state = b->state;
+  for (size_t k = 0; k < n; k++) {
+    const mpm_mat3 L = {{{lxx[k], lxy[k], 0.0}, {lyx[k], lyy[k], 0.0}, {0.0, 0.0, 0.0}}};
+    mpm_mpoint pt = {
+      .sigma = {sxx[k], syy[k], szz[k], sxy[k], 0.0, 0.0},
+      .rho = rho[k],
+      .g = g[k], .lap = nonlocal ? lap[k] : 0.0, .isp = nonlocal ? isp[k] : 0.0,
+      .gdp = gdp[k], .state = state[k],
+    };
+    f(par, &L, dt, &pt);
+    sxx[k] = pt.sigma.xx;
+    syy[k] = pt.sigma.yy;
+    szz[k] = pt.sigma.zz;
+    sxy[k] = pt.sigma.xy;
+    g[k] = pt.g;
+    gdp[k] = pt.gdp;
+    state[k] = pt.state;
+  }
+}
+
+/* nsub updates f of dt each, L fixed, of every point of b: each point is
+ * gathered into an mpm_mpoint and scattered back, so the result is exactly
+ * that of f point by point (the points are independent, so their substeps
+ * run as passes over all of them). A model's update_plane calls it with its
+ * own update, which is inlined into the loop; with any other f it is the
+ * generic loop. */
+MPM_MATERIAL_KERNEL void mpm_material_plane_loop(const mpm_material_params *par, double dt,
+                                                 int nsub, const mpm_material_batch *b,
+                                                 mpm_material_update_fn f)
+{
+  for (int s = 0; s < nsub; s++) {
+    if (b->lap && b->isp)
+      mpm_material_plane_pass(par, dt, b, f, 1);
+    else
+      mpm_material_plane_pass(par, dt, b, f, 0);
+  }
+}
+
 typedef struct mpm_material_type {
   const char *name;
   const char *description;
@@ -75,6 +146,10 @@ typedef struct mpm_material_type {
   /* sigma_n -> sigma_{n+1} over dt with L fixed. Never fails: physical limits
    * (p -> 0, disconnection) are states, not errors. */
   mpm_material_update_fn update;
+  /* The same update for a batch of plane-strain points (nsub times each, L
+   * fixed): mpm_material_plane_loop with the model's own update inlined. */
+  void (*update_plane)(const mpm_material_params *par, double dt, int nsub,
+                       const mpm_material_batch *b);
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
    * the element fluidity of the points the model calls dense (nonlocal.h,
    * mpm_nonlocal_field); local models ignore pt->lap. */

@@ -96,8 +96,8 @@ static inline double mu_i_return_tau(double tau_tr, double S0, double S2, double
   return ldexp(tau, e);
 }
 
-static void mu_i_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                        mpm_mpoint *pt)
+MPM_MATERIAL_KERNEL void mu_i_update(const mpm_material_params *par, const mpm_mat3 *L,
+                                     double dt, mpm_mpoint *pt)
 {
   mpm_sym3 D = mpm_mat3_sym(L);
   if (!(pt->rho >= par->rho_c)) {                                  /* rho_{n+1} < rho_c */
@@ -150,9 +150,17 @@ static int mu_i_check(const mpm_material_params *par, mpm_err *err)
   return MPM_OK;
 }
 
+/* A batch of plane-strain points, the update above inlined. */
+static void mu_i_update_plane(const mpm_material_params *par, double dt, int nsub,
+                              const mpm_material_batch *b)
+{
+  mpm_material_plane_loop(par, dt, nsub, b, mu_i_update);
+}
+
 const mpm_material_type mpm_material_mu_i = {
   .name = "mu_i",
   .description = "trans-phase mu(I): Jaumann elastic, mu(I) flow, stress-free below rho_c [DK15]",
   .check = mu_i_check,
   .update = mu_i_update,
+  .update_plane = mu_i_update_plane,
 };

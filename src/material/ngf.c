@@ -200,8 +200,8 @@ static void ngf_return(const mpm_material_params *par, double dt, mpm_sym3 s_tr,
   pt->state = MPM_STATE_DENSE;
 }
 
-static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                       mpm_mpoint *pt)
+MPM_MATERIAL_KERNEL void ngf_update(const mpm_material_params *par, const mpm_mat3 *L,
+                                    double dt, mpm_mpoint *pt)
 {
   mpm_sym3 D = mpm_mat3_sym(L);
   double p_n = mpm_sym3_pressure(pt->sigma);
@@ -304,12 +304,20 @@ int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, 
                      n_sub, need);
 }
 
+/* A batch of plane-strain points, the update above inlined. */
+static void ngf_update_plane(const mpm_material_params *par, double dt, int nsub,
+                             const mpm_material_batch *b)
+{
+  mpm_material_plane_loop(par, dt, nsub, b, ngf_update);
+}
+
 const mpm_material_type mpm_material_ngf = {
   .name = "ngf",
   .description = "trans-phase nonlocal granular fluidity: Jaumann elastic, flow rule gdot_p = g mu, "
                  "diffusion of g (explicit or implicit) and semi-implicit local update of g [DK-silo]",
   .check = ngf_check,
   .update = ngf_update,
+  .update_plane = ngf_update_plane,
   .nonlocal = 1,
   .dense = mpm_material_ngf_dense,
   .before_seed = &mpm_material_mu_i,

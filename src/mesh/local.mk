@@ -1,5 +1,5 @@
 noinst_LTLIBRARIES += libmpm_mesh.la
-libmpm_mesh_la_SOURCES = src/mesh/mesh.c src/mesh/mesh.h
+libmpm_mesh_la_SOURCES = src/mesh/mesh.c src/mesh/mesh.h src/mesh/bands.c
 
 check_PROGRAMS += tests/test_mesh
 TESTS += tests/test_mesh

@@ -223,4 +223,32 @@ static inline int mpm_mesh_basis_at(const mpm_mesh *m, int i, int j, double u, d
   return k;
 }
 
+/* ---- points in bands of unit rows (bands.c) ----------------------------------
+ * For loops in which each point adds to the rows of nodes or units near it:
+ * a point in unit row j writes to rows j - lo .. j + hi (nodes: lo = r,
+ * hi = 1 + r for a stencil reaching r units beyond the point's own; units
+ * of the point's centre: lo = hi = 0). A band is h = max(1, lo + hi)
+ * consecutive unit rows (the last band takes the remainder), so two bands
+ * that are not neighbours never write to the same row: the bands of one
+ * colour (b mod ncolour) may run in parallel, the colours one after the
+ * other, and then every written entry sums its shares band by band and in
+ * point order within a band, whatever the number of threads. On a periodic
+ * y axis the band count is even so that the colours alternate round it. */
+typedef struct mpm_mesh_bands {
+  int h, nb, ncolour;  /* rows per band, bands, colours (1: lo + hi = 0, or one band) */
+  int *start;          /* [nb + 1]: band k holds idx[start[k] .. start[k + 1]) */
+  int *idx;            /* [n] point indices, band by band, increasing within a band */
+  size_t n, cap;       /* points binned, room in idx */
+  int *band_of_row;    /* [ny] */
+  int ny, lo, hi, rcap;  /* the layout's rows and reach; room in band_of_row */
+} mpm_mesh_bands;
+
+mpm_mesh_bands *mpm_mesh_bands_alloc(void);
+void mpm_mesh_bands_free(mpm_mesh_bands *b);  /* accepts NULL */
+
+/* Bin n points by their unit rows row[p] (0 <= row[p] < m->ny) for writes
+ * to rows row - lo .. row + hi. */
+int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, size_t n,
+                        const int *row, mpm_err *err);
+
 #endif

@@ -120,7 +120,7 @@ static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, siz
     if (!dense[p])
       continue;
     const int c = st->count[p];
-    const int *node = st->node + p * MPM_STENCIL_W;
+    const int *node = st->node + p * (size_t)st->w;
     for (int k = 0; k < c; k++)
       if (!held[node[k]])
         ss->row[node[k]] = 0;
@@ -163,9 +163,9 @@ int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *
                          "steady fluidity: point %zu has V/xi^2 = %g, V g_loc/xi^2 = %g", p, wV,
                          bV);
     const int c = st->count[p];
-    const int *node = st->node + p * MPM_STENCIL_W;
-    const double *S = st->S + p * MPM_STENCIL_W;
-    const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
+    const int *node = st->node + p * (size_t)st->w;
+    const double *S = st->S + p * (size_t)st->w;
+    const double *gx = st->dSx + p * (size_t)st->w, *gy = st->dSy + p * (size_t)st->w;
     for (int k = 0; k < c; k++) {
       const int rk = ss->row[node[k]];
       if (rk < 0)
@@ -223,8 +223,8 @@ double mpm_nonlocal_steady_point(const mpm_nonlocal_steady *ss, const mpm_mesh *
 {
   double v = 0.0;
   if (sample == MPM_STEADY_LINEAR) {                 /* sum_i S_ip g_i */
-    const int *node = st->node + p * MPM_STENCIL_W;
-    const double *S = st->S + p * MPM_STENCIL_W;
+    const int *node = st->node + p * (size_t)st->w;
+    const double *S = st->S + p * (size_t)st->w;
     for (int k = 0; k < st->count[p]; k++)
       v += S[k] * ss->g[node[k]];
   } else {                                           /* mean over the element's nodes */

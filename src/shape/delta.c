@@ -10,8 +10,18 @@ static int delta_eval(const mpm_mesh *m, double x, double y, const double r[4],
   return mpm_mesh_basis(m, x, y, node, S, dSx, dSy);
 }
 
+/* The element's nodes: 4 (Q4) or 3 (T3), all in the point's unit. */
+static void delta_span(const mpm_mesh *m, const mpm_points *pts, int *width, int *reach)
+{
+  (void)pts;
+  *width = m->topology == MPM_TOPO_Q4 ? 4 : 3;
+  *reach = 0;
+}
+
 const mpm_shape_type mpm_shape_delta = {
-  "delta",
-  "original MPM: S = N(x_p), gradS = grad N(x_p)",
-  delta_eval
+  .name = "delta",
+  .description = "original MPM: S = N(x_p), gradS = grad N(x_p)",
+  .eval = delta_eval,
+  .span = delta_span,
+  .at_point = 1,
 };

@@ -2,7 +2,9 @@
  * (MODEL.md section 3, step 1 of section 2).
  *
  * The stencil stores, for point p, count[p] nodes in slots
- * [p * MPM_STENCIL_W, p * MPM_STENCIL_W + count[p]) of node, S, dSx, dSy.
+ * [p w, p w + count[p]) of node, S, dSx, dSy, w the width the shape's span
+ * gives for the points (4 for Q4 delta weights, 9 for uGIMP extents of half a
+ * unit or less, at most MPM_STENCIL_W), and the unit row of its centre.
  * Points are independent, so the loop runs in parallel; a point outside the
  * mesh is reported after the loop (the first one in point order). */
 #include "shape/shape.h"
@@ -37,23 +39,31 @@ static int grow(void **a, size_t n, size_t sz)
   return MPM_OK;
 }
 
-/* Make room for cap points; on failure the old arrays and cap stay valid. */
-static int stencil_reserve(mpm_shape_stencil *st, size_t cap)
+/* Make room for cap points at width w; on failure the old arrays stay valid
+ * (with the old cap). */
+static int stencil_reserve(mpm_shape_stencil *st, size_t cap, int w)
 {
-  if (cap <= st->cap && st->count)
-    return MPM_OK;
   if (cap == 0)
     cap = 1;
   if (cap > SIZE_MAX / (MPM_STENCIL_W * sizeof(double)))
     return MPM_ENOMEM;
-  const size_t w = cap * MPM_STENCIL_W;
-  if (grow((void **)&st->count, cap, sizeof *st->count) != MPM_OK ||
-      grow((void **)&st->node, w, sizeof *st->node) != MPM_OK ||
-      grow((void **)&st->S, w, sizeof *st->S) != MPM_OK ||
-      grow((void **)&st->dSx, w, sizeof *st->dSx) != MPM_OK ||
-      grow((void **)&st->dSy, w, sizeof *st->dSy) != MPM_OK)
-    return MPM_ENOMEM;
-  st->cap = cap;
+  const size_t slots = cap * (size_t)w;
+  if (cap > st->cap || !st->count) {
+    if (grow((void **)&st->count, cap, sizeof *st->count) != MPM_OK ||
+        grow((void **)&st->row, cap, sizeof *st->row) != MPM_OK)
+      return MPM_ENOMEM;
+  }
+  if (slots > st->wcap || !st->node) {
+    if (grow((void **)&st->node, slots, sizeof *st->node) != MPM_OK ||
+        grow((void **)&st->S, slots, sizeof *st->S) != MPM_OK ||
+        grow((void **)&st->dSx, slots, sizeof *st->dSx) != MPM_OK ||
+        grow((void **)&st->dSy, slots, sizeof *st->dSy) != MPM_OK)
+      return MPM_ENOMEM;
+    st->wcap = slots;
+  }
+  if (cap > st->cap)
+    st->cap = cap;
+  st->w = w;
   return MPM_OK;
 }
 
@@ -62,10 +72,11 @@ mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap)
   mpm_shape_stencil *st = calloc(1, sizeof *st);
   if (!st)
     return NULL;
-  if (stencil_reserve(st, cap) != MPM_OK) {
+  if (cap > 0 && stencil_reserve(st, cap, MPM_STENCIL_W) != MPM_OK) {
     mpm_shape_stencil_free(st);
     return NULL;
   }
+  st->w = MPM_STENCIL_W;
   return st;
 }
 
@@ -74,6 +85,7 @@ void mpm_shape_stencil_free(mpm_shape_stencil *st)
   if (!st)
     return;
   free(st->count);
+  free(st->row);
   free(st->node);
   free(st->S);
   free(st->dSx);
@@ -86,16 +98,21 @@ static long stencil_fill(mpm_shape_stencil *st, const mpm_shape_type *type, cons
                          const mpm_points *pts)
 {
   const long n = (long)pts->n;
+  const size_t w = (size_t)st->w;
   long first = n;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) reduction(min : first)
 #endif
   for (long p = 0; p < n; p++) {
     const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
-    const size_t o = (size_t)p * MPM_STENCIL_W;
-    /* (node, S_ip, gradS_ip) of point p */
+    const size_t o = (size_t)p * w;
+    double v;
+    /* (node, S_ip, gradS_ip) of point p, and the unit row of its centre */
     int c = type->eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o,
                        st->dSx + o, st->dSy + o);
+    if (c >= 0 && mpm_mesh_axis_locate(pts->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y,
+                                       &st->row[p], &v))
+      c = -1;
     st->count[p] = c;
     if (c < 0 && p < first)
       first = p;
@@ -109,9 +126,12 @@ int mpm_shape_stencil_compute(mpm_shape_stencil *st, const mpm_shape_type *type,
   if (!st || !type || !m || !pts)
     return mpm_err_set(err, MPM_EINVAL, "stencil: missing stencil, shape, "
                        "mesh or points");
-  if (pts->n > st->cap && stencil_reserve(st, pts->n) != MPM_OK)
+  int w, reach;
+  type->span(m, pts, &w, &reach);
+  if (stencil_reserve(st, pts->n, w) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "stencil for %zu points: out of memory",
                        pts->n);
+  st->reach = reach;
   const long bad = stencil_fill(st, type, m, pts);
   if (bad < (long)pts->n)
     return mpm_err_set(err, MPM_EOUTSIDE,

@@ -13,6 +13,7 @@
  * limit of the rule as the extent shrinks. */
 #include "shape/shape.h"
 
+#include <math.h>
 #include <string.h>
 
 /* The merged node list of one point: node ids in the order first seen, and
@@ -97,8 +98,31 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   return cnt;
 }
 
+/* The corners of a point lie within hx = |r1x| + |r2x|, hy = |r1y| + |r2y|
+ * of it. Along x they span 2 hx / dx units, so they fall in at most
+ * floor(2 hx / dx) + 2 unit columns and touch one node column more; they
+ * lie at most floor(hy / dy) + 1 unit rows from the point's own. (The small
+ * slack covers round-off in the corner positions.) */
+static void ugimp_span(const mpm_mesh *m, const mpm_points *pts, int *width, int *reach)
+{
+  double hx = 0.0, hy = 0.0;
+  for (size_t p = 0; p < pts->n; p++) {
+    const double ax = fabs(pts->r1x[p]) + fabs(pts->r2x[p]);
+    const double ay = fabs(pts->r1y[p]) + fabs(pts->r2y[p]);
+    hx = ax > hx ? ax : hx;
+    hy = ay > hy ? ay : hy;
+  }
+  const double sx = 2.0 * hx * m->idx + 1e-6, sy = 2.0 * hy * m->idy + 1e-6;
+  const int cols = sx < MPM_STENCIL_W ? (int)sx + 3 : MPM_STENCIL_W;  /* node columns */
+  const int rows = sy < MPM_STENCIL_W ? (int)sy + 3 : MPM_STENCIL_W;
+  *width = cols * rows < MPM_STENCIL_W ? cols * rows : MPM_STENCIL_W;
+  *reach = 0.5 * sy < m->ny ? (int)(0.5 * sy) + 1 : m->ny;
+}
+
 const mpm_shape_type mpm_shape_ugimp = {
-  "ugimp",
-  "uGIMP, CPDI corner rule with a fixed parallelogram extent (r1, r2)",
-  ugimp_eval
+  .name = "ugimp",
+  .description = "uGIMP, CPDI corner rule with a fixed parallelogram extent (r1, r2)",
+  .eval = ugimp_eval,
+  .span = ugimp_span,
+  .at_point = 0,
 };

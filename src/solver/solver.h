@@ -3,8 +3,8 @@
  *
  * mpm_sim owns everything one run needs; it is built once from a resolved
  * mpm_config ("plan"), then stepped ("execute"). Workspace (nodal arrays,
- * stencil) is allocated at creation; the stencil grows only when points are
- * added. */
+ * per-point arrays) is allocated at creation or at the first step that needs
+ * it, and grows only when points are added. */
 #ifndef MPM_SOLVER_SOLVER_H
 #define MPM_SOLVER_SOLVER_H
 
@@ -30,12 +30,23 @@ typedef struct mpm_sim {
   const mpm_material_type *mat;
   mpm_material_params par;
   mpm_points *pts;
-  mpm_shape_stencil *st;
+
+  /* weights of the step: a shape whose weights are the element basis at the
+   * point (located = 1) keeps each point's unit (i, j) and local (u, v);
+   * the others store a stencil */
+  int located;
+  int *loc_i, *loc_j;             /* [loc_cap] */
+  double *loc_u, *loc_v;
+  size_t loc_cap;
+  mpm_shape_stencil *st;          /* the stored stencil (computed when a step needs it) */
+  mpm_mesh_bands *bands;          /* the points by bands of unit rows, for point-to-grid */
+  void *scratch;                  /* [scap doubles] for reordering the point store */
+  size_t scap;
 
   /* nodal workspace [mesh.nnodes] */
-  double *nm, *nmvx, *nmvy, *nfx, *nfy, *nvx, *nvy, *nax, *nay;
-  int *nbusy;                     /* [mesh.nnodes + 1] running count of nodes with mass,
-                                   * to split point-to-grid between threads */
+  double *nm;                     /* m_i */
+  double (*nq)[4];                /* after point-to-grid ((mv)_x, (mv)_y, f_x, f_y),
+                                   * after the grid update (v_x, v_y, a_x, a_y) */
 
   /* constitutive substepping and the nonlocal fluidity (MODEL.md section 5) */
   int n_sub;                      /* constitutive substeps per step, L fixed */
@@ -51,8 +62,6 @@ typedef struct mpm_sim {
   double *ug;                     /* mesh.dilatation = "unit": [9 nx ny] per unit, the
                                    * points' volume and the volume-weighted mean of
                                    * their dS_k/dx, dS_k/dy (k = 0..3); else NULL */
-  long *uof;                      /* [ucap] with ug: each point's unit, -1 outside */
-  size_t ucap;
 
   double t, dt;                   /* current time, time step [s] */
   long step;
@@ -65,6 +74,11 @@ typedef struct mpm_sim {
   double mass_removed;            /* mass of the points removed so far [kg/m] */
   long nremoved;                  /* their number */
 } mpm_sim;
+
+/* The point store is reordered by unit row at every step that is a multiple
+ * of this (transfer.c), so that the points of a band of rows lie together
+ * in memory. */
+#define MPM_SIM_REORDER_EVERY 16
 
 /* Build a simulation from a resolved configuration. */
 int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err);

@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "scenario/scenario.h"
+#include "solver/transfer.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -36,14 +37,13 @@
 
 static int nodal_alloc(mpm_sim *s)
 {
-  size_t n = (size_t)s->mesh.nnodes;
-  double **arrs[] = {&s->nm, &s->nmvx, &s->nmvy, &s->nfx, &s->nfy,
-                     &s->nvx, &s->nvy, &s->nax, &s->nay};
-  for (size_t k = 0; k < sizeof arrs / sizeof arrs[0]; k++)
-    if (!(*arrs[k] = calloc(n, sizeof(double))))
-      return MPM_ENOMEM;
-  if (!(s->nbusy = calloc(n + 1, sizeof *s->nbusy)))
+  const size_t n = s->mesh.nnodes > 0 ? (size_t)s->mesh.nnodes : 1;
+  if (!(s->nm = calloc(n, sizeof *s->nm)))
     return MPM_ENOMEM;
+  /* records of four doubles on 32-byte boundaries: one vector each */
+  if (!(s->nq = aligned_alloc(32, n * sizeof *s->nq)))
+    return MPM_ENOMEM;
+  memset(s->nq, 0, n * sizeof *s->nq);
   return MPM_OK;
 }
 
@@ -161,8 +161,14 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     rc = mpm_err_set(err, MPM_ENOMEM, "points: out of memory");
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++)
     rc = mpm_scenario_fill(s->pts, &s->mesh, &cfg->fill[f], &s->par, cfg->gravity.gy, err);
-  if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK || !(s->st = mpm_shape_stencil_alloc(s->pts->cap))))
+  if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK || !(s->st = mpm_shape_stencil_alloc(0)) ||
+                       !(s->bands = mpm_mesh_bands_alloc())))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
+  if (rc == MPM_OK)
+    s->located = s->shape->at_point;
+  if (rc == MPM_OK && cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
+      !(s->located && s->mesh.topology == MPM_TOPO_Q4))
+    rc = mpm_err_set(err, MPM_EINPUT, "mesh.dilatation = \"unit\" needs delta weights on q4");
   if (rc == MPM_OK)
     rc = nonlocal_alloc(s, err);
   if (rc == MPM_OK)
@@ -178,7 +184,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   for (size_t p = 0; p < s->pts->n; p++)
     s->mass0 += s->pts->mass[p];
   s->mtiny = 1e-12 * s->mass0 / (double)s->pts->n;          /* skip nodes lighter than this */
-  if (s->shape == &mpm_shape_delta)                          /* body force only below this */
+  if (s->shape->at_point)                                    /* body force only below this */
     s->mlight = 1e-3 * s->mass0 / (double)s->pts->n;
   *out = s;
   return MPM_OK;
@@ -191,20 +197,22 @@ void mpm_sim_free(mpm_sim *s)
   mpm_bc_clear(&s->bc);
   mpm_points_free(s->pts);
   mpm_shape_stencil_free(s->st);
-  free(s->nbusy);
+  mpm_mesh_bands_free(s->bands);
   mpm_nonlocal_free(s->nl);
   mpm_material_density_free(s->dens);
   free(s->rho);
   free(s->ug);
-  free(s->uof);
   free(s->lxx);
   free(s->lxy);
   free(s->lyx);
   free(s->lyy);
-  double *arrs[] = {s->nm, s->nmvx, s->nmvy, s->nfx, s->nfy, s->nvx, s->nvy,
-                    s->nax, s->nay};
-  for (size_t k = 0; k < sizeof arrs / sizeof arrs[0]; k++)
-    free(arrs[k]);
+  free(s->loc_i);
+  free(s->loc_j);
+  free(s->loc_u);
+  free(s->loc_v);
+  free(s->scratch);
+  free(s->nm);
+  free(s->nq);
   free(s);
 }
 
@@ -218,358 +226,110 @@ void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy)
 
 /* ---- the step ------------------------------------------------------------ */
 
-/* Point-to-grid and the grid update run in parallel over disjoint ranges of
- * storage node ids. The thread owning [lo, hi) visits every point in point
- * order and adds only the contributions to its own nodes, so each node sums
- * its contributions in point order, exactly as a serial loop does: nodal
- * values, and so the whole step, are bitwise independent of the number of
- * threads and of where the ranges are cut. The cuts only balance the work:
- * each range gets about the same number of nodes that carried mass in the
- * previous step (nbusy[i] counts those among nodes [0, i)). */
+/* The points are moved and updated in chunks: grid-to-point for the chunk
+ * (its velocity gradients and grid velocities kept here), then the model's
+ * update of the whole chunk at once (mpm_material_batch), then step 7. */
+enum { CHUNK = 64 };
 
-/* nbusy[i] = number of nodes among [0, i) heavier than mtiny. */
-static void count_busy_nodes(mpm_sim *s)
-{
-  int busy = 0;
-  for (int i = 0; i < s->mesh.nnodes; i++) {
-    s->nbusy[i] = busy;
-    busy += s->nm[i] > s->mtiny;
-  }
-  s->nbusy[s->mesh.nnodes] = busy;
-}
+typedef struct chunk {
+  double lxx[CHUNK], lxy[CHUNK], lyx[CHUNK], lyy[CHUNK];  /* L_p */
+  double rho[CHUNK], lap[CHUNK], isp[CHUNK];             /* the update's inputs */
+  double vgx[CHUNK], vgy[CHUNK];                         /* grid velocity that moved p */
+} chunk;
 
-/* First node of range t of nt: the first i >= 1 with nbusy[i] >= busy t / nt
- * (so about t / nt of the nodes with mass lie before it), or an even split of
- * the node ids while no node carries mass. */
-static int range_start(const mpm_sim *s, int t, int nt)
+/* Steps 4-5 for points [a, b): L_p to lxx[p - a] ... (and the grid velocity
+ * to ck when ck is not NULL). */
+static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int located, double *lxx,
+                             double *lxy, double *lyx, double *lyy, chunk *ck)
 {
-  const int nn = s->mesh.nnodes;
-  const long long busy = s->nbusy[nn];
-  if (t == 0 || t == nt)
-    return t == 0 ? 0 : nn;
-  if (busy == 0)
-    return (int)((long long)nn * t / nt);
-  const long long want = busy * t / nt;
-  int a = 0, b = nn;                       /* nbusy[a] < want <= nbusy[b] */
-  while (b - a > 1) {
-    const int c = a + (b - a) / 2;
-    if (s->nbusy[c] < want)
-      a = c;
-    else
-      b = c;
-  }
-  return b;
-}
-
-/* B-bar weights of the step ([mesh] dilatation = "unit", delta weights on q4,
- * so a point's stencil is the corners of its unit in mpm_mesh_basis order):
- * per unit u, ug[9u] = sum V_p over its points and ug[9u + 1 + k],
- * ug[9u + 5 + k] the volume-weighted mean of their dS_k/dx, dS_k/dy. The
- * points are the unit's quadrature: four points placed symmetrically give the
- * gradient at the unit centre, one point its own gradient (the point rule),
- * so a node the points barely reach gets no more force than without B-bar.
- * Sums in point order on one thread: thread-count free. */
-static int unit_gradients(mpm_sim *s, mpm_err *err)
-{
-  const mpm_points *P = s->pts;
-  const mpm_shape_stencil *st = s->st;
-  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
-  if (P->n > s->ucap) {
-    long *u = realloc(s->uof, P->n * sizeof *u);
-    if (!u)
-      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu point units", P->n);
-    s->uof = u;
-    s->ucap = P->n;
-  }
-  memset(s->ug, 0, 9 * nu * sizeof *s->ug);
-  for (size_t p = 0; p < P->n; p++) {
-    int i, j;
-    s->uof[p] = -1;
-    if (mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) != MPM_OK)
-      continue;
-    s->uof[p] = (long)i + (long)s->mesh.nx * j;
-    double *u = s->ug + 9 * s->uof[p];
-    const double V = P->vol[p];
-    const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
-    u[0] += V;
-    for (int k = 0; k < 4; k++) {
-      u[1 + k] += V * gx[k];
-      u[5 + k] += V * gy[k];
-    }
-  }
-  for (size_t e = 0; e < nu; e++) {
-    double *u = s->ug + 9 * e;
-    if (u[0] > 0.0)
-      for (int k = 1; k < 9; k++)
-        u[k] /= u[0];
-  }
-  return MPM_OK;
-}
-
-/* The B-bar gradients of point p's unit: dS_k/dx at gx[0..3], dS_k/dy at
- * gy[0..3] (its own gradients when it is outside the mesh). */
-static void bbar_gradient(const mpm_sim *s, size_t p, const double **gx, const double **gy)
-{
-  if (s->uof[p] < 0) {
-    *gx = s->st->dSx + p * MPM_STENCIL_W;
-    *gy = s->st->dSy + p * MPM_STENCIL_W;
-  } else {
-    *gx = s->ug + 9 * s->uof[p] + 1;
-    *gy = s->ug + 9 * s->uof[p] + 5;
-  }
-}
-
-/* Step 2 on nodes [lo, hi):
- * m_i, (mv)_i, f_i = sum_p [S_ip m_p, S_ip m_p v_p, -V_p sigma_p . gradS_ip + S_ip m_p b]. */
-static void point_to_grid(mpm_sim *s, int lo, int hi, double bx, double by)
-{
-  const mpm_points *P = s->pts;
-  const mpm_shape_stencil *st = s->st;
-  const size_t len = (size_t)(hi - lo) * sizeof(double);
-  double *nm = s->nm, *nmvx = s->nmvx, *nmvy = s->nmvy, *nfx = s->nfx, *nfy = s->nfy;
-  memset(nm + lo, 0, len);
-  memset(nmvx + lo, 0, len);
-  memset(nmvy + lo, 0, len);
-  memset(nfx + lo, 0, len);
-  memset(nfy + lo, 0, len);
-  const unsigned width = (unsigned)(hi - lo);
-  const int bbar = s->ug != NULL;
-  for (size_t p = 0; p < P->n; p++) {
-    const int *node = st->node + p * MPM_STENCIL_W;
-    const int c = st->count[p];
-    int k = 0;
-    while (k < c && (unsigned)(node[k] - lo) >= width)   /* node[k] outside [lo, hi) */
-      k++;
-    if (k == c)
-      continue;                            /* no node in the range */
-    const double *S = st->S + p * MPM_STENCIL_W;
-    const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
-    const double m = P->mass[p], V = P->vol[p];
-    const double mvx = m * P->vx[p], mvy = m * P->vy[p];
-    const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
-    const double sm = bbar ? 0.5 * (sxx + syy) : 0.0;   /* in-plane mean stress */
-    const double *cgx = gx, *cgy = gy;                /* no B-bar: no correction */
-    if (bbar)
-      bbar_gradient(s, p, &cgx, &cgy);
-    for (; k < c; k++) {
-      const int i = node[k];
-      if ((unsigned)(i - lo) >= width)
-        continue;                          /* another range's node */
-      const double Sk = S[k], gxk = gx[k], gyk = gy[k], Sm = Sk * m;
-      nm[i] += Sm;
-      nmvx[i] += Sk * mvx;
-      nmvy[i] += Sk * mvy;
-      nfx[i] += -V * (sxx * gxk + sxy * gyk) + Sm * bx;  /* -V sigma.gradS + S m b */
-      nfy[i] += -V * (sxy * gxk + syy * gyk) + Sm * by;
-      if (bbar) {                          /* mean stress on the unit's B-bar gradient */
-        nfx[i] -= V * sm * (cgx[k] - gxk);
-        nfy[i] -= V * sm * (cgy[k] - gyk);
-      }
-    }
-  }
-}
-
-/* Boundary conditions on nodes [lo, hi) only: they are a per-node mask
- * (bc.h), so a view of the mask from node lo applies them to that range. */
-static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double *ay)
-{
-  mpm_bc part = *bc;
-  part.fix += lo;
-  if (part.normal)
-    part.normal += 2 * lo;
-  part.nnodes = hi - lo;
-  mpm_bc_apply(&part, ax + lo, ay + lo);
-}
-
-/* Step 3 on nodes [lo, hi): boundary conditions, (mv)_i += dt f_i,
- * v_i = (mv)_i/m_i. A wall zeroes the constrained components of (mv)_i and
- * of f_i ([DK15] section 4: momentum fixed, its update suppressed). The
- * acceleration the points receive is the change of nodal velocity over the
- * step, a_i = f_i/m_i + (v_i^bc - v_i^n)/dt, where v_i^n = (mv)_i/m_i as
- * mapped and v_i^bc the same after the wall acted: f_i/m_i on free
- * components (the jump is exactly 0 there) and -v_i^n/dt on constrained
- * ones. With a_i = f_i/m_i = 0 there instead, a point stopped by a wall would
- * keep its velocity for ever (FLIP only adds increments): its position
- * follows the grid and stays put, but it reports kinetic energy it does not
- * have, and a kinetic-energy stop test never fires.
- * With delta shape functions a node lighter than mlight (1e-3 of the mean
- * point mass: the points near it lie within about a thousandth of a unit of
- * its far edge) takes the body force only. Its internal force
- * -V sigma.gradS does not shrink with its weight S, so f_i/m_i grows as 1/S
- * when a stressed point crosses into an empty unit, and that velocity, times
- * gradS, enters L_p: a point's volume overflowed (1e111 m^2) this way at a
- * heap's surface. uGIMP gradients vanish with the weights (mlight = 0). */
-static void grid_update(mpm_sim *s, int lo, int hi, double bx, double by)
-{
-  const double dt = s->dt, idt = 1.0 / s->dt, mt = s->mtiny, ml = s->mlight;
-  for (int i = lo; i < hi; i++) {                       /* v_i^n, before the wall */
-    double m = s->nm[i];
-    s->nvx[i] = m > mt ? s->nmvx[i] / m : 0.0;
-    s->nvy[i] = m > mt ? s->nmvy[i] / m : 0.0;
-    if (m < ml) {                                       /* light node: body force only */
-      s->nfx[i] = m * bx;
-      s->nfy[i] = m * by;
-    }
-  }
-  bc_apply_range(&s->bc, lo, hi, s->nmvx, s->nmvy);
-  bc_apply_range(&s->bc, lo, hi, s->nfx, s->nfy);
-  for (int i = lo; i < hi; i++) {
-    double m = s->nm[i];
-    if (m > mt) {
-      const double jx = (s->nmvx[i] / m - s->nvx[i]) * idt;  /* wall's velocity jump / dt */
-      const double jy = (s->nmvy[i] / m - s->nvy[i]) * idt;
-      s->nmvx[i] += dt * s->nfx[i];
-      s->nmvy[i] += dt * s->nfy[i];
-      s->nax[i] = s->nfx[i] / m + jx;
-      s->nay[i] = s->nfy[i] / m + jy;
-      s->nvx[i] = s->nmvx[i] / m;
-      s->nvy[i] = s->nmvy[i] / m;
+  for (size_t p = a; p < b; p++) {
+    mpm_sim_in_basis buf;
+    const int *node;
+    const double *S, *gx, *gy;
+    double L[4], vg[2];
+    const int c = mpm_sim_in_weights(s, p, located, &buf, &node, &S, &gx, &gy);
+    mpm_sim_in_g2p(s, p, c, node, S, gx, gy, L, vg);
+    lxx[p - a] = L[0];
+    lxy[p - a] = L[1];
+    lyx[p - a] = L[2];
+    lyy[p - a] = L[3];
+    if (ck) {
+      ck->vgx[p - a] = vg[0];
+      ck->vgy[p - a] = vg[1];
     } else {
-      s->nax[i] = s->nay[i] = s->nvx[i] = s->nvy[i] = 0.0;
+      mpm_sim_in_bookkeeping(s, p, vg);
     }
   }
 }
 
-/* Steps 2-3, each thread on its own range of nodes. */
-static void grid_phase(mpm_sim *s, double bx, double by)
+/* Steps 4-5 for points [a, b) with the weights of the step; see g2p_range. */
+static void move_range(mpm_sim *s, size_t a, size_t b, double *lxx, double *lxy, double *lyx,
+                       double *lyy, chunk *ck)
 {
-  count_busy_nodes(s);
-#pragma omp parallel
-  {
-    int t = 0, nt = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    nt = omp_get_num_threads();
-#endif
-    const int lo = range_start(s, t, nt), hi = range_start(s, t + 1, nt);
-    point_to_grid(s, lo, hi, bx, by);
-    grid_update(s, lo, hi, bx, by);
-  }
+  if (s->located)
+    g2p_range(s, a, b, 1, lxx, lxy, lyx, lyy, ck);
+  else
+    g2p_range(s, a, b, 0, lxx, lxy, lyx, lyy, ck);
 }
 
-/* Steps 4-5 for point p: v_p += dt sum S a_i (FLIP; blended with the PIC
- * velocity sum S v_i when time.flip < 1); x_p += dt sum S v_i;
- * L_p = sum v_i (x) gradS (its in-plane part; L is zero otherwise);
- * V_p *= exp(dt tr L_p). */
-static void grid_to_point(mpm_sim *s, size_t p, mpm_mat3 *L, double vgrid[2])
-{
-  mpm_points *P = s->pts;
-  const mpm_shape_stencil *st = s->st;
-  const double dt = s->dt;
-  const int *node = st->node + p * MPM_STENCIL_W;
-  const double *S = st->S + p * MPM_STENCIL_W;
-  const double *gx = st->dSx + p * MPM_STENCIL_W, *gy = st->dSy + p * MPM_STENCIL_W;
-  double ax = 0, ay = 0, vx = 0, vy = 0, lxx = 0, lxy = 0, lyx = 0, lyy = 0;
-  for (int k = 0; k < st->count[p]; k++) {
-    int i = node[k];
-    ax += S[k] * s->nax[i];
-    ay += S[k] * s->nay[i];
-    vx += S[k] * s->nvx[i];
-    vy += S[k] * s->nvy[i];
-    lxx += s->nvx[i] * gx[k];
-    lxy += s->nvx[i] * gy[k];
-    lyx += s->nvy[i] * gx[k];
-    lyy += s->nvy[i] * gy[k];
-  }
-  if (s->ug) {
-    /* B-bar: tr L is replaced by the unit's divergence, the volume-weighted
-     * mean of its points' tr L, i.e. its rate of area change (the in-plane
-     * mean stress does work on it in point_to_grid, so the pair conserves
-     * energy). */
-    const double *cgx, *cgy;
-    double div = 0.0;
-    bbar_gradient(s, p, &cgx, &cgy);
-    for (int k = 0; k < st->count[p]; k++)
-      div += s->nvx[node[k]] * cgx[k] + s->nvy[node[k]] * cgy[k];
-    const double corr = 0.5 * (div - lxx - lyy);
-    lxx += corr;
-    lyy += corr;
-  }
-  const double fl = s->cfg.time.flip;                     /* FLIP share (1: [DK15]) */
-  P->vx[p] = fl * (P->vx[p] + dt * ax) + (1.0 - fl) * vx;  /* v_p = fl v_FLIP + (1-fl) v_PIC */
-  P->vy[p] = fl * (P->vy[p] + dt * ay) + (1.0 - fl) * vy;
-  P->x[p] += dt * vx;
-  P->y[p] += dt * vy;
-  vgrid[0] = vx;
-  vgrid[1] = vy;
-  P->vol[p] *= exp(dt * (lxx + lyy));                     /* V *= exp(dt tr L) */
-  L->m[0][0] = lxx;
-  L->m[0][1] = lxy;
-  L->m[1][0] = lyx;
-  L->m[1][1] = lyy;
-}
-
-/* Density the update of point p sees: m / V_{n+1} (point rule), or the
- * element / hybrid value computed for the step ([D-thesis] §3.4). */
-static double state_rho(const mpm_sim *s, size_t p)
-{
-  return s->dens ? s->rho[p] : s->pts->mass[p] / s->pts->vol[p];  /* rho_{n+1} */
-}
-
-/* Step 6 for point p: n substeps of length h of a model's update with L
- * fixed; lap is the Laplacian of g its unit sees and isp the p^-1/2 of its
- * g^2 term (0: its own; nonlocal models only). Returns 0 when the stress
- * became non-finite. */
-static int constitutive(mpm_sim *s, mpm_material_update_fn update, size_t p, const mpm_mat3 *L,
-                        double h, int n, double lap, double isp)
-{
-  mpm_points *P = s->pts;
-  mpm_mpoint mp = {
-    .sigma = mpm_points_stress(P, p),
-    .rho = state_rho(s, p),
-    .g = P->g[p], .lap = lap, .isp = isp, .gdp = P->gdp[p], .state = P->state[p],
-  };
-  for (int k = 0; k < n; k++)
-    update(&s->par, L, h, &mp);
-  P->sxx[p] = mp.sigma.xx;
-  P->syy[p] = mp.sigma.yy;
-  P->szz[p] = mp.sigma.zz;
-  P->sxy[p] = mp.sigma.xy;
-  P->g[p] = mp.g;
-  P->gdp[p] = mp.gdp;
-  P->state[p] = mp.state;
-  return isfinite(mp.sigma.xx + mp.sigma.yy + mp.sigma.zz + mp.sigma.xy);
-}
-
-/* Step 7 for point p, moved by the grid velocity vgrid: walls hold, periodic
- * wrap, and the absorbing layer of [DK-silo] section 7.1 (upward motion high
- * in a silo is elastic waves). */
-static void bookkeeping(mpm_sim *s, size_t p, const double vgrid[2])
-{
-  mpm_points *P = s->pts;
-  /* Walls hold. A disconnected point is a free particle: nothing but the
-   * wall stops it, so its velocity into the wall is limited to the grid's.
-   * A dense one keeps its FLIP velocity, whose wall part the held nodes'
-   * a_i already take back (step 3). */
-  double vx = P->vx[p], vy = P->vy[p];
-  mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p], &vx, &vy, vgrid[0], vgrid[1]);
-  if (P->state[p] != MPM_STATE_DENSE) {
-    P->vx[p] = vx;
-    P->vy[p] = vy;
-  }
-  if (P->y[p] >= s->cfg.absorb.above && P->vy[p] > 0.0)
-    P->vy[p] *= s->cfg.absorb.factor;
-  if (s->mesh.periodic_x || s->mesh.periodic_y)
-    mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
-}
-
-/* Steps 4-7 point by point for a local model (once the grid is known the
- * points are independent): grid-to-point, constitutive update in n_sub
- * substeps, bookkeeping. Returns the largest index of a point whose stress
+/* Step 6 for points [a, b): n substeps of length h of the update of model
+ * mat (update_steady instead when steady) with L fixed; rho, lap, isp as in
+ * mpm_material_batch. Returns the largest index of a point whose stress
  * became non-finite, or -1. */
+static long update_range(mpm_sim *s, const mpm_material_type *mat, int steady, size_t a, size_t b,
+                         const double *lxx, const double *lxy, const double *lyx,
+                         const double *lyy, const double *rho, const double *lap,
+                         const double *isp, double h, int n)
+{
+  mpm_points *P = s->pts;
+  const mpm_material_batch bt = {
+    .n = b - a, .lxx = lxx, .lxy = lxy, .lyx = lyx, .lyy = lyy, .rho = rho, .lap = lap,
+    .isp = isp, .sxx = P->sxx + a, .syy = P->syy + a, .szz = P->szz + a, .sxy = P->sxy + a,
+    .g = P->g + a, .gdp = P->gdp + a, .state = P->state + a,
+  };
+  if (steady)
+    mpm_material_plane_loop(&s->par, h, n, &bt, mat->update_steady);
+  else if (mat->update_plane)
+    mat->update_plane(&s->par, h, n, &bt);
+  else
+    mpm_material_plane_loop(&s->par, h, n, &bt, mat->update);
+  long bad = -1;
+  for (size_t p = a; p < b; p++)
+    if (!isfinite(P->sxx[p] + P->syy[p] + P->szz[p] + P->sxy[p]))
+      bad = (long)p;
+  return bad;
+}
+
+/* rho_{n+1} of points [a, b) for their update: the density computed for
+ * the step (element, hybrid or unit rule, [D-thesis] §3.4) or m / V_{n+1}. */
+static const double *state_rho(const mpm_sim *s, size_t a, size_t b, double *buf)
+{
+  if (s->dens)
+    return s->rho + a;
+  for (size_t p = a; p < b; p++)
+    buf[p - a] = s->pts->mass[p] / s->pts->vol[p];               /* rho_{n+1} = m / V */
+  return buf;
+}
+
+/* Steps 4-7 chunk by chunk for a local model (once the grid is known the
+ * points are independent): grid-to-point, the update in n_sub substeps,
+ * bookkeeping. Returns the largest index of a point whose stress became
+ * non-finite, or -1. */
 static long point_phase(mpm_sim *s, const mpm_material_type *mat)
 {
-  mpm_points *P = s->pts;
+  const size_t n = s->pts->n, nc = (n + CHUNK - 1) / CHUNK;
   const double h = s->dt / s->n_sub;
   long bad = -1;
 #pragma omp parallel for schedule(static) reduction(max : bad)
-  for (size_t p = 0; p < P->n; p++) {
-    mpm_mat3 L = {{{0.0}}};
-    double vgrid[2];
-    grid_to_point(s, p, &L, vgrid);
-    if (!constitutive(s, mat->update, p, &L, h, s->n_sub, 0.0, 0.0))
-      bad = (long)p > bad ? (long)p : bad;
-    bookkeeping(s, p, vgrid);
+  for (size_t c = 0; c < nc; c++) {
+    chunk ck;
+    const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
+    move_range(s, a, b, ck.lxx, ck.lxy, ck.lyx, ck.lyy, &ck);
+    long bc = update_range(s, mat, 0, a, b, ck.lxx, ck.lxy, ck.lyx, ck.lyy,
+                           state_rho(s, a, b, ck.rho), NULL, NULL, h, s->n_sub);
+    bad = bc > bad ? bc : bad;
+    for (size_t p = a; p < b; p++)
+      mpm_sim_in_bookkeeping(s, p, (const double[2]){ck.vgx[p - a], ck.vgy[p - a]});
   }
   return bad;
 }
@@ -582,17 +342,6 @@ static void update_density(mpm_sim *s, const int *unit)
   if (s->dens)
     mpm_material_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x,
                                  P->y, unit, P->mass, P->vol, s->rho);
-}
-
-/* L_p as stored for the substeps. */
-static mpm_mat3 stored_L(const mpm_sim *s, size_t p)
-{
-  mpm_mat3 L = {{{0.0}}};
-  L.m[0][0] = s->lxx[p];
-  L.m[0][1] = s->lxy[p];
-  L.m[1][0] = s->lyx[p];
-  L.m[1][1] = s->lyy[p];
-  return L;
 }
 
 /* Grow the per-point L arrays (and densities) with the point store. */
@@ -624,22 +373,41 @@ static int reserve_L(mpm_sim *s, mpm_err *err)
  * the update, walls and periodic wrap. */
 static int move_points(mpm_sim *s, mpm_err *err)
 {
-  mpm_points *P = s->pts;
+  const size_t n = s->pts->n, nc = (n + CHUNK - 1) / CHUNK;
   int rc = reserve_L(s, err);
   if (rc != MPM_OK)
     return rc;
 #pragma omp parallel for schedule(static)
-  for (size_t p = 0; p < P->n; p++) {
-    mpm_mat3 L = {{{0.0}}};
-    double vgrid[2];
-    grid_to_point(s, p, &L, vgrid);
-    s->lxx[p] = L.m[0][0];
-    s->lxy[p] = L.m[0][1];
-    s->lyx[p] = L.m[1][0];
-    s->lyy[p] = L.m[1][1];
-    bookkeeping(s, p, vgrid);
+  for (size_t c = 0; c < nc; c++) {
+    const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
+    move_range(s, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a, NULL);
   }
   return MPM_OK;
+}
+
+/* Step 6 chunk by chunk with the stored L_p (after move_points); nonlocal:
+ * each point's lap and isp from the field of the (sub)step. */
+static long update_stored(mpm_sim *s, const mpm_material_type *mat, int steady, int nonlocal,
+                          int n_sub)
+{
+  const size_t n = s->pts->n, nc = (n + CHUNK - 1) / CHUNK;
+  const double h = s->dt / s->n_sub;
+  long bad = -1;
+#pragma omp parallel for schedule(static) reduction(max : bad)
+  for (size_t c = 0; c < nc; c++) {
+    chunk ck;
+    const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
+    if (nonlocal)
+      for (size_t p = a; p < b; p++) {
+        ck.lap[p - a] = mpm_nonlocal_point_lap(s->nl, p);
+        ck.isp[p - a] = mpm_nonlocal_point_isp(s->nl, p);
+      }
+    long bc = update_range(s, mat, steady, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a,
+                           state_rho(s, a, b, ck.rho), nonlocal ? ck.lap : NULL,
+                           nonlocal ? ck.isp : NULL, h, n_sub);
+    bad = bc > bad ? bc : bad;
+  }
+  return bad;
 }
 
 /* Point-to-unit membership for the step, from the positions x_{n+1} (and,
@@ -675,7 +443,9 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   mpm_nonlocal *nl = s->nl;
   const double h = s->dt / s->n_sub;
   const int steady = mpm_nonlocal_is_steady(nl);
-  long bad = -1;
+  if (steady && s->located &&                /* the steady solve reads a stored stencil */
+      (*rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, P, s->t, err)) != MPM_OK)
+    return -1;
   if (steady && (*rc = mpm_nonlocal_steady_field(nl, s->mat, &s->par, P, s->st, &s->mesh,
                                                  s->cfg.material.g_sample,
                                                  s->cfg.material.g_mass, err)) != MPM_OK) {
@@ -688,30 +458,18 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
    * the mesh they have no unit. */
   if ((*rc = mpm_sim_remove_points(s, s->t + s->dt, err)) != MPM_OK || (*rc = locate(s, err)) != MPM_OK)
     return -1;
-  size_t n = P->n;
   update_density(s, nl->unit);  /* the units just frozen */
-  if (steady) {                              /* g given: the substeps with L fixed */
-#pragma omp parallel for schedule(static) reduction(max : bad)
-    for (size_t p = 0; p < n; p++) {
-      mpm_mat3 L = stored_L(s, p);
-      if (!constitutive(s, s->mat->update_steady, p, &L, h, s->n_sub, 0.0, 0.0))
-        bad = (long)p > bad ? (long)p : bad;
-    }
-    return bad;
-  }
+  if (steady)                                /* g given: the substeps with L fixed */
+    return update_stored(s, s->mat, 1, 0, s->n_sub);
+  long bad = -1;
   for (int k = 0; k < s->n_sub; k++) {
     *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, err);
     if (*rc != MPM_OK) {                     /* g_e, lap_e, isp_e of the dense points */
       mpm_err_prefix(err, *rc, "step %ld, t = %.6g s", s->step + 1, s->t + s->dt);
       return -1;
     }
-#pragma omp parallel for schedule(static) reduction(max : bad)
-    for (size_t p = 0; p < n; p++) {
-      mpm_mat3 L = stored_L(s, p);
-      if (!constitutive(s, s->mat->update, p, &L, h, 1, mpm_nonlocal_point_lap(nl, p),
-                        mpm_nonlocal_point_isp(nl, p)))
-        bad = (long)p > bad ? (long)p : bad;
-    }
+    long b = update_stored(s, s->mat, 0, 1, 1);
+    bad = b > bad ? b : bad;
   }
   return bad;
 }
@@ -722,19 +480,10 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
  * point order and the points are updated. Returns as point_phase. */
 static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm_err *err)
 {
-  mpm_points *P = s->pts;
-  const double h = s->dt / s->n_sub;
-  long bad = -1;
   if ((*rc = move_points(s, err)) != MPM_OK)
     return -1;
   update_density(s, NULL);
-#pragma omp parallel for schedule(static) reduction(max : bad)
-  for (size_t p = 0; p < P->n; p++) {
-    mpm_mat3 L = stored_L(s, p);
-    if (!constitutive(s, mat->update, p, &L, h, s->n_sub, 0.0, 0.0))
-      bad = (long)p > bad ? (long)p : bad;
-  }
-  return bad;
+  return update_stored(s, mat, 0, 0, s->n_sub);
 }
 
 /* Seeding ([DK-silo] section 6, for NGF: g = 0 is always a solution): a
@@ -758,7 +507,7 @@ static const mpm_material_type *seeding(mpm_sim *s)
 
 int mpm_sim_step(mpm_sim *s, mpm_err *err)
 {
-  int rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, s->pts, s->t, err);
+  int rc = mpm_sim_in_weights_all(s, err);
   if (rc != MPM_OK)
     return rc;
   if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc.open &&
@@ -772,9 +521,9 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   }
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
-  if (s->ug && (rc = unit_gradients(s, err)) != MPM_OK)
-    return rc;
-  grid_phase(s, bx, by);
+  if (s->ug)
+    mpm_sim_in_unit_gradients(s);
+  mpm_sim_in_grid(s, bx, by);
   const mpm_material_type *mat = seeding(s);
   long bad;
   if (mat->nonlocal) {

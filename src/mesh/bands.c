@@ -1,0 +1,101 @@
+/* bands.c: points binned by bands of unit rows (mesh.h, mpm_mesh_bands).
+ *
+ * A loop over points that adds each point's share to the rows around it
+ * (nodes or units) runs on many threads without two of them writing the same
+ * row at once when it takes the points band by band: a band is h >= lo + hi
+ * consecutive unit rows, so the rows written by two bands that are not
+ * neighbours never meet, and the bands of one colour (every second band) can
+ * run in parallel, the colours one after the other. Every written entry then
+ * sums its shares band by band and, within a band, in point order: the same
+ * order whatever the number of threads and whichever thread takes a band.
+ * The binning is a stable counting sort of the point indices by band. */
+#include "mesh/mesh.h"
+
+#include <limits.h>
+#include <stdlib.h>
+
+mpm_mesh_bands *mpm_mesh_bands_alloc(void)
+{
+  return calloc(1, sizeof(mpm_mesh_bands));
+}
+
+void mpm_mesh_bands_free(mpm_mesh_bands *b)
+{
+  if (!b)
+    return;
+  free(b->start);
+  free(b->idx);
+  free(b->band_of_row);
+  free(b);
+}
+
+/* Band height and count for ny unit rows: h = max(1, lo + hi) rows, the
+ * remainder joining the last band; on a periodic axis an even count (the
+ * last two bands merge when it is odd), so the colours alternate round it;
+ * one band when the rows are too few for two. One colour when lo + hi = 0
+ * (each row writes only to itself). */
+static void band_layout(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi)
+{
+  const int ny = m->ny;
+  int h = lo + hi > 1 ? lo + hi : 1;
+  int nb = ny / h;
+  if (nb < 1)
+    nb = 1;
+  b->ncolour = lo + hi > 0 ? 2 : 1;
+  if (b->ncolour == 2 && m->periodic_y && nb % 2 == 1)
+    nb = nb > 1 ? nb - 1 : 1;
+  if (b->ncolour == 2 && m->periodic_y && nb == 1)
+    b->ncolour = 1;               /* one band wraps onto itself: one thread takes it */
+  b->h = h;
+  b->nb = nb;
+  b->ny = ny;
+  for (int j = 0; j < ny; j++) {
+    const int k = j / h;
+    b->band_of_row[j] = k < nb ? k : nb - 1;
+  }
+}
+
+int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, size_t n,
+                        const int *row, mpm_err *err)
+{
+  if (n > (size_t)INT_MAX)
+    return mpm_err_set(err, MPM_ENOMEM, "bands: %zu points, at most %d", n, INT_MAX);
+  if (m->ny > b->rcap) {
+    int *r = realloc(b->band_of_row, (size_t)m->ny * sizeof *r);
+    int *st = realloc(b->start, ((size_t)m->ny + 1) * sizeof *st);
+    if (r)
+      b->band_of_row = r;
+    if (st)
+      b->start = st;
+    if (!r || !st)
+      return mpm_err_set(err, MPM_ENOMEM, "bands: no memory for %d rows", m->ny);
+    b->rcap = m->ny;
+  }
+  if (n > b->cap) {
+    int *ix = realloc(b->idx, n * sizeof *ix);
+    if (!ix)
+      return mpm_err_set(err, MPM_ENOMEM, "bands: no memory for %zu points", n);
+    b->idx = ix;
+    b->cap = n;
+  }
+  if (b->ny != m->ny || b->lo != lo || b->hi != hi) {
+    band_layout(b, m, lo, hi);
+    b->lo = lo;
+    b->hi = hi;
+  }
+  int *start = b->start;
+  const int nb = b->nb;
+  for (int k = 0; k <= nb; k++)
+    start[k] = 0;
+  for (size_t p = 0; p < n; p++)                 /* points per band, shifted by one */
+    start[b->band_of_row[row[p]] + 1]++;
+  for (int k = 0; k < nb; k++)                   /* first slot of each band */
+    start[k + 1] += start[k];
+  for (size_t p = 0; p < n; p++)                 /* stable: point order within a band */
+    b->idx[start[b->band_of_row[row[p]]]++] = (int)p;
+  for (int k = nb; k > 0; k--)                   /* the increments moved start[k] to start[k+1] */
+    start[k] = start[k - 1];
+  start[0] = 0;
+  b->n = n;
+  return MPM_OK;
+}

@@ -1,0 +1,295 @@
+/* transfer.c: the weights of the step, the bands of points, the reordering
+ * of the point store, and the grid phase (transfer.h; MODEL.md section 2
+ * steps 1-3, [DK15] section 3.1).
+ *
+ * Threads. Point-to-grid adds every point's share to the nodes around it.
+ * The points are binned by bands of unit rows (mesh.h, mpm_mesh_bands) deep
+ * enough that two bands of one colour never share a node: the bands of one
+ * colour run in parallel, the colours one after the other, and every node
+ * sums its shares band by band and in point order within a band, whatever
+ * the number of threads and whichever thread takes a band. The grid update
+ * is independent per node. Results are bitwise independent of the thread
+ * count. */
+#include "solver/transfer.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* ---- step 1: weights ------------------------------------------------------ */
+
+/* Room for the located points of n points. */
+static int reserve_located(mpm_sim *s, size_t n, mpm_err *err)
+{
+  if (n <= s->loc_cap && s->loc_i)
+    return MPM_OK;
+  if (n == 0)
+    n = 1;
+  int *i = realloc(s->loc_i, n * sizeof *i);
+  if (i)
+    s->loc_i = i;
+  int *j = realloc(s->loc_j, n * sizeof *j);
+  if (j)
+    s->loc_j = j;
+  double *u = realloc(s->loc_u, n * sizeof *u);
+  if (u)
+    s->loc_u = u;
+  double *v = realloc(s->loc_v, n * sizeof *v);
+  if (v)
+    s->loc_v = v;
+  if (!i || !j || !u || !v)
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
+  s->loc_cap = n;
+  return MPM_OK;
+}
+
+/* Unit (i, j) and local (u, v) of every point; returns the index of the
+ * first point outside the mesh, or n. */
+static long locate_all(mpm_sim *s)
+{
+  const mpm_points *P = s->pts;
+  const long n = (long)P->n;
+  long first = n;
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (long p = 0; p < n; p++)
+    if (mpm_mesh_locate(&s->mesh, P->x[p], P->y[p], &s->loc_i[p], &s->loc_j[p], &s->loc_u[p],
+                        &s->loc_v[p]) && p < first)
+      first = p;
+  return first;
+}
+
+int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
+{
+  const mpm_points *P = s->pts;
+  int rc;
+  if (s->step % MPM_SIM_REORDER_EVERY == 0 && (rc = mpm_sim_in_reorder(s, err)) != MPM_OK)
+    return rc;
+  const int *row;
+  int reach;
+  if (s->located) {
+    if ((rc = reserve_located(s, P->n, err)) != MPM_OK)
+      return rc;
+    const long bad = locate_all(s);
+    if (bad < (long)P->n)
+      return mpm_err_set(err, MPM_EOUTSIDE,
+                         "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s "
+                         "(mesh [%g, %g] x [%g, %g] m)", P->id[bad], P->x[bad], P->y[bad],
+                         s->t, s->mesh.x0, s->mesh.x0 + s->mesh.lx, s->mesh.y0,
+                         s->mesh.y0 + s->mesh.ly);
+    row = s->loc_j;
+    reach = 0;
+  } else {
+    if ((rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, P, s->t, err)) != MPM_OK)
+      return rc;
+    row = s->st->row;
+    reach = s->st->reach;
+  }
+  /* node rows j - reach .. j + 1 + reach of a point in unit row j */
+  return mpm_mesh_bands_sort(s->bands, &s->mesh, reach, reach + 1, P->n, row, err);
+}
+
+/* ---- reordering ------------------------------------------------------------ */
+
+int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
+{
+  mpm_points *P = s->pts;
+  const size_t n = P->n;
+  if (n < 2)
+    return MPM_OK;
+  if (n > s->scap) {
+    void *t = realloc(s->scratch, n * sizeof(double));
+    if (!t)
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory to reorder %zu points", n);
+    s->scratch = t;
+    s->scap = n;
+  }
+  /* unit row of each point, -1 outside (kept where it is: the step reports it) */
+  int *row = s->scratch;
+  int sorted = 1;
+  for (size_t p = 0; p < n; p++) {
+    int j;
+    double v;
+    if (mpm_mesh_axis_locate(P->y[p], s->mesh.y0, s->mesh.ly, s->mesh.idy, s->mesh.ny,
+                             s->mesh.periodic_y, &j, &v))
+      return MPM_OK;                           /* a point outside: leave the order alone */
+    row[p] = j;
+    sorted &= p == 0 || j >= row[p - 1];
+  }
+  if (sorted)
+    return MPM_OK;
+  int rc = mpm_mesh_bands_sort(s->bands, &s->mesh, 0, 0, n, row, err);  /* one row a band */
+  if (rc == MPM_OK)
+    mpm_points_permute(P, s->bands->idx, s->scratch);
+  return rc;
+}
+
+/* ---- B-bar ------------------------------------------------------------------ */
+
+/* B-bar weights of the step ([mesh] dilatation = "unit", delta weights on q4,
+ * so a point's weights are the corners of its unit in mpm_mesh_basis order):
+ * per unit u, ug[9u] = sum V_p over its points and ug[9u + 1 + k],
+ * ug[9u + 5 + k] the volume-weighted mean of their dS_k/dx, dS_k/dy. The
+ * points are the unit's quadrature: four points placed symmetrically give the
+ * gradient at the unit centre, one point its own gradient (the point rule),
+ * so a node the points barely reach gets no more force than without B-bar.
+ * Sums in point order on one thread: thread-count free. */
+void mpm_sim_in_unit_gradients(mpm_sim *s)
+{
+  const mpm_points *P = s->pts;
+  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  memset(s->ug, 0, 9 * nu * sizeof *s->ug);
+  for (size_t p = 0; p < P->n; p++) {
+    mpm_sim_in_basis b;
+    const int *node;
+    const double *S, *gx, *gy;
+    const int c = mpm_sim_in_weights(s, p, 1, &b, &node, &S, &gx, &gy);
+    double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
+    const double V = P->vol[p];
+    u[0] += V;
+    for (int k = 0; k < c; k++) {
+      u[1 + k] += V * gx[k];
+      u[5 + k] += V * gy[k];
+    }
+  }
+  for (size_t e = 0; e < nu; e++) {
+    double *u = s->ug + 9 * e;
+    if (u[0] > 0.0)
+      for (int k = 1; k < 9; k++)
+        u[k] /= u[0];
+  }
+}
+
+/* ---- steps 2-3 ---------------------------------------------------------------- */
+
+/* Step 2 for point p with weights (c, node, S, gx, gy):
+ *   m_i += S m_p,  (mv)_i += S m_p v_p,  f_i += -V_p sigma_p . gradS_ip + S m_p b,
+ * as one operation on four lanes per node: q_i += S a + dS/dx ax + dS/dy ay
+ * with a = m_p (v_x, v_y, b_x, b_y), ax = -V_p (0, 0, s_xx, s_xy),
+ * ay = -V_p (0, 0, s_xy, s_yy). With the B-bar dilatation the mean in-plane
+ * stress acts on the unit's mean gradients instead of the point's own. */
+static inline void p2g_point(mpm_sim *s, size_t p, int c, const int *node, const double *S,
+                             const double *gx, const double *gy, double bx, double by)
+{
+  const mpm_points *P = s->pts;
+  double *nm = s->nm, (*nq)[4] = s->nq;
+  const double m = P->mass[p], V = P->vol[p];
+  const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
+  const double a[4] = {m * P->vx[p], m * P->vy[p], m * bx, m * by};
+  const double ax[4] = {0.0, 0.0, -V * sxx, -V * sxy};
+  const double ay[4] = {0.0, 0.0, -V * sxy, -V * syy};
+  for (int k = 0; k < c; k++) {
+    double *q = nq[node[k]];
+    const double Sk = S[k], gxk = gx[k], gyk = gy[k];
+    nm[node[k]] += Sk * m;                                 /* m_i += S m */
+#pragma omp simd
+    for (int l = 0; l < 4; l++)
+      q[l] += Sk * a[l] + gxk * ax[l] + gyk * ay[l];       /* (mv, f)_i */
+  }
+  if (s->ug) {                 /* mean stress s_m on the unit's B-bar gradient */
+    const double Vsm = V * 0.5 * (sxx + syy);
+    const double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
+    for (int k = 0; k < c; k++) {
+      nq[node[k]][2] -= Vsm * (u[1 + k] - gx[k]);
+      nq[node[k]][3] -= Vsm * (u[5 + k] - gy[k]);
+    }
+  }
+}
+
+/* Step 2 for the points of band k. */
+static inline void p2g_band(mpm_sim *s, int k, int located, double bx, double by)
+{
+  const mpm_mesh_bands *b = s->bands;
+  for (int q = b->start[k]; q < b->start[k + 1]; q++) {
+    const size_t p = (size_t)b->idx[q];
+    mpm_sim_in_basis buf;
+    const int *node;
+    const double *S, *gx, *gy;
+    const int c = mpm_sim_in_weights(s, p, located, &buf, &node, &S, &gx, &gy);
+    p2g_point(s, p, c, node, S, gx, gy, bx, by);
+  }
+}
+
+/* Step 3 on node i: boundary conditions, (mv)_i += dt f_i, v_i = (mv)_i/m_i.
+ * A wall zeroes the constrained components of (mv)_i and of f_i ([DK15]
+ * section 4: momentum fixed, its update suppressed). The acceleration the
+ * points receive is the change of nodal velocity over the step,
+ * a_i = f_i/m_i + (v_i^bc - v_i^n)/dt, where v_i^n = (mv)_i/m_i as mapped
+ * and v_i^bc the same after the wall acted: f_i/m_i on free components (the
+ * jump is exactly 0 there) and -v_i^n/dt on constrained ones. With
+ * a_i = f_i/m_i = 0 there instead, a point stopped by a wall would keep its
+ * velocity for ever (FLIP only adds increments): its position follows the
+ * grid and stays put, but it reports kinetic energy it does not have, and a
+ * kinetic-energy stop test never fires.
+ * With delta shape functions a node lighter than mlight (1e-3 of the mean
+ * point mass: the points near it lie within about a thousandth of a unit of
+ * its far edge) takes the body force only. Its internal force
+ * -V sigma.gradS does not shrink with its weight S, so f_i/m_i grows as 1/S
+ * when a stressed point crosses into an empty unit, and that velocity, times
+ * gradS, enters L_p: a point's volume overflowed (1e111 m^2) this way at a
+ * heap's surface. uGIMP gradients vanish with the weights (mlight = 0).
+ * Nodes lighter than mtiny are empty: v_i = a_i = 0. */
+static inline void grid_node(mpm_sim *s, int i, double bx, double by, double idt)
+{
+  const double m = s->nm[i];
+  double *q = s->nq[i];
+  if (!(m > s->mtiny)) {
+    q[0] = q[1] = q[2] = q[3] = 0.0;
+    return;
+  }
+  double mvx = q[0], mvy = q[1], fx = q[2], fy = q[3];
+  const double vx = mvx / m, vy = mvy / m;                /* v_i^n, before the wall */
+  if (m < s->mlight) {                                    /* light node: body force only */
+    fx = m * bx;
+    fy = m * by;
+  }
+  double jx = 0.0, jy = 0.0;
+  if (s->bc.fix[i]) {
+    mpm_bc_apply_node(&s->bc, i, &mvx, &mvy);
+    mpm_bc_apply_node(&s->bc, i, &fx, &fy);
+    jx = (mvx / m - vx) * idt;                            /* the wall's velocity jump / dt */
+    jy = (mvy / m - vy) * idt;
+  }
+  mvx += s->dt * fx;                                      /* (mv)_i += dt f_i */
+  mvy += s->dt * fy;
+  q[0] = mvx / m;                                         /* v_i */
+  q[1] = mvy / m;
+  q[2] = fx / m + jx;                                     /* a_i */
+  q[3] = fy / m + jy;
+}
+
+/* Steps 2-3 with the weights of the located points (located = 1) or of the
+ * stored stencil, in one parallel region: clear the nodes, each colour's
+ * bands in parallel, the colours in turn, then the grid update by nodes. */
+static void grid_phase(mpm_sim *s, int located, double bx, double by)
+{
+  const mpm_mesh_bands *b = s->bands;
+  const int nn = s->mesh.nnodes;
+  const double idt = 1.0 / s->dt;
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (int i = 0; i < nn; i++) {
+      s->nm[i] = 0.0;
+      s->nq[i][0] = s->nq[i][1] = s->nq[i][2] = s->nq[i][3] = 0.0;
+    }
+    for (int col = 0; col < b->ncolour; col++) {
+#pragma omp for schedule(dynamic, 1)
+      for (int k = col; k < b->nb; k += b->ncolour)
+        p2g_band(s, k, located, bx, by);
+    }
+#pragma omp for schedule(static)
+    for (int i = 0; i < nn; i++)
+      grid_node(s, i, bx, by, idt);
+  }
+}
+
+void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
+{
+  if (s->located)
+    grid_phase(s, 1, bx, by);
+  else
+    grid_phase(s, 0, bx, by);
+}

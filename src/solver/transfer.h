@@ -1,0 +1,145 @@
+/* transfer.h: the transfers between points and grid of one step, shared by
+ * the files of the solver (not part of solver.h; MODEL.md section 2 steps
+ * 1-5 and 7).
+ *
+ * transfer.c: the weights of every point (step 1: located points, or the
+ * stored stencil), the points binned by bands of unit rows, the periodic
+ * reordering of the point store, and the grid phase (steps 2-3).
+ * Here, inline for the point loops of step.c: the weights of one point,
+ * grid-to-point (steps 4-5) and the walls and wraps of step 7.
+ *
+ * Nodal values are records of four: after point-to-grid s->nq[i] holds
+ * ((mv)_x, (mv)_y, f_x, f_y), after the grid update (v_x, v_y, a_x, a_y), so
+ * that a point's share of one node is a few operations on four lanes. */
+#ifndef MPM_SOLVER_TRANSFER_H
+#define MPM_SOLVER_TRANSFER_H
+
+#include <math.h>
+
+#include "solver/solver.h"
+
+/* The weights of one point evaluated from its located element. */
+typedef struct mpm_sim_in_basis {
+  int node[4];
+  double S[4], gx[4], gy[4];
+} mpm_sim_in_basis;
+
+/* The weights of point p: count, storage node ids, S_ip and gradS_ip, from
+ * its located element (into *b; located = s->located, passed as a constant
+ * so each caller compiles to one of the two) or the stored stencil. */
+static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int located, mpm_sim_in_basis *b,
+                                     const int **node, const double **S, const double **gx,
+                                     const double **gy)
+{
+  if (located) {
+    *node = b->node;
+    *S = b->S;
+    *gx = b->gx;
+    *gy = b->gy;
+    return mpm_mesh_basis_at(&s->mesh, s->loc_i[p], s->loc_j[p], s->loc_u[p], s->loc_v[p],
+                             b->node, b->S, b->gx, b->gy);
+  }
+  const mpm_shape_stencil *st = s->st;
+  const size_t o = p * (size_t)st->w;
+  *node = st->node + o;
+  *S = st->S + o;
+  *gx = st->dSx + o;
+  *gy = st->dSy + o;
+  return st->count[p];
+}
+
+/* Steps 4-5 for point p with weights (c, node, S, gx, gy), after the grid
+ * update: v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i
+ * when time.flip < 1); x_p += dt sum S v_i; L_p = sum v_i (x) gradS_ip (the
+ * in-plane entries, L = {xx, xy, yx, yy}; with the B-bar dilatation its trace
+ * replaced by the unit's divergence); V_p *= exp(dt tr L_p). vg = sum S v_i,
+ * the grid velocity that moved the point. */
+static inline void mpm_sim_in_g2p(mpm_sim *s, size_t p, int c, const int *node, const double *S,
+                                  const double *gx, const double *gy, double L[4], double vg[2])
+{
+  mpm_points *P = s->pts;
+  const double dt = s->dt;
+  const double (*nq)[4] = (const double (*)[4])s->nq;
+  double as[4] = {0.0}, ax[4] = {0.0}, ay[4] = {0.0};
+  for (int k = 0; k < c; k++) {
+    const double *w = nq[node[k]];              /* (v_x, v_y, a_x, a_y) of node k */
+    const double Sk = S[k], gxk = gx[k], gyk = gy[k];
+#pragma omp simd
+    for (int l = 0; l < 4; l++) {
+      as[l] += Sk * w[l];                       /* sum S (v, a) */
+      ax[l] += w[l] * gxk;                      /* sum v dS/dx */
+      ay[l] += w[l] * gyk;                      /* sum v dS/dy */
+    }
+  }
+  double lxx = ax[0], lxy = ay[0], lyx = ax[1], lyy = ay[1];
+  if (s->ug) {
+    /* B-bar: tr L is replaced by the unit's divergence, the volume-weighted
+     * mean of its points' tr L, i.e. its rate of area change (the in-plane
+     * mean stress does work on it in point-to-grid, so the pair conserves
+     * energy). */
+    const double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
+    double div = 0.0;
+    for (int k = 0; k < c; k++)
+      div += nq[node[k]][0] * u[1 + k] + nq[node[k]][1] * u[5 + k];
+    const double corr = 0.5 * (div - lxx - lyy);
+    lxx += corr;
+    lyy += corr;
+  }
+  const double fl = s->cfg.time.flip;                        /* FLIP share (1: [DK15]) */
+  P->vx[p] = fl * (P->vx[p] + dt * as[2]) + (1.0 - fl) * as[0];  /* fl v_FLIP + (1-fl) v_PIC */
+  P->vy[p] = fl * (P->vy[p] + dt * as[3]) + (1.0 - fl) * as[1];
+  P->x[p] += dt * as[0];
+  P->y[p] += dt * as[1];
+  vg[0] = as[0];
+  vg[1] = as[1];
+  P->vol[p] *= exp(dt * (lxx + lyy));                        /* V *= exp(dt tr L) */
+  L[0] = lxx;
+  L[1] = lxy;
+  L[2] = lyx;
+  L[3] = lyy;
+}
+
+/* Step 7 for point p, moved by the grid velocity vg: walls hold, the
+ * absorbing layer of [DK-silo] section 7.1 (upward motion high in a silo is
+ * elastic waves), periodic wrap. */
+static inline void mpm_sim_in_bookkeeping(mpm_sim *s, size_t p, const double vg[2])
+{
+  mpm_points *P = s->pts;
+  /* Walls hold. A disconnected point is a free particle: nothing but the
+   * wall stops it, so its velocity into the wall is limited to the grid's.
+   * A dense one keeps its FLIP velocity, whose wall part the held nodes'
+   * a_i already take back (step 3). Only a point outside the mesh can be
+   * beyond a wall. */
+  if (mpm_bc_outside(&s->mesh, P->x[p], P->y[p])) {
+    double vx = P->vx[p], vy = P->vy[p];
+    mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p], &vx, &vy, vg[0], vg[1]);
+    if (P->state[p] != MPM_STATE_DENSE) {
+      P->vx[p] = vx;
+      P->vy[p] = vy;
+    }
+  }
+  if (P->y[p] >= s->cfg.absorb.above && P->vy[p] > 0.0)
+    P->vy[p] *= s->cfg.absorb.factor;
+  if (s->mesh.periodic_x || s->mesh.periodic_y)
+    mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
+}
+
+/* Step 1 for every point: its weights (located points or the stored
+ * stencil; a point outside the mesh is MPM_EOUTSIDE naming it) and the
+ * points binned by bands for point-to-grid; every few steps the point store
+ * is first reordered by unit row (mpm_sim_in_reorder). */
+int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err);
+
+/* The point store in the order of the bands of its unit rows (stable), so
+ * that the points of a band lie together in memory. */
+int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err);
+
+/* B-bar weights of the step (mesh.dilatation = "unit"): s->ug from the
+ * located points. */
+void mpm_sim_in_unit_gradients(mpm_sim *s);
+
+/* Steps 2-3: point-to-grid band by band, then the grid update with the
+ * boundary conditions; body force (bx, by). */
+void mpm_sim_in_grid(mpm_sim *s, double bx, double by);
+
+#endif
