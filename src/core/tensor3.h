@@ -73,14 +73,14 @@ static inline mpm_sym3 mpm_mat3_sym(const mpm_mat3 *L)
                     0.5 * (L->m[2][0] + L->m[0][2])};
 }
 
-/* W = skw(L) */
+/* W = skw(L): W_ij = (L_ij - L_ji)/2, from its independent components
+ * a = W_xy, b = W_yz, c = W_zx (written out: no loop in the hot loops) */
 static inline mpm_mat3 mpm_mat3_skw(const mpm_mat3 *L)
 {
-  mpm_mat3 W;
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      W.m[i][j] = 0.5 * (L->m[i][j] - L->m[j][i]);
-  return W;
+  const double a = 0.5 * (L->m[0][1] - L->m[1][0]);
+  const double b = 0.5 * (L->m[1][2] - L->m[2][1]);
+  const double c = 0.5 * (L->m[2][0] - L->m[0][2]);
+  return (mpm_mat3){{{0.0, a, -c}, {-a, 0.0, b}, {c, -b, 0.0}}};
 }
 
 static inline double mpm_mat3_trace(const mpm_mat3 *L) { return L->m[0][0] + L->m[1][1] + L->m[2][2]; }

@@ -5,20 +5,28 @@
 
 #include "core/points.h"
 
-MPM_MATERIAL_KERNEL void elastic_update(const mpm_material_params *par, const mpm_mat3 *L,
-                                        double dt, mpm_mpoint *pt)
+/* One update of the point pt, by value: the kernel of update and update_plane. */
+MPM_MATERIAL_KERNEL mpm_mpoint elastic_step(const mpm_material_params *par, mpm_mat3 L, double dt,
+                                            mpm_mpoint pt)
 {
-  mpm_sym3 D = mpm_mat3_sym(L);
-  pt->sigma = mpm_material_trial(par, D, L, pt->sigma, dt);      /* no yield, no disconnection */
-  pt->gdp = 0.0;
-  pt->state = MPM_STATE_DENSE;
+  mpm_sym3 D = mpm_mat3_sym(&L);
+  pt.sigma = mpm_material_trial(par, D, &L, pt.sigma, dt);       /* no yield, no disconnection */
+  pt.gdp = 0.0;
+  pt.state = MPM_STATE_DENSE;
+  return pt;
+}
+
+static void elastic_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                           mpm_mpoint *pt)
+{
+  *pt = elastic_step(par, *L, dt, *pt);
 }
 
 /* A batch of plane-strain points, the update above inlined. */
 static void elastic_update_plane(const mpm_material_params *par, double dt, int nsub,
                                  const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, elastic_update);
+  mpm_material_plane_loop(par, dt, nsub, b, elastic_step);
 }
 
 const mpm_material_type mpm_material_elastic = {

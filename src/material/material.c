@@ -76,3 +76,4 @@ int mpm_material_check_elastic(const mpm_material_params *par, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT, "key 'material.nu' = %g: allowed range (-1, 0.5)", par->nu);
   return MPM_OK;
 }
+

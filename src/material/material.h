@@ -9,6 +9,8 @@
 #define MPM_MATERIAL_MATERIAL_H
 
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "core/config.h"
 #include "core/error.h"
@@ -81,18 +83,47 @@ typedef struct mpm_material_batch {
   int *state;
 } mpm_material_batch;
 
-/* A model's update written to be inlined into mpm_material_plane_loop
- * (its update_plane) whatever its size; also usable as the table's update. */
+/* Powers of two that scale the terms of a model's quadratic exactly, so that
+ * its squares and products cannot under- or overflow as p -> 0+:
+ * *down = 2^-e and *up = 2^e for e the exponent of m (m = f 2^e with f in
+ * [1/2, 1), as frexp gives it), clamped to [-1021, 1022] so both are normal
+ * numbers; e = 0 when m is zero, subnormal or not finite. Multiplying by them
+ * rounds nothing unless the product under- or overflows, and where nothing
+ * does, a scaling changes no rounding of the root. Integer operations on the
+ * bits of m only (no library call), so a loop of updates vectorises. */
+static inline void mpm_material_pow2(double m, double *down, double *up)
+{
+  uint64_t b;
+  memcpy(&b, &m, sizeof b);
+  const int64_t x = (int64_t)(b >> 52 & 0x7ff);                 /* biased exponent of m */
+  int64_t e = x - 1022;
+  e = x == 0 || x == 0x7ff ? 0 : e < -1021 ? -1021 : e > 1022 ? 1022 : e;
+  const uint64_t d = (uint64_t)(1023 - e) << 52, u = (uint64_t)(1023 + e) << 52;
+  memcpy(down, &d, sizeof d);                                    /* 2^-e */
+  memcpy(up, &u, sizeof u);                                      /* 2^e */
+}
+
+/* A model's kernel (mpm_material_kernel_fn) written to be inlined into
+ * mpm_material_plane_loop (its update_plane) whatever its size. */
 #if defined(__GNUC__)
 #define MPM_MATERIAL_KERNEL static inline __attribute__((always_inline))
 #else
 #define MPM_MATERIAL_KERNEL static inline
 #endif
 
-/* One pass of f over the points of b (nonlocal: lap and isp read). */
+/* A model's update of one point by value (the point in, the point out):
+ * the form a model writes its update in, so that a batch keeps each point in
+ * registers and updates several points at once. */
+typedef mpm_mpoint (*mpm_material_kernel_fn)(const mpm_material_params *par, mpm_mat3 L,
+                                             double dt, mpm_mpoint pt);
+
+/* One pass of the kernel k over the points of b (nonlocal: lap and isp
+ * read). The arrays are restrict locals and the point a value (no address
+ * taken), so the compiler keeps it in registers and updates several points
+ * at once. */
 MPM_MATERIAL_KERNEL void mpm_material_plane_pass(const mpm_material_params *par, double dt,
                                                  const mpm_material_batch *b,
-                                                 mpm_material_update_fn f, int nonlocal)
+                                                 mpm_material_kernel_fn k, int nonlocal)
 {
   const size_t n = b->n;
   const double *restrict lxx = b->lxx, *restrict lxy = b->lxy, *restrict lyx = b->lyx;
@@ -101,40 +132,43 @@ MPM_MATERIAL_KERNEL void mpm_material_plane_pass(const mpm_material_params *par,
   double *restrict sxx = b->sxx, *restrict syy = b->syy, *restrict szz = b->szz;
   double *restrict sxy = b->sxy, *restrict g = b->g, *restrict gdp = b->gdp;
   int *restrict state = b->state;
-  for (size_t k = 0; k < n; k++) {
-    const mpm_mat3 L = {{{lxx[k], lxy[k], 0.0}, {lyx[k], lyy[k], 0.0}, {0.0, 0.0, 0.0}}};
+  const mpm_material_params pl = *par;   /* a local copy: its fields load unconditionally */
+#pragma omp simd
+  for (size_t q = 0; q < n; q++) {
+    const mpm_mat3 L = {{{lxx[q], lxy[q], 0.0}, {lyx[q], lyy[q], 0.0}, {0.0, 0.0, 0.0}}};
     mpm_mpoint pt = {
-      .sigma = {sxx[k], syy[k], szz[k], sxy[k], 0.0, 0.0},
-      .rho = rho[k],
-      .g = g[k], .lap = nonlocal ? lap[k] : 0.0, .isp = nonlocal ? isp[k] : 0.0,
-      .gdp = gdp[k], .state = state[k],
+      .sigma = {sxx[q], syy[q], szz[q], sxy[q], 0.0, 0.0},
+      .rho = rho[q],
+      .g = g[q], .lap = nonlocal ? lap[q] : 0.0, .isp = nonlocal ? isp[q] : 0.0,
+      .gdp = gdp[q], .state = state[q],
     };
-    f(par, &L, dt, &pt);
-    sxx[k] = pt.sigma.xx;
-    syy[k] = pt.sigma.yy;
-    szz[k] = pt.sigma.zz;
-    sxy[k] = pt.sigma.xy;
-    g[k] = pt.g;
-    gdp[k] = pt.gdp;
-    state[k] = pt.state;
+    pt = k(&pl, L, dt, pt);
+    sxx[q] = pt.sigma.xx;
+    syy[q] = pt.sigma.yy;
+    szz[q] = pt.sigma.zz;
+    sxy[q] = pt.sigma.xy;
+    g[q] = pt.g;
+    gdp[q] = pt.gdp;
+    state[q] = pt.state;
   }
 }
 
-/* nsub updates f of dt each, L fixed, of every point of b: each point is
- * gathered into an mpm_mpoint and scattered back, so the result is exactly
- * that of f point by point (the points are independent, so their substeps
- * run as passes over all of them). A model's update_plane calls it with its
- * own update, which is inlined into the loop; with any other f it is the
- * generic loop. */
+/* nsub updates of dt each, L fixed, of every point of b by the kernel k:
+ * each point is gathered into an mpm_mpoint and scattered back, so the
+ * result is exactly that of the update point by point (the points are
+ * independent, so their substeps run as passes over all of them). A model's
+ * update_plane calls it with its own kernel, which is inlined into the loop
+ * (the kernels are written without library calls and branch on values only,
+ * so the loop vectorises). */
 MPM_MATERIAL_KERNEL void mpm_material_plane_loop(const mpm_material_params *par, double dt,
                                                  int nsub, const mpm_material_batch *b,
-                                                 mpm_material_update_fn f)
+                                                 mpm_material_kernel_fn k)
 {
   for (int s = 0; s < nsub; s++) {
     if (b->lap && b->isp)
-      mpm_material_plane_pass(par, dt, b, f, 1);
+      mpm_material_plane_pass(par, dt, b, k, 1);
     else
-      mpm_material_plane_pass(par, dt, b, f, 0);
+      mpm_material_plane_pass(par, dt, b, k, 0);
   }
 }
 
@@ -147,7 +181,8 @@ typedef struct mpm_material_type {
    * (p -> 0, disconnection) are states, not errors. */
   mpm_material_update_fn update;
   /* The same update for a batch of plane-strain points (nsub times each, L
-   * fixed): mpm_material_plane_loop with the model's own update inlined. */
+   * fixed): mpm_material_plane_loop with the model's own kernel inlined. The
+   * step updates its points through this one. */
   void (*update_plane)(const mpm_material_params *par, double dt, int nsub,
                        const mpm_material_batch *b);
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
@@ -168,9 +203,12 @@ typedef struct mpm_material_type {
    *   fluidity g_loc [1/s] of A^2 d^2 lap(g) = c (g - g_loc) at stress sigma
    *   (the start of the step), both 0 where p <= 0;
    * update_steady: the update with pt->g the fluidity the steady solve gives
-   *   the point for the step (input; g_{n+1} = pt->g when it is dense). */
+   *   the point for the step (input; g_{n+1} = pt->g when it is dense), and
+   *   update_steady_plane the same for a batch. */
   void (*steady_terms)(const mpm_material_params *par, mpm_sym3 sigma, double *c, double *gloc);
   mpm_material_update_fn update_steady;
+  void (*update_steady_plane)(const mpm_material_params *par, double dt, int nsub,
+                              const mpm_material_batch *b);   /* as update_plane */
 } mpm_material_type;
 
 /* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):

@@ -16,7 +16,9 @@
  * The discriminant is evaluated as the algebraically equal sum
  *   B^2 - 4H = (S2 - tau_tr)^2 + alpha (alpha + 2 (S2 - S0) + 2 (tau_tr - S0)),
  * every term of which is >= 0 when tau_tr > S0 (S2 > S0): no cancellation and never
- * negative, so the square root is always defined. The small root lies in
+ * negative, so the square root is always defined. The terms are first scaled
+ * by an exact power of two near the largest, so nothing under- or overflows
+ * as p -> 0+. The small root lies in
  * (S0, min(S2, tau_tr)): mu_s < mu < mu_2 and gdot_p > 0.
  *
  * gdot_p of a disconnected point: its stress is identically zero, so its elastic
@@ -35,18 +37,19 @@
 #include "core/points.h"
 
 /* gdot_p of a stress-free point: sqrt(2 D0:D0). */
-static double mu_i_free_gdp(mpm_sym3 D)
+static inline double mu_i_free_gdp(mpm_sym3 D)
 {
   mpm_sym3 D0 = mpm_sym3_dev(D);
   return sqrt(2.0 * mpm_sym3_ddot(D0, D0));
 }
 
 /* Stress-free point: sigma = 0, gdot_p = sqrt(2 D0:D0). */
-static void mu_i_disconnect(mpm_sym3 D, mpm_mpoint *pt)
+static inline mpm_mpoint mu_i_disconnect(mpm_sym3 D, mpm_mpoint pt)
 {
-  pt->sigma = mpm_sym3_zero();
-  pt->gdp = mu_i_free_gdp(D);
-  pt->state = MPM_STATE_DISCONNECTED;
+  pt.sigma = mpm_sym3_zero();
+  pt.gdp = mu_i_free_gdp(D);
+  pt.state = MPM_STATE_DISCONNECTED;
+  return pt;
 }
 
 double mpm_material_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm_sym3 D,
@@ -76,53 +79,51 @@ static inline double mu_i_small_root(double tau_tr, double S0, double S2, double
   return 2.0 * H / (B + sqrt(disc));                               /* 2H / (B + sqrt) */
 }
 
-/* The small root, guarded for p -> 0+: while the largest input
- * m = max(tau_tr, S2, alpha) lies in [2^-300, 2^300] and H >= 2^-900, no
- * square or product it needs can overflow or lose precision to underflow, and
- * the root is taken as it is. Otherwise (stresses near 1e-90 Pa or below, or
- * above 1e90 Pa) the inputs are first scaled by the power of two of m, so
- * that nothing under- or overflows, and the root scaled back; both are exact,
- * and a scaling changes no rounding where nothing under- or overflows, so the
- * guard does not change the result of any input it lets through. */
+/* The small root with its inputs scaled by the power of two of the largest,
+ * m = max(tau_tr, S2, alpha), and the root scaled back: exact, and as
+ * p -> 0+ the products in H and B^2 can then neither underflow nor overflow
+ * (mpm_material_pow2). */
 static inline double mu_i_return_tau(double tau_tr, double S0, double S2, double alpha)
 {
   double m = tau_tr > S2 ? tau_tr : S2;
   m = alpha > m ? alpha : m;                                       /* max(tau_tr, S2, alpha) */
-  if (m >= 0x1p-300 && m <= 0x1p300 && S2 * tau_tr + S0 * alpha >= 0x1p-900)
-    return mu_i_small_root(tau_tr, S0, S2, alpha);
-  int e;
-  frexp(m, &e);                                                    /* m = f 2^e, f in [1/2, 1) */
-  double tau = mu_i_small_root(ldexp(tau_tr, -e), ldexp(S0, -e), ldexp(S2, -e), ldexp(alpha, -e));
-  return ldexp(tau, e);
+  double down, up;
+  mpm_material_pow2(m, &down, &up);
+  return mu_i_small_root(tau_tr * down, S0 * down, S2 * down, alpha * down) * up;
 }
 
-MPM_MATERIAL_KERNEL void mu_i_update(const mpm_material_params *par, const mpm_mat3 *L,
-                                     double dt, mpm_mpoint *pt)
+/* One update (see the top of this file) of the point pt, by value: the
+ * kernel of update and update_plane. */
+MPM_MATERIAL_KERNEL mpm_mpoint mu_i_step(const mpm_material_params *par, mpm_mat3 L, double dt,
+                                         mpm_mpoint pt)
 {
-  mpm_sym3 D = mpm_mat3_sym(L);
-  if (!(pt->rho >= par->rho_c)) {                                  /* rho_{n+1} < rho_c */
-    mu_i_disconnect(D, pt);
-    return;
-  }
-  mpm_sym3 s_tr = mpm_material_trial(par, D, L, pt->sigma, dt);   /* sigma_tr */
+  mpm_sym3 D = mpm_mat3_sym(&L);
+  if (!(pt.rho >= par->rho_c))                                     /* rho_{n+1} < rho_c */
+    return mu_i_disconnect(D, pt);
+  mpm_sym3 s_tr = mpm_material_trial(par, D, &L, pt.sigma, dt);   /* sigma_tr */
   double p_tr = mpm_sym3_pressure(s_tr);                           /* p_tr = -tr/3 */
-  if (!(p_tr > 0.0)) {                                             /* p_tr <= 0 (or NaN) */
-    mu_i_disconnect(D, pt);
-    return;
-  }
-  pt->state = MPM_STATE_DENSE;
+  if (!(p_tr > 0.0))                                               /* p_tr <= 0 (or NaN) */
+    return mu_i_disconnect(D, pt);
+  pt.state = MPM_STATE_DENSE;
   mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);                             /* sigma0_tr */
   double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
   double S0 = par->mu_s * p_tr, S2 = par->mu_2 * p_tr;
   if (tau_tr <= S0 || !(dt > 0.0)) {                               /* below yield */
-    pt->sigma = s_tr;
-    pt->gdp = 0.0;
-    return;
+    pt.sigma = s_tr;
+    pt.gdp = 0.0;
+    return pt;
   }
   double alpha = par->xi * par->G * dt * sqrt(p_tr);               /* xi G dt sqrt(p) */
   double tau = mu_i_return_tau(tau_tr, S0, S2, alpha);
-  pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, tau / tau_tr), -p_tr);
-  pt->gdp = (tau_tr - tau) / (par->G * dt);                        /* gdot_p */
+  pt.sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, tau / tau_tr), -p_tr);
+  pt.gdp = (tau_tr - tau) / (par->G * dt);                         /* gdot_p */
+  return pt;
+}
+
+static void mu_i_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                        mpm_mpoint *pt)
+{
+  *pt = mu_i_step(par, *L, dt, *pt);
 }
 
 /* Parameter ranges this model needs (names the key, as the input reader expects). */
@@ -154,7 +155,7 @@ static int mu_i_check(const mpm_material_params *par, mpm_err *err)
 static void mu_i_update_plane(const mpm_material_params *par, double dt, int nsub,
                               const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, mu_i_update);
+  mpm_material_plane_loop(par, dt, nsub, b, mu_i_step);
 }
 
 const mpm_material_type mpm_material_mu_i = {

@@ -72,69 +72,55 @@ double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp)
 /* Quadratic a x^2 + b x + c = 0 and its discriminant, scaled together. */
 typedef struct ngf_quad { double a, b, c, disc; } ngf_quad;
 
-/* Power-of-two exponent e of the quadratic's size: b^2 and a c scaled by
- * 2^-2e are near 1. 0 while the size of b, S = |t[0]| + |t[1]| + |t[2]| (t
- * the terms whose sum makes b), and |a| lie in [2^-300, 2^300] and |c| below
- * 2^300: then no square or product the root needs can overflow, and what
- * underflows is below 2^-400 of b^2, so the quadratic is taken as it is.
- * Otherwise (p -> 0+, or absurd stresses) the exponent of
- * S + sqrt|a| sqrt|c|, and the terms are scaled by it, exactly; where
- * nothing under- or overflows, a scaling changes no rounding, so the guard
- * does not change the result of any input it lets through. */
-static int quad_exponent(double a, double c, const double t[3])
+/* The exact powers of two (mpm_material_pow2) of the quadratic's size
+ * m = |t[0]| + |t[1]| + |t[2]| + sqrt|a| sqrt|c| (t the terms whose sum makes
+ * b): scaled by them, b^2 and a c are near 1, so nothing under- or overflows
+ * as p -> 0+; m = 0 or not finite: no scaling. */
+static inline void quad_scale(double a, double c, const double t[3], double *down, double *up)
 {
-  double S = fabs(t[0]) + fabs(t[1]) + fabs(t[2]);
-  if (S >= 0x1p-300 && S <= 0x1p300 && fabs(a) >= 0x1p-300 && fabs(a) <= 0x1p300 &&
-      fabs(c) <= 0x1p300)
-    return 0;
-  double m = S + sqrt(fabs(a)) * sqrt(fabs(c));
-  int e = 0;
-  if (m > 0.0 && isfinite(m))
-    frexp(m, &e);
-  return e;
-}
-
-/* x 2^-e; x itself when e = 0 (the common case: no libm call). */
-static inline double scale2(double x, int e)
-{
-  return e ? ldexp(x, -e) : x;
+  const double m = fabs(t[0]) + fabs(t[1]) + fabs(t[2]) + sqrt(fabs(a)) * sqrt(fabs(c));
+  mpm_material_pow2(m, down, up);
 }
 
 /* dk form: terms T1 = beta (tau_tr - S2), T2 = mu_2 Gb g*, T3 = f (tau_tr - S0). */
-static ngf_quad quad_dk(const mpm_material_params *par, double Gb, double p, double tau_tr,
-                        double gs, double k, double beta)
+static inline ngf_quad quad_dk(const mpm_material_params *par, double Gb, double p, double tau_tr,
+                               double gs, double k, double beta)
 {
   double f = k * par->dmu;                                          /* f = k Delta_mu */
   double t[3] = {beta * (tau_tr - par->mu_2 * p), par->mu_2 * Gb * gs,
                  f * (tau_tr - par->mu_s * p)};
   double a = Gb * (beta * par->mu_2 + f * par->mu_s);               /* a */
   double c = gs * (tau_tr - par->mu_2 * p);                         /* c' */
-  int e = quad_exponent(a, c, t);
-  for (int i = 0; i < 3; i++)
-    t[i] = scale2(t[i], e);
-  double r = scale2(f * par->dmu * tau_tr, e) * scale2(Gb * gs, e);  /* f dmu Gb g* tau_tr */
+  double sd, su;
+  quad_scale(a, c, t, &sd, &su);
+  t[0] *= sd;
+  t[1] *= sd;
+  t[2] *= sd;
+  double r = f * par->dmu * tau_tr * sd * (Gb * gs * sd);           /* f dmu Gb g* tau_tr */
   double bb = t[0] - t[1] + t[2];
-  return (ngf_quad){scale2(a, e), -(t[0] + t[1] + t[2]), scale2(c, e), bb * bb + 4.0 * r};
+  return (ngf_quad){a * sd, -(t[0] + t[1] + t[2]), c * sd, bb * bb + 4.0 * r};
 }
 
 /* hs21 form: terms T1 = beta p, T2 = -Gb g*, T3 = k (S0 - tau_tr). */
-static ngf_quad quad_hs21(const mpm_material_params *par, double Gb, double p, double tau_tr,
-                          double gs, double k, double beta)
+static inline ngf_quad quad_hs21(const mpm_material_params *par, double Gb, double p, double tau_tr,
+                                 double gs, double k, double beta)
 {
   double t[3] = {beta * p, -Gb * gs, k * (par->mu_s * p - tau_tr)};
   double a = Gb * (beta + k * par->mu_s);                           /* a */
   double c = -gs * p;                                               /* c' */
-  int e = quad_exponent(a, c, t);
-  for (int i = 0; i < 3; i++)
-    t[i] = scale2(t[i], e);
-  a = scale2(a, e);
-  c = scale2(c, e);
+  double sd, su;
+  quad_scale(a, c, t, &sd, &su);
+  t[0] *= sd;
+  t[1] *= sd;
+  t[2] *= sd;
+  a *= sd;
+  c *= sd;
   double b = t[0] + t[1] + t[2];
   return (ngf_quad){a, b, c, b * b - 4.0 * a * c};                  /* -4ac' >= 0 */
 }
 
 /* Larger root without cancellation. */
-static double larger_root(ngf_quad q)
+static inline double larger_root(ngf_quad q)
 {
   double sq = sqrt(q.disc > 0.0 ? q.disc : 0.0);
   if (q.b < 0.0)
@@ -144,8 +130,8 @@ static double larger_root(ngf_quad q)
   return x > 0.0 ? x : 0.0;
 }
 
-double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
-                                 double gstar, double mug_n, double isp)
+static inline double ngf_fluidity(const mpm_material_params *par, double dt, double p,
+                                   double tau_tr, double gstar, double mug_n, double isp)
 {
   if (!(dt > 0.0))
     return gstar;
@@ -162,14 +148,21 @@ double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, doub
   return larger_root(q);
 }
 
+double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
+                                 double gstar, double mug_n, double isp)
+{
+  return ngf_fluidity(par, dt, p, tau_tr, gstar, mug_n, isp);
+}
+
 /* Stress-free point: sigma = 0, g = 0, gdot_p = sqrt(2 D0:D0) (as mu_i). */
-static void ngf_disconnect(mpm_sym3 D, mpm_mpoint *pt)
+static inline mpm_mpoint ngf_disconnect(mpm_sym3 D, mpm_mpoint pt)
 {
   mpm_sym3 D0 = mpm_sym3_dev(D);
-  pt->sigma = mpm_sym3_zero();
-  pt->g = 0.0;
-  pt->gdp = sqrt(2.0 * mpm_sym3_ddot(D0, D0));
-  pt->state = MPM_STATE_DISCONNECTED;
+  pt.sigma = mpm_sym3_zero();
+  pt.g = 0.0;
+  pt.gdp = sqrt(2.0 * mpm_sym3_ddot(D0, D0));
+  pt.state = MPM_STATE_DISCONNECTED;
+  return pt;
 }
 
 double mpm_material_ngf_diffusivity(const mpm_material_params *par, double dt)
@@ -178,7 +171,7 @@ double mpm_material_ngf_diffusivity(const mpm_material_params *par, double dt)
 }
 
 /* g* = max(0, g_n + (dt/t0) A^2 d^2 lap_e); NaN propagates to the stress. */
-static double ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap)
+static inline double ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap)
 {
   double gs = g_n + mpm_material_ngf_diffusivity(par, dt) * lap;   /* g_n + c lap */
   return gs < 0.0 ? 0.0 : gs;
@@ -188,39 +181,44 @@ static double ngf_gstar(const mpm_material_params *par, double dt, double g_n, d
  * p = p_tr > 0: tau = tau_tr p / (G dt x + p) (eq. 5.5: tau_{n+1} =
  * tau_tr - G dt gdot_p with gdot_p = x mu_{n+1}), sigma = (tau/tau_tr)
  * sigma0_tr - p I, g = x, gdot_p = x mu_{n+1}. */
-static void ngf_return(const mpm_material_params *par, double dt, mpm_sym3 s_tr, double p,
-                       double x, mpm_mpoint *pt)
+static inline mpm_mpoint ngf_return(const mpm_material_params *par, double dt, mpm_sym3 s_tr,
+                                    double p, double x, mpm_mpoint pt)
 {
   mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
   double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
   double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
-  pt->sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);     /* (tau/tau_tr) s0_tr - p I */
-  pt->g = x;
-  pt->gdp = x * r * tau_tr / p;                                    /* gdot_p = x mu(x) */
-  pt->state = MPM_STATE_DENSE;
+  pt.sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);      /* (tau/tau_tr) s0_tr - p I */
+  pt.g = x;
+  pt.gdp = x * r * tau_tr / p;                                     /* gdot_p = x mu(x) */
+  pt.state = MPM_STATE_DENSE;
+  return pt;
 }
 
-MPM_MATERIAL_KERNEL void ngf_update(const mpm_material_params *par, const mpm_mat3 *L,
-                                    double dt, mpm_mpoint *pt)
+/* One (sub)step (see the top of this file) of the point pt, by value: the
+ * kernel of update and update_plane. */
+MPM_MATERIAL_KERNEL mpm_mpoint ngf_step(const mpm_material_params *par, mpm_mat3 L, double dt,
+                                        mpm_mpoint pt)
 {
-  mpm_sym3 D = mpm_mat3_sym(L);
-  double p_n = mpm_sym3_pressure(pt->sigma);
-  double g_n = p_n > 0.0 ? pt->g : 0.0;                             /* reconsolidated: g = 0 */
-  double mug_n = p_n > 0.0 ? g_n * mpm_sym3_tau(pt->sigma) / p_n : 0.0;  /* mu_n g_n */
-  if (!(pt->rho >= par->rho_c)) {                                   /* rho_{n+1} < rho_c */
-    ngf_disconnect(D, pt);
-    return;
-  }
-  mpm_sym3 s_tr = mpm_material_trial(par, D, L, pt->sigma, dt);   /* sigma_tr */
+  mpm_sym3 D = mpm_mat3_sym(&L);
+  double p_n = mpm_sym3_pressure(pt.sigma);
+  double g_n = p_n > 0.0 ? pt.g : 0.0;                              /* reconsolidated: g = 0 */
+  double mug_n = p_n > 0.0 ? g_n * mpm_sym3_tau(pt.sigma) / p_n : 0.0;  /* mu_n g_n */
+  if (!(pt.rho >= par->rho_c))                                      /* rho_{n+1} < rho_c */
+    return ngf_disconnect(D, pt);
+  mpm_sym3 s_tr = mpm_material_trial(par, D, &L, pt.sigma, dt);    /* sigma_tr */
   double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
-  if (!(p > 0.0)) {
-    ngf_disconnect(D, pt);
-    return;
-  }
+  if (!(p > 0.0))
+    return ngf_disconnect(D, pt);
   double tau_tr = mpm_sym3_tau(s_tr);                              /* tau_tr */
-  double gs = ngf_gstar(par, dt, g_n, pt->lap);                    /* g* */
-  double x = mpm_material_ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt->isp);  /* g_{n+1} */
-  ngf_return(par, dt, s_tr, p, x, pt);
+  double gs = ngf_gstar(par, dt, g_n, pt.lap);                     /* g* */
+  double x = ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt.isp);  /* g_{n+1} */
+  return ngf_return(par, dt, s_tr, p, x, pt);
+}
+
+static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                       mpm_mpoint *pt)
+{
+  *pt = ngf_step(par, *L, dt, *pt);
 }
 
 /* Steady form ([D-thesis] eq. 2.28-2.30; MODEL.md section 6), the linear
@@ -243,22 +241,32 @@ static void ngf_steady_terms(const mpm_material_params *par, mpm_sym3 sigma, dou
     *gloc = sqrt(p / par->rho_s) / par->d * (mu - par->mu_s) / (par->b * mu);
 }
 
-/* The update with the fluidity of a steady solve: pt->g is g_{n+1}. */
+/* The update with the fluidity of a steady solve: pt.g is g_{n+1} (by value,
+ * the kernel of update_steady and update_steady_plane). */
+MPM_MATERIAL_KERNEL mpm_mpoint ngf_steady_step(const mpm_material_params *par, mpm_mat3 L,
+                                               double dt, mpm_mpoint pt)
+{
+  mpm_sym3 D = mpm_mat3_sym(&L);
+  if (!(pt.rho >= par->rho_c))                                      /* rho_{n+1} < rho_c */
+    return ngf_disconnect(D, pt);
+  mpm_sym3 s_tr = mpm_material_trial(par, D, &L, pt.sigma, dt);    /* sigma_tr */
+  double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
+  if (!(p > 0.0))
+    return ngf_disconnect(D, pt);
+  return ngf_return(par, dt, s_tr, p, pt.g > 0.0 ? pt.g : 0.0, pt);  /* g_{n+1} = max(g, 0) */
+}
+
 static void ngf_update_steady(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                               mpm_mpoint *pt)
 {
-  mpm_sym3 D = mpm_mat3_sym(L);
-  if (!(pt->rho >= par->rho_c)) {                                   /* rho_{n+1} < rho_c */
-    ngf_disconnect(D, pt);
-    return;
-  }
-  mpm_sym3 s_tr = mpm_material_trial(par, D, L, pt->sigma, dt);   /* sigma_tr */
-  double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
-  if (!(p > 0.0)) {
-    ngf_disconnect(D, pt);
-    return;
-  }
-  ngf_return(par, dt, s_tr, p, pt->g > 0.0 ? pt->g : 0.0, pt);     /* g_{n+1} = max(g, 0) */
+  *pt = ngf_steady_step(par, *L, dt, *pt);
+}
+
+/* A batch of plane-strain points with the fluidity of a steady solve. */
+static void ngf_update_steady_plane(const mpm_material_params *par, double dt, int nsub,
+                                    const mpm_material_batch *b)
+{
+  mpm_material_plane_loop(par, dt, nsub, b, ngf_steady_step);
 }
 
 static int ngf_check(const mpm_material_params *par, mpm_err *err)
@@ -308,7 +316,7 @@ int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, 
 static void ngf_update_plane(const mpm_material_params *par, double dt, int nsub,
                              const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, ngf_update);
+  mpm_material_plane_loop(par, dt, nsub, b, ngf_step);
 }
 
 const mpm_material_type mpm_material_ngf = {
@@ -324,4 +332,5 @@ const mpm_material_type mpm_material_ngf = {
   .seed = mpm_material_ngf_seed,
   .steady_terms = ngf_steady_terms,
   .update_steady = ngf_update_steady,
+  .update_steady_plane = ngf_update_steady_plane,
 };

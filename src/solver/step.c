@@ -103,7 +103,7 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   if (cfg->material.g_wall == MPM_NONLOCAL_WALL_NEUMANN)
     mpm_nonlocal_walls_neumann(s->nl);
   if (mpm_nonlocal_is_steady(s->nl)) {     /* g from the stress each step: nothing to seed */
-    if (!s->mat->steady_terms || !s->mat->update_steady)
+    if (!s->mat->steady_terms || !s->mat->update_steady_plane)
       return mpm_err_set(err, MPM_EINPUT, "material.diffusion = \"steady\": model '%s' has no "
                          "steady form", s->mat->name);
     s->seeded = 1;
@@ -288,11 +288,9 @@ static long update_range(mpm_sim *s, const mpm_material_type *mat, int steady, s
     .g = P->g + a, .gdp = P->gdp + a, .state = P->state + a,
   };
   if (steady)
-    mpm_material_plane_loop(&s->par, h, n, &bt, mat->update_steady);
-  else if (mat->update_plane)
-    mat->update_plane(&s->par, h, n, &bt);
+    mat->update_steady_plane(&s->par, h, n, &bt);
   else
-    mpm_material_plane_loop(&s->par, h, n, &bt, mat->update);
+    mat->update_plane(&s->par, h, n, &bt);
   long bad = -1;
   for (size_t p = a; p < b; p++)
     if (!isfinite(P->sxx[p] + P->syy[p] + P->szz[p] + P->sxy[p]))
