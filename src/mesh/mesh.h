@@ -75,6 +75,19 @@ int mpm_mesh_basis(const mpm_mesh *m, double x, double y,
  * round-off of a tiny negative s is the same point: 0). */
 double mpm_mesh_axis_wrap(double s, double len);
 
+/* Unit k in [0, n-1] and local coordinate u in [0, 1] at distance s in
+ * [0, n/ih] from the start of an axis of n units of size 1/ih (a point on
+ * the upper end belongs to the last unit). */
+static inline void mpm_mesh_axis_unit(double s, double ih, int n, int *k, double *u)
+{
+  double xi = s * ih;           /* position in units */
+  int kk = (int)xi;
+  kk = kk > n - 1 ? n - 1 : kk;
+  double f = xi - kk;
+  *k = kk;
+  *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
+}
+
 /* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of
  * origin o, length len, unit size 1/ih. Periodic axes wrap first; a point on
  * the upper end belongs to the last unit. Returns 0, or -1 outside (or NaN). */
@@ -93,13 +106,7 @@ static inline int mpm_mesh_axis_locate(double x, double o, double len, double ih
       return -1;
     s = x - o;
   }
-  double xi = s * ih;           /* position in units */
-  int kk = (int)xi;
-  if (kk > n - 1)
-    kk = n - 1;
-  double f = xi - kk;
-  *k = kk;
-  *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
+  mpm_mesh_axis_unit(s, ih, n, k, u);
   return 0;
 }
 
@@ -142,6 +149,26 @@ static inline void mpm_mesh_unit_corners(const mpm_mesh *m, int i, int j, int c[
   c[3] = r1 + i;
 }
 
+/* Bilinear (Q4) basis at local (u, v) on the unit corners (order of
+ * mpm_mesh_unit_corners), with 1/dx = ix, 1/dy = iy:
+ *   N = (1-u)(1-v), u(1-v), uv, (1-u)v,  grad N = (dN/du / dx, dN/dv / dy),
+ * written per corner a as N_a = f_a g_a with f = (1-u, u, u, 1-u),
+ * g = (1-v, 1-v, v, v), dN_a/du = su_a g_a, dN_a/dv = sv_a f_a (su, sv the
+ * signs), so the four corners are one vector operation each. */
+static inline void mpm_mesh_basis_q4(double u, double v, double ix, double iy, double N[4],
+                                     double dNx[4], double dNy[4])
+{
+  const double su[4] = {-1.0, 1.0, 1.0, -1.0}, cu[4] = {1.0, 0.0, 0.0, 1.0};
+  const double sv[4] = {-1.0, -1.0, 1.0, 1.0}, cv[4] = {1.0, 1.0, 0.0, 0.0};
+#pragma omp simd
+  for (int a = 0; a < 4; a++) {
+    const double f = cu[a] + su[a] * u, g = cv[a] + sv[a] * v;    /* 1-u or u, 1-v or v */
+    N[a] = f * g;
+    dNx[a] = su[a] * g * ix;
+    dNy[a] = sv[a] * f * iy;
+  }
+}
+
 /* Basis of unit column i at local (u, v) on the four unit corners, in the
  * order of mpm_mesh_unit_corners: N and grad N = (dN/du / dx, dN/dv / dy).
  * Returns the mask of the corners of the element (bit a for corner a): all
@@ -154,19 +181,7 @@ static inline unsigned mpm_mesh_basis_corners(const mpm_mesh *m, int i, double u
 {
   const double ix = m->idx, iy = m->idy;
   if (m->topology == MPM_TOPO_Q4) {
-    /* N = (1-u)(1-v), u(1-v), uv, (1-u)v */
-    N[0] = (1.0 - u) * (1.0 - v);
-    N[1] = u * (1.0 - v);
-    N[2] = u * v;
-    N[3] = (1.0 - u) * v;
-    dNx[0] = -(1.0 - v) * ix;
-    dNx[1] = (1.0 - v) * ix;
-    dNx[2] = v * ix;
-    dNx[3] = -v * ix;
-    dNy[0] = -(1.0 - u) * iy;
-    dNy[1] = -u * iy;
-    dNy[2] = u * iy;
-    dNy[3] = (1.0 - u) * iy;
+    mpm_mesh_basis_q4(u, v, ix, iy, N, dNx, dNy);
     return 0xfu;
   }
   const int slash = mpm_mesh_column_is_slash(m, i);

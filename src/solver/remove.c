@@ -4,6 +4,7 @@
  * plus the removed mass stays the initial mass to round-off. */
 #include "solver/solver.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "diag/region.h"
@@ -40,9 +41,30 @@ static void compact_values(double *a, const unsigned char *keep, size_t n)
       a[q++] = a[p];
 }
 
+/* 1 if some point may leave: below remove.below, or outside the mesh along
+ * a non-periodic direction (the common case, none, in one pass that
+ * vectorises). */
+static int any_may_leave(const mpm_sim *s)
+{
+  const mpm_mesh *m = &s->mesh;
+  const mpm_points *P = s->pts;
+  const double xlo = m->periodic_x ? -INFINITY : m->x0;
+  const double xhi = m->periodic_x ? INFINITY : m->x0 + m->lx;
+  const double yhi = m->periodic_y ? INFINITY : m->y0 + m->ly;
+  double ylo = m->periodic_y ? -INFINITY : m->y0;
+  ylo = s->cfg.remove.below > ylo ? s->cfg.remove.below : ylo;
+  const double *x = P->x, *y = P->y;
+  int any = 0;
+  for (size_t p = 0; p < P->n; p++)
+    any |= (x[p] < xlo) | (x[p] > xhi) | (y[p] < ylo) | (y[p] > yhi);
+  return any;
+}
+
 int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
 {
   mpm_points *P = s->pts;
+  if (!any_may_leave(s))
+    return MPM_OK;
   size_t first = P->n;
   for (size_t p = 0; p < P->n; p++) {
     const int f = fate(s, P->x[p], P->y[p]);

@@ -239,7 +239,7 @@ typedef struct chunk {
 
 /* Steps 4-5 for points [a, b): L_p to lxx[p - a] ... (and the grid velocity
  * to ck when ck is not NULL). */
-static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int located, double *lxx,
+static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *lxx,
                              double *lxy, double *lyx, double *lyy, chunk *ck)
 {
   for (size_t p = a; p < b; p++) {
@@ -247,7 +247,7 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int located, double
     const int *node;
     const double *S, *gx, *gy;
     double L[4], vg[2];
-    const int c = mpm_sim_in_weights(s, p, located, &buf, &node, &S, &gx, &gy);
+    const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
     mpm_sim_in_g2p(s, p, c, node, S, gx, gy, L, vg);
     lxx[p - a] = L[0];
     lxy[p - a] = L[1];
@@ -266,10 +266,16 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int located, double
 static void move_range(mpm_sim *s, size_t a, size_t b, double *lxx, double *lxy, double *lyx,
                        double *lyy, chunk *ck)
 {
-  if (s->located)
-    g2p_range(s, a, b, 1, lxx, lxy, lyx, lyy, ck);
-  else
-    g2p_range(s, a, b, 0, lxx, lxy, lyx, lyy, ck);
+  switch (mpm_sim_in_kind(s)) {
+  case MPM_SIM_IN_Q4:
+    g2p_range(s, a, b, MPM_SIM_IN_Q4, lxx, lxy, lyx, lyy, ck);
+    break;
+  case MPM_SIM_IN_ELEMENT:
+    g2p_range(s, a, b, MPM_SIM_IN_ELEMENT, lxx, lxy, lyx, lyy, ck);
+    break;
+  default:
+    g2p_range(s, a, b, MPM_SIM_IN_STORED, lxx, lxy, lyx, lyy, ck);
+  }
 }
 
 /* Step 6 for points [a, b): n substeps of length h of the update of model

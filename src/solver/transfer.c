@@ -46,18 +46,51 @@ static int reserve_located(mpm_sim *s, size_t n, mpm_err *err)
   return MPM_OK;
 }
 
+/* Unit (i, j) and local (u, v) of points [a, b) as mpm_mesh_locate gives
+ * them, for the points whose distances from the mesh origin lie in
+ * [0, lx] x [0, ly] (on a periodic axis [0, lx): no wrap needed), which
+ * periodic wraps and walls keep nearly all points to: one pass without
+ * calls or branches, that vectorises. Returns 1 if a point was outside. */
+static int locate_inside(mpm_sim *s, size_t a, size_t b)
+{
+  const mpm_mesh *m = &s->mesh;
+  const double *restrict x = s->pts->x, *restrict y = s->pts->y;
+  int *restrict li = s->loc_i, *restrict lj = s->loc_j;
+  double *restrict lu = s->loc_u, *restrict lv = s->loc_v;
+  const double x0 = m->x0, y0 = m->y0, lx = m->lx, ly = m->ly, idx = m->idx, idy = m->idy;
+  const double x1 = x0 + lx, y1 = y0 + ly;
+  const int nx = m->nx, ny = m->ny, px = m->periodic_x, py = m->periodic_y;
+  int out = 0;
+#pragma omp simd reduction(| : out)
+  for (size_t p = a; p < b; p++) {
+    const double sx = x[p] - x0, sy = y[p] - y0;
+    /* the tests of mpm_mesh_axis_locate on each axis, less the wrap */
+    const int in = (px ? sx >= 0.0 && sx < lx : x[p] >= x0 && x[p] <= x1) &&
+                   (py ? sy >= 0.0 && sy < ly : y[p] >= y0 && y[p] <= y1);
+    out |= !in;
+    mpm_mesh_axis_unit(in ? sx : 0.0, idx, nx, &li[p], &lu[p]);
+    mpm_mesh_axis_unit(in ? sy : 0.0, idy, ny, &lj[p], &lv[p]);
+  }
+  return out;
+}
+
 /* Unit (i, j) and local (u, v) of every point; returns the index of the
  * first point outside the mesh, or n. */
 static long locate_all(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
-  const long n = (long)P->n;
+  const long n = (long)P->n, nc = (n + 255) / 256;
   long first = n;
 #pragma omp parallel for schedule(static) reduction(min : first)
-  for (long p = 0; p < n; p++)
-    if (mpm_mesh_locate(&s->mesh, P->x[p], P->y[p], &s->loc_i[p], &s->loc_j[p], &s->loc_u[p],
-                        &s->loc_v[p]) && p < first)
-      first = p;
+  for (long c = 0; c < nc; c++) {
+    const long a = 256 * c, b = a + 256 < n ? a + 256 : n;
+    if (!locate_inside(s, (size_t)a, (size_t)b))
+      continue;
+    for (long p = a; p < b; p++)             /* wraps, and points outside the mesh */
+      if (mpm_mesh_locate(&s->mesh, P->x[p], P->y[p], &s->loc_i[p], &s->loc_j[p],
+                          &s->loc_u[p], &s->loc_v[p]) && p < first)
+        first = p;
+  }
   return first;
 }
 
@@ -145,7 +178,7 @@ void mpm_sim_in_unit_gradients(mpm_sim *s)
     mpm_sim_in_basis b;
     const int *node;
     const double *S, *gx, *gy;
-    const int c = mpm_sim_in_weights(s, p, 1, &b, &node, &S, &gx, &gy);
+    const int c = mpm_sim_in_weights(s, p, MPM_SIM_IN_Q4, &b, &node, &S, &gx, &gy);
     double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
     const double V = P->vol[p];
     u[0] += V;
@@ -199,7 +232,7 @@ static inline void p2g_point(mpm_sim *s, size_t p, int c, const int *node, const
 }
 
 /* Step 2 for the points of band k. */
-static inline void p2g_band(mpm_sim *s, int k, int located, double bx, double by)
+static inline void p2g_band(mpm_sim *s, int k, int kind, double bx, double by)
 {
   const mpm_mesh_bands *b = s->bands;
   for (int q = b->start[k]; q < b->start[k + 1]; q++) {
@@ -207,7 +240,7 @@ static inline void p2g_band(mpm_sim *s, int k, int located, double bx, double by
     mpm_sim_in_basis buf;
     const int *node;
     const double *S, *gx, *gy;
-    const int c = mpm_sim_in_weights(s, p, located, &buf, &node, &S, &gx, &gy);
+    const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
     p2g_point(s, p, c, node, S, gx, gy, bx, by);
   }
 }
@@ -260,11 +293,27 @@ static inline void grid_node(mpm_sim *s, int i, double bx, double by, double idt
   q[3] = fy / m + jy;
 }
 
-/* Steps 2-3 with the weights of the located points (located = 1) or of the
- * stored stencil, in one parallel region: clear the nodes, each colour's
- * bands in parallel, the colours in turn, then the grid update by nodes. */
-static void grid_phase(mpm_sim *s, int located, double bx, double by)
+/* Step 2 for band k with the weights of the step (a constant kind at each
+ * call, so each is compiled for its weights). */
+static void p2g_band_of(mpm_sim *s, int k, int kind, double bx, double by)
 {
+  switch (kind) {
+  case MPM_SIM_IN_Q4:
+    p2g_band(s, k, MPM_SIM_IN_Q4, bx, by);
+    break;
+  case MPM_SIM_IN_ELEMENT:
+    p2g_band(s, k, MPM_SIM_IN_ELEMENT, bx, by);
+    break;
+  default:
+    p2g_band(s, k, MPM_SIM_IN_STORED, bx, by);
+  }
+}
+
+/* Steps 2-3 in one parallel region: clear the nodes, each colour's bands in
+ * parallel, the colours in turn, then the grid update by nodes. */
+void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
+{
+  const int kind = mpm_sim_in_kind(s);
   const mpm_mesh_bands *b = s->bands;
   const int nn = s->mesh.nnodes;
   const double idt = 1.0 / s->dt;
@@ -278,7 +327,7 @@ static void grid_phase(mpm_sim *s, int located, double bx, double by)
     for (int col = 0; col < b->ncolour; col++) {
 #pragma omp for schedule(dynamic, 1)
       for (int k = col; k < b->nb; k += b->ncolour)
-        p2g_band(s, k, located, bx, by);
+        p2g_band_of(s, k, kind, bx, by);
     }
 #pragma omp for schedule(static)
     for (int i = 0; i < nn; i++)
@@ -286,10 +335,3 @@ static void grid_phase(mpm_sim *s, int located, double bx, double by)
   }
 }
 
-void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
-{
-  if (s->located)
-    grid_phase(s, 1, bx, by);
-  else
-    grid_phase(s, 0, bx, by);
-}

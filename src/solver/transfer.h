@@ -24,21 +24,41 @@ typedef struct mpm_sim_in_basis {
   double S[4], gx[4], gy[4];
 } mpm_sim_in_basis;
 
+/* Where the step takes a point's weights from: the stored stencil, or the
+ * located point's element basis (bilinear, or any element). The loops of
+ * the step are compiled once for each, so the Q4 loops know their four
+ * nodes. */
+enum { MPM_SIM_IN_STORED = 0, MPM_SIM_IN_Q4, MPM_SIM_IN_ELEMENT };
+
+/* The kind of weights of this run's step. */
+static inline int mpm_sim_in_kind(const mpm_sim *s)
+{
+  if (!s->located)
+    return MPM_SIM_IN_STORED;
+  return s->mesh.topology == MPM_TOPO_Q4 ? MPM_SIM_IN_Q4 : MPM_SIM_IN_ELEMENT;
+}
+
 /* The weights of point p: count, storage node ids, S_ip and gradS_ip, from
- * its located element (into *b; located = s->located, passed as a constant
- * so each caller compiles to one of the two) or the stored stencil. */
-static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int located, mpm_sim_in_basis *b,
+ * its located element (into *b) or the stored stencil; kind (a constant in
+ * each caller) as mpm_sim_in_kind. */
+static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int kind, mpm_sim_in_basis *b,
                                      const int **node, const double **S, const double **gx,
                                      const double **gy)
 {
-  if (located) {
+  if (kind != MPM_SIM_IN_STORED) {
     *node = b->node;
     *S = b->S;
     *gx = b->gx;
     *gy = b->gy;
+  }
+  if (kind == MPM_SIM_IN_Q4) {
+    mpm_mesh_unit_corners(&s->mesh, s->loc_i[p], s->loc_j[p], b->node);
+    mpm_mesh_basis_q4(s->loc_u[p], s->loc_v[p], s->mesh.idx, s->mesh.idy, b->S, b->gx, b->gy);
+    return 4;
+  }
+  if (kind == MPM_SIM_IN_ELEMENT)
     return mpm_mesh_basis_at(&s->mesh, s->loc_i[p], s->loc_j[p], s->loc_u[p], s->loc_v[p],
                              b->node, b->S, b->gx, b->gy);
-  }
   const mpm_shape_stencil *st = s->st;
   const size_t o = p * (size_t)st->w;
   *node = st->node + o;
