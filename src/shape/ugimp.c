@@ -10,39 +10,27 @@
  * Corners beyond a non-periodic edge are clamped onto it (then the first-order
  * invariants hold only approximately there); periodic directions wrap through
  * the mesh basis. An extent of zero area falls back to the delta weights, the
- * limit of the rule as the extent shrinks. */
+ * limit of the rule as the extent shrinks.
+ * The corners' weights are summed on the block of nodes they touch (3 x 3
+ * for extents up to half a unit), in corner order at every node, and the
+ * touched nodes listed in row order. */
 #include "shape/shape.h"
 
 #include <math.h>
-#include <string.h>
 
-/* The merged node list of one point: node ids in the order first seen, and
- * an open-addressing table from id to list position, so that adding a
- * weight costs O(1) instead of a search of the list. The table has twice as
- * many slots as the list can hold, so probe chains stay short. */
-enum { MERGE_BITS = 5, MERGE_SLOTS = 1 << MERGE_BITS };
-_Static_assert(MERGE_SLOTS >= 2 * MPM_STENCIL_W, "merge table too small");
-
-typedef struct merge_table {
-  int id[MERGE_SLOTS];              /* node id, or -1 for a free slot */
-  int at[MERGE_SLOTS];              /* its position in the list */
-} merge_table;
-
-/* Add weight (s, gx, gy) of storage node id to the merged list of *cnt nodes. */
-static void merge_node(merge_table *t, int id, double s, double gx, double gy,
-                       int *node, double *S, double *dSx, double *dSy, int *cnt)
+/* Add weight (s, gx, gy) of storage node id to the list of *cnt nodes of one
+ * point (appended the first time). */
+static void list_add(int id, double s, double gx, double gy, int *node, double *S, double *dSx,
+                     double *dSy, int *cnt)
 {
-  unsigned h = ((unsigned)id * 2654435761u) >> (32 - MERGE_BITS);  /* Fibonacci hash */
-  while (t->id[h] != id && t->id[h] >= 0)
-    h = (h + 1) % MERGE_SLOTS;
-  if (t->id[h] < 0) {                                 /* first time: append */
-    const int k = (*cnt)++;
-    t->id[h] = id;
-    t->at[h] = k;
+  int k = 0;
+  while (k < *cnt && node[k] != id)
+    k++;
+  if (k == *cnt) {
     node[k] = id;
     S[k] = dSx[k] = dSy[k] = 0.0;
+    (*cnt)++;
   }
-  const int k = t->at[h];
   S[k] += s;
   dSx[k] += gx;
   dSy[k] += gy;
@@ -61,16 +49,43 @@ static void clamp_corner(const mpm_mesh *m, double *x, double *y)
   }
 }
 
+/* The logical nodes a point's corners touch form a block of node columns
+ * and rows next to the unit of its centre: at most 3 x 3 for extents up to
+ * half a unit. The weights are summed on a BLOCK x BLOCK array (slot
+ * a + BLOCK b); corners spanning more than BLOCK - 2 units (wide extents)
+ * add node by node to the list instead. */
+enum { BLOCK = 4 };
+
+/* Unit offset d from the centre's along an axis of n units; on a periodic
+ * axis the one of d, d - n, d + n nearest 0 (a corner wrapped round). */
+static inline int unit_offset(int d, int n, int periodic)
+{
+  if (periodic && 2 * d > n)
+    return d - n;
+  if (periodic && 2 * d < -n)
+    return d + n;
+  return d;
+}
+
+/* Storage index along an axis of n units of logical node k, near [0, n]. */
+static inline int node_index(int k, int n, int periodic)
+{
+  if (!periodic)
+    return k;
+  return k < 0 ? k + n : k >= n ? k - n : k;
+}
+
 static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
                       int *node, double *S, double *dSx, double *dSy)
 {
   int iu, ju;
-  if (mpm_mesh_unit(m, x, y, &iu, &ju) != MPM_OK)
+  double uu, vu;
+  if (mpm_mesh_locate(m, x, y, &iu, &ju, &uu, &vu))
     return -1;                               /* the centre decides */
   const double r1x = r[0], r1y = r[1], r2x = r[2], r2y = r[3];
   const double A = 4.0 * (r1x * r2y - r1y * r2x);  /* A_p, signed */
   if (A == 0.0)
-    return mpm_mesh_basis(m, x, y, node, S, dSx, dSy);
+    return mpm_mesh_basis_at(m, iu, ju, uu, vu, node, S, dSx, dSy);
   const double iA = 1.0 / A;
   /* corner offsets x_c - x_p, c = 1..4 */
   const double ox[4] = {-r1x - r2x, r1x - r2x, r1x + r2x, -r1x + r2x};
@@ -80,20 +95,75 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   const double ax = (r1y - r2y) * iA, ay = (r2x - r1x) * iA;
   const double bx = (r1y + r2y) * iA, by = -(r1x + r2x) * iA;
   const double wx[4] = {ax, bx, -ax, -bx}, wy[4] = {ay, by, -ay, -by};
-  merge_table t;
-  memset(t.id, -1, sizeof t.id);
-  int cnt = 0;
+  /* the corners located: unit (ci, cj) (storage), offset (di, dj) from the
+   * centre's unit, local (cu, cv) */
+  int ci[4], cj[4], di[4], dj[4];
+  double cu[4], cv[4];
   for (int c = 0; c < 4; c++) {
     double cx = x + ox[c], cy = y + oy[c];
     clamp_corner(m, &cx, &cy);
-    int id[4];
-    double N[4], gx[4], gy[4];
-    int k = mpm_mesh_basis(m, cx, cy, id, N, gx, gy);
-    if (k < 0)
+    if (mpm_mesh_locate(m, cx, cy, &ci[c], &cj[c], &cu[c], &cv[c]))
       return -1;                             /* non-finite extent */
-    for (int a = 0; a < k; a++)              /* S += N/4, gradS += w_c N */
-      merge_node(&t, id[a], 0.25 * N[a], wx[c] * N[a], wy[c] * N[a], node, S,
-                 dSx, dSy, &cnt);
+    di[c] = unit_offset(ci[c] - iu, m->nx, m->periodic_x);
+    dj[c] = unit_offset(cj[c] - ju, m->ny, m->periodic_y);
+  }
+  int i0 = di[0], i1 = di[0], j0 = dj[0], j1 = dj[0];
+  for (int c = 1; c < 4; c++) {
+    i0 = di[c] < i0 ? di[c] : i0;
+    i1 = di[c] > i1 ? di[c] : i1;
+    j0 = dj[c] < j0 ? dj[c] : j0;
+    j1 = dj[c] > j1 ? dj[c] : j1;
+  }
+  const int bw = i1 - i0 + 2, bh = j1 - j0 + 2;   /* node columns and rows touched */
+  const int wide = bw > BLOCK || bh > BLOCK;
+  /* S += N/4, gradS += w_c N on the nodes of each corner's element (a T3
+   * element's fourth unit corner has N = 0: it adds nothing and is not
+   * marked used) */
+  double bs[BLOCK * BLOCK] = {0.0}, bgx[BLOCK * BLOCK] = {0.0}, bgy[BLOCK * BLOCK] = {0.0};
+  const int off[4] = {0, 1, BLOCK + 1, BLOCK};       /* slots of unit corners 0..3 */
+  unsigned used = 0;
+  int cnt = 0;
+  for (int c = 0; c < 4; c++) {
+    double N[4], gx[4], gy[4];
+    const unsigned mask = mpm_mesh_basis_corners(m, ci[c], cu[c], cv[c], N, gx, gy);
+    if (wide) {
+      int id[4];
+      mpm_mesh_unit_corners(m, ci[c], cj[c], id);
+      for (int a = 0; a < 4; a++)
+        if (mask >> a & 1u)
+          list_add(id[a], 0.25 * N[a], wx[c] * N[a], wy[c] * N[a], node, S, dSx, dSy, &cnt);
+      continue;
+    }
+    const int at = di[c] - i0 + BLOCK * (dj[c] - j0);  /* slot of unit corner 0 */
+    used |= ((mask & 3u) | (mask & 4u) << 3 | (mask & 8u) << 1) << at;
+    for (int a = 0; a < 4; a++) {
+      bs[at + off[a]] += 0.25 * N[a];
+      bgx[at + off[a]] += wx[c] * N[a];
+      bgy[at + off[a]] += wy[c] * N[a];
+    }
+  }
+  if (wide)
+    return cnt;
+  /* the used nodes in row order; on a periodic axis of few units two of them
+   * can be one stored node: merged */
+  const int merge = (m->periodic_x && m->nx < bw) || (m->periodic_y && m->ny < bh);
+  for (int b = 0; b < bh; b++) {
+    const int js = node_index(ju + j0 + b, m->ny, m->periodic_y);
+    for (int a = 0; a < bw; a++) {
+      const int k = a + BLOCK * b;
+      if (!(used >> k & 1u))
+        continue;
+      const int id = js * m->snx + node_index(iu + i0 + a, m->nx, m->periodic_x);
+      if (merge) {
+        list_add(id, bs[k], bgx[k], bgy[k], node, S, dSx, dSy, &cnt);
+        continue;
+      }
+      node[cnt] = id;
+      S[cnt] = bs[k];
+      dSx[cnt] = bgx[k];
+      dSy[cnt] = bgy[k];
+      cnt++;
+    }
   }
   return cnt;
 }
@@ -106,6 +176,7 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
 static void ugimp_span(const mpm_mesh *m, const mpm_points *pts, int *width, int *reach)
 {
   double hx = 0.0, hy = 0.0;
+#pragma omp simd reduction(max : hx, hy)
   for (size_t p = 0; p < pts->n; p++) {
     const double ax = fabs(pts->r1x[p]) + fabs(pts->r2x[p]);
     const double ay = fabs(pts->r1y[p]) + fabs(pts->r2y[p]);
