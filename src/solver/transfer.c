@@ -203,11 +203,11 @@ void mpm_sim_in_unit_gradients(mpm_sim *s)
  * with a = m_p (v_x, v_y, b_x, b_y), ax = -V_p (0, 0, s_xx, s_xy),
  * ay = -V_p (0, 0, s_xy, s_yy). With the B-bar dilatation the mean in-plane
  * stress acts on the unit's mean gradients instead of the point's own. */
-static inline void p2g_point(mpm_sim *s, size_t p, int c, const int *node, const double *S,
-                             const double *gx, const double *gy, double bx, double by)
+static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*restrict nq)[4],
+                             size_t p, int c, const int *node, const double *S,
+                             const double *gx, const double *gy, double bx, double by, int bbar)
 {
   const mpm_points *P = s->pts;
-  double *nm = s->nm, (*nq)[4] = s->nq;
   const double m = P->mass[p], V = P->vol[p];
   const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
   const double a[4] = {m * P->vx[p], m * P->vy[p], m * bx, m * by};
@@ -221,7 +221,7 @@ static inline void p2g_point(mpm_sim *s, size_t p, int c, const int *node, const
     for (int l = 0; l < 4; l++)
       q[l] += Sk * a[l] + gxk * ax[l] + gyk * ay[l];       /* (mv, f)_i */
   }
-  if (s->ug) {                 /* mean stress s_m on the unit's B-bar gradient */
+  if (bbar) {                  /* mean stress s_m on the unit's B-bar gradient */
     const double Vsm = V * 0.5 * (sxx + syy);
     const double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
     for (int k = 0; k < c; k++) {
@@ -232,16 +232,19 @@ static inline void p2g_point(mpm_sim *s, size_t p, int c, const int *node, const
 }
 
 /* Step 2 for the points of band k. */
-static inline void p2g_band(mpm_sim *s, int k, int kind, double bx, double by)
+static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double by)
 {
   const mpm_mesh_bands *b = s->bands;
-  for (int q = b->start[k]; q < b->start[k + 1]; q++) {
+  double *restrict nm = s->nm;
+  double (*restrict nq)[4] = s->nq;
+  const int bbar = s->ug != NULL, end = b->start[k + 1];
+  for (int q = b->start[k]; q < end; q++) {
     const size_t p = (size_t)b->idx[q];
     mpm_sim_in_basis buf;
     const int *node;
     const double *S, *gx, *gy;
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    p2g_point(s, p, c, node, S, gx, gy, bx, by);
+    p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar);
   }
 }
 
@@ -295,7 +298,7 @@ static inline void grid_node(mpm_sim *s, int i, double bx, double by, double idt
 
 /* Step 2 for band k with the weights of the step (a constant kind at each
  * call, so each is compiled for its weights). */
-static void p2g_band_of(mpm_sim *s, int k, int kind, double bx, double by)
+static void p2g_band_of(const mpm_sim *s, int k, int kind, double bx, double by)
 {
   switch (kind) {
   case MPM_SIM_IN_Q4:

@@ -106,8 +106,9 @@ static inline void mpm_sim_in_g2p(mpm_sim *s, size_t p, int c, const int *node, 
     lyy += corr;
   }
   const double fl = s->cfg.time.flip;                        /* FLIP share (1: [DK15]) */
-  P->vx[p] = fl * (P->vx[p] + dt * as[2]) + (1.0 - fl) * as[0];  /* fl v_FLIP + (1-fl) v_PIC */
-  P->vy[p] = fl * (P->vy[p] + dt * as[3]) + (1.0 - fl) * as[1];
+  const double fvx = P->vx[p] + dt * as[2], fvy = P->vy[p] + dt * as[3];   /* v_FLIP */
+  P->vx[p] = fl == 1.0 ? fvx : fl * fvx + (1.0 - fl) * as[0];  /* fl v_FLIP + (1-fl) v_PIC */
+  P->vy[p] = fl == 1.0 ? fvy : fl * fvy + (1.0 - fl) * as[1];
   P->x[p] += dt * as[0];
   P->y[p] += dt * as[1];
   vg[0] = as[0];
