@@ -15,6 +15,7 @@
 #include "app/args.h"
 #include "app/constitutive.h"
 #include "app/state.h"
+#include "app/threads.h"
 #include "diag/diag.h"
 #include "diag/region.h"
 #include "io/io.h"
@@ -255,6 +256,7 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
     return rc;
 
   warn_diffusion(o.file, &cfg);
+  const int threads = mpm_app_threads_default();
   mpm_err err = {0};
   mpm_sim *sim = NULL;
   if (mpm_sim_create(&sim, &cfg, &err) != MPM_OK) {
@@ -289,8 +291,9 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   if (st == MPM_OK && cfg.region.m_hi > 0.0)
     st = report_flow_rate(&ctx, &cfg, &err);
   if (st == MPM_OK && !o.quiet) {
-    fprintf(stderr, "granmpm: %ld steps of %.4g s, %ld frames, %zu points -> %s/run.h5\n",
-            sim->step, sim->dt, ctx.frames, sim->pts->n, cfg.output.dir);
+    fprintf(stderr, "granmpm: %ld steps of %.4g s, %ld frames, %zu points, %d thread%s -> "
+            "%s/run.h5\n", sim->step, sim->dt, ctx.frames, sim->pts->n, threads,
+            threads == 1 ? "" : "s", cfg.output.dir);
   }
   mpm_sim_free(sim);
   free(ctx.ft);

@@ -8,11 +8,16 @@
  * run in parallel, the colours one after the other. Every written entry then
  * sums its shares band by band and, within a band, in point order: the same
  * order whatever the number of threads and whichever thread takes a band.
- * The binning is a stable counting sort of the point indices by band. */
+ * The binning is a stable counting sort of the point indices by band, on
+ * all threads. */
 #include "mesh/mesh.h"
 
 #include <limits.h>
 #include <stdlib.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 mpm_mesh_bands *mpm_mesh_bands_alloc(void)
 {
@@ -26,6 +31,7 @@ void mpm_mesh_bands_free(mpm_mesh_bands *b)
   free(b->start);
   free(b->idx);
   free(b->band_of_row);
+  free(b->tcount);
   free(b);
 }
 
@@ -83,19 +89,55 @@ int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, si
     b->lo = lo;
     b->hi = hi;
   }
+  int nt = 1;
+#ifdef _OPENMP
+  nt = n > 8192 ? omp_get_max_threads() : 1;
+#endif
+  const size_t need = (size_t)nt * ((size_t)b->nb + 1);
+  if (need > b->tcap) {
+    int *tc = realloc(b->tcount, need * sizeof *tc);
+    if (!tc)
+      return mpm_err_set(err, MPM_ENOMEM, "bands: no memory for %d threads' counts", nt);
+    b->tcount = tc;
+    b->tcap = need;
+  }
+  /* A stable counting sort on the threads: each counts the points of its
+   * share per band, the shares are laid out band by band in thread order
+   * (so in point order), and each thread places its own points. The result,
+   * the unique stable order, does not depend on the number of threads. */
   int *start = b->start;
   const int nb = b->nb;
-  for (int k = 0; k <= nb; k++)
-    start[k] = 0;
-  for (size_t p = 0; p < n; p++)                 /* points per band, shifted by one */
-    start[b->band_of_row[row[p]] + 1]++;
-  for (int k = 0; k < nb; k++)                   /* first slot of each band */
-    start[k + 1] += start[k];
-  for (size_t p = 0; p < n; p++)                 /* stable: point order within a band */
-    b->idx[start[b->band_of_row[row[p]]]++] = (int)p;
-  for (int k = nb; k > 0; k--)                   /* the increments moved start[k] to start[k+1] */
-    start[k] = start[k - 1];
-  start[0] = 0;
+#pragma omp parallel num_threads(nt) if (nt > 1)
+  {
+    int t = 0, nth = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    nth = omp_get_num_threads();
+#endif
+    const size_t a = n * (size_t)t / (size_t)nth, e = n * ((size_t)t + 1) / (size_t)nth;
+    int *cnt = b->tcount + (size_t)t * ((size_t)nb + 1);
+    for (int k = 0; k < nb; k++)
+      cnt[k] = 0;
+    for (size_t p = a; p < e; p++)               /* this share's points per band */
+      cnt[b->band_of_row[row[p]]]++;
+#pragma omp barrier
+#pragma omp single
+    {
+      int at = 0;                                /* first slot of band k, share u */
+      for (int k = 0; k < nb; k++) {
+        start[k] = at;
+        for (int u = 0; u < nth; u++) {
+          int *c = b->tcount + (size_t)u * ((size_t)nb + 1) + k;
+          const int nk = *c;
+          *c = at;
+          at += nk;
+        }
+      }
+      start[nb] = at;
+    }
+    for (size_t p = a; p < e; p++)               /* stable: point order within a band */
+      b->idx[cnt[b->band_of_row[row[p]]]++] = (int)p;
+  }
   b->n = n;
   return MPM_OK;
 }

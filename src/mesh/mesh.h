@@ -256,6 +256,8 @@ typedef struct mpm_mesh_bands {
   size_t n, cap;       /* points binned, room in idx */
   int *band_of_row;    /* [ny] */
   int ny, lo, hi, rcap;  /* the layout's rows and reach; room in band_of_row */
+  int *tcount;         /* [threads (nb + 1)] the threads' counts per band */
+  size_t tcap;
 } mpm_mesh_bands;
 
 mpm_mesh_bands *mpm_mesh_bands_alloc(void);
