@@ -91,7 +91,7 @@ int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, si
   }
   int nt = 1;
 #ifdef _OPENMP
-  nt = n > 8192 ? omp_get_max_threads() : 1;
+  nt = n >= 256 ? omp_get_max_threads() : 1;     /* a few points: no fork */
 #endif
   const size_t need = (size_t)nt * ((size_t)b->nb + 1);
   if (need > b->tcap) {

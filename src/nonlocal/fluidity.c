@@ -106,6 +106,8 @@ void mpm_nonlocal_free(mpm_nonlocal *ws)
   free(ws->pe);
   free(ws->isp);
   free(ws->unit);
+  free(ws->row);
+  mpm_mesh_bands_free(ws->bands);
   free(ws->part);
   free(ws->w);
   free(ws->dense);
@@ -122,12 +124,14 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
   const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
   const size_t nk = ext ? MPM_NONLOCAL_PARTS * cap : 0;
   int *u = malloc(cap * sizeof *u);
+  int *row = malloc(cap * sizeof *row);
   int *part = ext ? malloc(nk * sizeof *part) : NULL;
   double *w = ext ? malloc(nk * sizeof *w) : NULL;
   unsigned char *d = calloc(cap, 1);
   double *pn = calloc(cap, sizeof *pn);
-  if (!u || !d || !pn || (ext && (!part || !w))) {
+  if (!u || !row || !d || !pn || (ext && (!part || !w))) {
     free(u);
+    free(row);
     free(part);
     free(w);
     free(d);
@@ -135,11 +139,13 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu points", cap);
   }
   free(ws->unit);
+  free(ws->row);
   free(ws->part);
   free(ws->w);
   free(ws->dense);
   free(ws->pn);
   ws->unit = u;
+  ws->row = row;
   ws->part = part;
   ws->w = w;
   ws->dense = d;
@@ -194,13 +200,14 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   ws->idx2 = 1.0 / (m->dx * m->dx);
   ws->idy2 = 1.0 / (m->dy * m->dy);
   ws->rule = rule;
+  ws->bands = mpm_mesh_bands_alloc();
   ws->sm = calloc(nu, sizeof *ws->sm);
   ws->smg = calloc(nu, sizeof *ws->smg);
   ws->ge = calloc(nu, sizeof *ws->ge);
   ws->lap = calloc(nu, sizeof *ws->lap);
   ws->pe = calloc(nu, sizeof *ws->pe);
   ws->isp = calloc(nu, sizeof *ws->isp);
-  if (!ws->sm || !ws->smg || !ws->ge || !ws->lap || !ws->pe || !ws->isp) {
+  if (!ws->bands || !ws->sm || !ws->smg || !ws->ge || !ws->lap || !ws->pe || !ws->isp) {
     mpm_nonlocal_free(ws);
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for %zu units", nu);
   }
@@ -265,6 +272,31 @@ static void extent_parts(const mpm_nonlocal *ws, const mpm_mesh *m, int i, int j
   }
 }
 
+/* Unit, row and (extent rule) parts of point p; 0, or 1 when it is outside
+ * the mesh, 2 when its extent is wider than a unit. */
+static int locate_one(mpm_nonlocal *ws, const mpm_mesh *m, size_t p, const double *x,
+                      const double *y, const double *const r[4])
+{
+  int i, j;
+  if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+    return 1;
+  ws->unit[p] = i + ws->nx * j;
+  ws->row[p] = j;
+  if (ws->rule != MPM_NONLOCAL_EXTENT)
+    return 0;
+  double xw = x[p], yw = y[p];
+  mpm_mesh_wrap(m, &xw, &yw);
+  const double hu = (fabs(r[0][p]) + fabs(r[2][p])) * m->idx;   /* |r1x| + |r2x|, in units */
+  const double hv = (fabs(r[1][p]) + fabs(r[3][p])) * m->idy;   /* |r1y| + |r2y| */
+  if (!(hu <= 0.5 + 1e-12) || !(hv <= 0.5 + 1e-12))
+    return 2;
+  const double u = fmin(fmax((xw - m->x0) * m->idx - i, 0.0), 1.0);  /* centre in its unit */
+  const double v = fmin(fmax((yw - m->y0) * m->idy - j, 0.0), 1.0);
+  extent_parts(ws, m, i, j, u, v, hu, hv, ws->part + MPM_NONLOCAL_PARTS * p,
+               ws->w + MPM_NONLOCAL_PARTS * p);
+  return 0;
+}
+
 int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
                                 const double *y, const double *const r[4], mpm_err *err)
 {
@@ -274,29 +306,24 @@ int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, c
   int rc = mpm_nonlocal_reserve(ws, n, err);
   if (rc != MPM_OK)
     return rc;
-  for (size_t p = 0; p < n; p++) {
-    int i, j;
-    if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+  long bad = (long)n;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (n >= 256)
+  for (size_t p = 0; p < n; p++)
+    if (locate_one(ws, m, p, x, y, r) && (long)p < bad)
+      bad = (long)p;
+  if (bad < (long)n) {
+    const size_t p = (size_t)bad;
+    if (locate_one(ws, m, p, x, y, r) == 1)
       return mpm_err_set(err, MPM_EOUTSIDE,
                          "nonlocal: point index %zu at (%.6g, %.6g) m is outside the mesh",
                          p, x[p], y[p]);
-    ws->unit[p] = i + ws->nx * j;
-    if (!ext)
-      continue;
-    double xw = x[p], yw = y[p];
-    mpm_mesh_wrap(m, &xw, &yw);
-    const double hu = (fabs(r[0][p]) + fabs(r[2][p])) * m->idx;   /* |r1x| + |r2x|, in units */
-    const double hv = (fabs(r[1][p]) + fabs(r[3][p])) * m->idy;   /* |r1y| + |r2y| */
-    if (!(hu <= 0.5 + 1e-12) || !(hv <= 0.5 + 1e-12))
-      return mpm_err_set(err, MPM_EINVAL,
-                         "nonlocal: point index %zu: extent %.6g x %.6g m is wider than a unit",
-                         p, 2.0 * hu * m->dx, 2.0 * hv * m->dy);
-    const double u = fmin(fmax((xw - m->x0) * m->idx - i, 0.0), 1.0);  /* centre in its unit */
-    const double v = fmin(fmax((yw - m->y0) * m->idy - j, 0.0), 1.0);
-    extent_parts(ws, m, i, j, u, v, hu, hv, ws->part + MPM_NONLOCAL_PARTS * p,
-                 ws->w + MPM_NONLOCAL_PARTS * p);
+    return mpm_err_set(err, MPM_EINVAL,
+                       "nonlocal: point index %zu: extent %.6g x %.6g m is wider than a unit", p,
+                       2.0 * (fabs(r[0][p]) + fabs(r[2][p])),
+                       2.0 * (fabs(r[1][p]) + fabs(r[3][p])));
   }
-  return MPM_OK;
+  /* the rows a point's shares reach: its own, and one either side with extents */
+  return mpm_mesh_bands_sort(ws->bands, m, ext, ext, n, ws->row, err);
 }
 
 int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
@@ -328,27 +355,57 @@ double mpm_nonlocal_point_mean(const mpm_nonlocal *ws, const double *f, size_t p
   return sw > 0.0 ? swf / sw : 0.0;
 }
 
+/* acc[e] += w_pe m_p f_p (and, when sm is not NULL, sm[e] += w_pe m_p) over
+ * the dense points, after zeroing both: band by band, each colour's bands on
+ * all threads, in point order within a band (thread-count free); in point
+ * order when the bands are not those of these n points. */
+static void unit_sums(mpm_nonlocal *ws, size_t n, const double *mass, const double *f,
+                      const unsigned char *dense, double *sm, double *acc)
+{
+  const size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
+  const mpm_mesh_bands *b = ws->bands;
+  const int banded = b && b->n == n;
+  const int nb = banded ? b->nb : 1, ncol = banded ? b->ncolour : 1;
+#pragma omp parallel if (banded && n >= 256)   /* a few points: no fork */
+  {
+#pragma omp for schedule(static)
+    for (size_t e = 0; e < nu; e++) {
+      acc[e] = 0.0;
+      if (sm)
+        sm[e] = 0.0;
+    }
+    for (int col = 0; col < ncol; col++) {
+#pragma omp for schedule(dynamic, 1)
+      for (int k = col; k < nb; k += ncol) {
+        const size_t q0 = banded ? (size_t)b->start[k] : 0;
+        const size_t q1 = banded ? (size_t)b->start[k + 1] : n;
+        for (size_t q = q0; q < q1; q++) {
+          const size_t p = banded ? (size_t)b->idx[q] : q;
+          if (!dense[p])
+            continue;
+          if (ext) {
+            if (sm)
+              add_parts(ws, sm, p, mass[p]);                 /* sum w m */
+            add_parts(ws, acc, p, mass[p] * f[p]);           /* sum w m f */
+            continue;
+          }
+          const int e = ws->unit[p];
+          if (sm)
+            sm[e] += mass[p];                                /* sum m */
+          acc[e] += mass[p] * f[p];                          /* sum m f */
+        }
+      }
+    }
+  }
+}
+
 void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
                           const unsigned char *dense)
 {
-  size_t nu = (size_t)ws->nx * (size_t)ws->ny;
-  for (size_t e = 0; e < nu; e++) {
-    ws->sm[e] = 0.0;
-    ws->smg[e] = 0.0;
-  }
-  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
-  for (size_t p = 0; p < n; p++) {                     /* fixed order: thread-count free */
-    if (!dense[p])
-      continue;
-    if (ext) {
-      add_parts(ws, ws->sm, p, mass[p]);               /* sum w m */
-      add_parts(ws, ws->smg, p, mass[p] * g[p]);       /* sum w m g */
-      continue;
-    }
-    int e = ws->unit[p];
-    ws->sm[e] += mass[p];                              /* sum m */
-    ws->smg[e] += mass[p] * g[p];                      /* sum m g */
-  }
+  const size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  unit_sums(ws, n, mass, g, dense, ws->sm, ws->smg);
+#pragma omp parallel for schedule(static) if (nu >= 256)
   for (size_t e = 0; e < nu; e++)
     ws->ge[e] = ws->sm[e] > 0.0 ? ws->smg[e] / ws->sm[e] : 0.0;  /* g_e */
 }
@@ -397,7 +454,7 @@ static double neighbour(const mpm_nonlocal *ws, int i, int j, int side, double g
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
 {
   const int nx = ws->nx, ny = ws->ny;
-#pragma omp parallel for schedule(static) if ((long)nx * ny > 16384)  /* small grids: no fork */
+#pragma omp parallel for schedule(static) if ((long)nx * ny > 256)  /* tiny grids: no fork */
   for (int j = 0; j < ny; j++)
     for (int i = 0; i < nx; i++) {
       size_t e = (size_t)i + (size_t)nx * (size_t)j;
@@ -479,20 +536,12 @@ void mpm_nonlocal_pressure(mpm_nonlocal *ws, size_t n, const double *mass, const
                            const unsigned char *dense)
 {
   size_t nu = (size_t)ws->nx * (size_t)ws->ny;
-  for (size_t e = 0; e < nu; e++)
-    ws->pe[e] = 0.0;
-  const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
-  for (size_t q = 0; q < n; q++) {                      /* fixed order: thread-count free */
-    if (!dense[q])
-      continue;
-    if (ext)
-      add_parts(ws, ws->pe, q, mass[q] * p[q]);         /* sum w m p */
-    else
-      ws->pe[ws->unit[q]] += mass[q] * p[q];            /* sum m p */
-  }
+  unit_sums(ws, n, mass, p, dense, NULL, ws->pe);          /* sum w m p */
+#pragma omp parallel for schedule(static) if (nu >= 256)
   for (size_t e = 0; e < nu; e++)
     ws->pe[e] = ws->sm[e] > 0.0 ? ws->pe[e] / ws->sm[e] : 0.0;  /* p_e (sm from average) */
   const int nx = ws->nx, ny = ws->ny;
+#pragma omp parallel for schedule(static) if ((long)nx * ny > 256)
   for (int j = 0; j < ny; j++)
     for (int i = 0; i < nx; i++) {
       size_t e = (size_t)i + (size_t)nx * (size_t)j;

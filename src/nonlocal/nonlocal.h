@@ -52,8 +52,11 @@
  *     per point: lap = mpm_nonlocal_point_lap(ws, p), isp = mpm_nonlocal_point_isp(ws, p);
  *       constitutive update
  *
- * The sums run over points in index order on one thread, so results do not
- * depend on the number of threads. The Laplacian is independent per unit. */
+ * The sums run on all threads band by band over bands of unit rows
+ * (mesh.h, mpm_mesh_bands, made by the locate): each unit sums its points'
+ * shares band by band and in point order within a band (under the centre
+ * rule, in point order), so results do not depend on the number of threads.
+ * The Laplacian and the unit pressures' p^-1/2 are independent per unit. */
 #ifndef MPM_NONLOCAL_NONLOCAL_H
 #define MPM_NONLOCAL_NONLOCAL_H
 
@@ -95,6 +98,8 @@ typedef struct mpm_nonlocal {
   double *pe;           /* [nx*ny] unit pressure p_e [Pa] (0 when empty) */
   double *isp;          /* [nx*ny] unit mean of p^-1/2 [Pa^-1/2] (0 when empty or p_e <= 0) */
   int *unit;            /* [pcap] frozen unit of each point's centre, i + nx j */
+  int *row;             /* [pcap] its row j */
+  mpm_mesh_bands *bands;  /* the points by bands of those rows, for the unit sums */
   int *part;            /* extent rule: [MPM_NONLOCAL_PARTS pcap] units of point p at
                            part[4p .. 4p+3] (unused slots: its centre unit, weight 0) */
   double *w;            /* extent rule: [MPM_NONLOCAL_PARTS pcap] their weights (sum 1) */
@@ -160,7 +165,8 @@ int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, c
 int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
                         const double *y, mpm_err *err);
 
-/* Element g from the dense points (dense[p] != 0): g_e = sum w m g / sum w m. */
+/* Element g from the dense points (dense[p] != 0): g_e = sum w m g / sum w m
+ * (n the points of the last locate; sums in the order above). */
 void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
                           const unsigned char *dense);
 
