@@ -86,7 +86,12 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
   double vol = hx * hy;                                    /* V_p = dx dy / n^2 */
   int state = (par->rho_c > 0.0 && f->density < par->rho_c) ? MPM_STATE_DISCONNECTED
                                                              : MPM_STATE_DENSE;
-  size_t first = pts->n;
+  size_t first = pts->n, count = 0;
+  for (int j = 0; j < m->ny * n; j++)             /* room for exactly the points to come */
+    for (int i = 0; i < m->nx * n; i++)
+      count += mpm_scenario_inside(f, m->x0 + (i + 0.5) * hx, m->y0 + (j + 0.5) * hy) != 0;
+  if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
+    return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points", pts->n + count);
   for (int j = 0; j < m->ny * n; j++) {
     double y = m->y0 + (j + 0.5) * hy;
     for (int i = 0; i < m->nx * n; i++) {

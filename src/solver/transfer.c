@@ -130,7 +130,19 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
 {
   mpm_points *P = s->pts;
   const size_t n = P->n;
-  if (n < 2)
+  const mpm_mesh *m = &s->mesh;
+  /* already in row order (a fresh fill, a still run)? A point outside the
+   * mesh leaves the order alone: the step reports it. */
+  int sorted = 1, prev = 0;
+  for (size_t p = 0; p < n; p++) {
+    int j;
+    double v;
+    if (mpm_mesh_axis_locate(P->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y, &j, &v))
+      return MPM_OK;
+    sorted &= j >= prev;
+    prev = j;
+  }
+  if (sorted)
     return MPM_OK;
   if (n > s->scap) {
     void *t = realloc(s->scratch, n * sizeof(double));
@@ -139,20 +151,11 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
     s->scratch = t;
     s->scap = n;
   }
-  /* unit row of each point, -1 outside (kept where it is: the step reports it) */
-  int *row = s->scratch;
-  int sorted = 1;
+  int *row = s->scratch;                       /* unit row of each point */
   for (size_t p = 0; p < n; p++) {
-    int j;
     double v;
-    if (mpm_mesh_axis_locate(P->y[p], s->mesh.y0, s->mesh.ly, s->mesh.idy, s->mesh.ny,
-                             s->mesh.periodic_y, &j, &v))
-      return MPM_OK;                           /* a point outside: leave the order alone */
-    row[p] = j;
-    sorted &= p == 0 || j >= row[p - 1];
+    mpm_mesh_axis_locate(P->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y, &row[p], &v);
   }
-  if (sorted)
-    return MPM_OK;
   int rc = mpm_mesh_bands_sort(s->bands, &s->mesh, 0, 0, n, row, err);  /* one row a band */
   if (rc == MPM_OK)
     mpm_points_permute(P, s->bands->idx, s->scratch);
