@@ -291,9 +291,10 @@ static int cmd_run(int argc, char **argv, int full_argc, char **full_argv)
   if (st == MPM_OK && cfg.region.m_hi > 0.0)
     st = report_flow_rate(&ctx, &cfg, &err);
   if (st == MPM_OK && !o.quiet) {
-    fprintf(stderr, "granmpm: %ld steps of %.4g s, %ld frames, %zu points, %d thread%s -> "
-            "%s/run.h5\n", sim->step, sim->dt, ctx.frames, sim->pts->n, threads,
-            threads == 1 ? "" : "s", cfg.output.dir);
+    fprintf(stderr, "granmpm: %ld steps of %.4g s (%d substep%s), %ld frames, %zu points, "
+            "%d thread%s -> %s/run.h5\n", sim->step, sim->dt, sim->n_sub,
+            sim->n_sub == 1 ? "" : "s", ctx.frames, sim->pts->n, threads, threads == 1 ? "" : "s",
+            cfg.output.dir);
   }
   mpm_sim_free(sim);
   free(ctx.ft);
