@@ -134,19 +134,25 @@ static inline int mpm_mesh_column_is_slash(const mpm_mesh *m, int i)
 }
 
 /* Storage ids of the corners of unit (i, j) in the order (i, j), (i+1, j),
- * (i+1, j+1), (i, j+1), with periodic aliasing. */
+ * (i+1, j+1), (i, j+1), with periodic aliasing, from n0 = j snx + i, the
+ * storage id of the first. */
+static inline void mpm_mesh_corners_from(const mpm_mesh *m, int n0, int i, int j, int c[4])
+{
+  int dx = 1, dy = m->snx;                          /* the next column, the next row */
+  if (m->periodic_x && i + 1 == m->nx)
+    dx = 1 - m->nx;                                 /* node nx aliases node 0 */
+  if (m->periodic_y && j + 1 == m->ny)
+    dy = (1 - m->ny) * m->snx;
+  c[0] = n0;
+  c[1] = n0 + dx;
+  c[2] = n0 + dx + dy;
+  c[3] = n0 + dy;
+}
+
+/* The same from (i, j) alone. */
 static inline void mpm_mesh_unit_corners(const mpm_mesh *m, int i, int j, int c[4])
 {
-  int i1 = i + 1, j1 = j + 1;
-  if (m->periodic_x && i1 == m->nx)
-    i1 = 0;                      /* node nx aliases node 0 */
-  if (m->periodic_y && j1 == m->ny)
-    j1 = 0;
-  const int r0 = j * m->snx, r1 = j1 * m->snx;
-  c[0] = r0 + i;
-  c[1] = r0 + i1;
-  c[2] = r1 + i1;
-  c[3] = r1 + i;
+  mpm_mesh_corners_from(m, j * m->snx + i, i, j, c);
 }
 
 /* Bilinear (Q4) basis at local (u, v) on the unit corners (order of

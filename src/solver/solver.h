@@ -36,6 +36,7 @@ typedef struct mpm_sim {
    * the others store a stencil */
   int located;
   int *loc_i, *loc_j;             /* [loc_cap] */
+  int *loc_n;                     /* [loc_cap] storage id of the unit's first corner */
   double *loc_u, *loc_v;
   size_t loc_cap;
   mpm_shape_stencil *st;          /* the stored stencil (computed when a step needs it) */

@@ -208,6 +208,7 @@ void mpm_sim_free(mpm_sim *s)
   free(s->lyy);
   free(s->loc_i);
   free(s->loc_j);
+  free(s->loc_n);
   free(s->loc_u);
   free(s->loc_v);
   free(s->scratch);

@@ -34,13 +34,16 @@ static int reserve_located(mpm_sim *s, size_t n, mpm_err *err)
   int *j = realloc(s->loc_j, n * sizeof *j);
   if (j)
     s->loc_j = j;
+  int *c = realloc(s->loc_n, n * sizeof *c);
+  if (c)
+    s->loc_n = c;
   double *u = realloc(s->loc_u, n * sizeof *u);
   if (u)
     s->loc_u = u;
   double *v = realloc(s->loc_v, n * sizeof *v);
   if (v)
     s->loc_v = v;
-  if (!i || !j || !u || !v)
+  if (!i || !j || !c || !u || !v)
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
   s->loc_cap = n;
   return MPM_OK;
@@ -55,11 +58,11 @@ static int locate_inside(mpm_sim *s, size_t a, size_t b)
 {
   const mpm_mesh *m = &s->mesh;
   const double *restrict x = s->pts->x, *restrict y = s->pts->y;
-  int *restrict li = s->loc_i, *restrict lj = s->loc_j;
+  int *restrict li = s->loc_i, *restrict lj = s->loc_j, *restrict ln = s->loc_n;
   double *restrict lu = s->loc_u, *restrict lv = s->loc_v;
   const double x0 = m->x0, y0 = m->y0, lx = m->lx, ly = m->ly, idx = m->idx, idy = m->idy;
   const double x1 = x0 + lx, y1 = y0 + ly;
-  const int nx = m->nx, ny = m->ny, px = m->periodic_x, py = m->periodic_y;
+  const int nx = m->nx, ny = m->ny, px = m->periodic_x, py = m->periodic_y, snx = m->snx;
   int out = 0;
 #pragma omp simd reduction(| : out)
   for (size_t p = a; p < b; p++) {
@@ -70,6 +73,7 @@ static int locate_inside(mpm_sim *s, size_t a, size_t b)
     out |= !in;
     mpm_mesh_axis_unit(in ? sx : 0.0, idx, nx, &li[p], &lu[p]);
     mpm_mesh_axis_unit(in ? sy : 0.0, idy, ny, &lj[p], &lv[p]);
+    ln[p] = lj[p] * snx + li[p];              /* storage id of node (i, j) */
   }
   return out;
 }
@@ -86,10 +90,12 @@ static long locate_all(mpm_sim *s)
     const long a = 256 * c, b = a + 256 < n ? a + 256 : n;
     if (!locate_inside(s, (size_t)a, (size_t)b))
       continue;
-    for (long p = a; p < b; p++)             /* wraps, and points outside the mesh */
+    for (long p = a; p < b; p++) {           /* wraps, and points outside the mesh */
       if (mpm_mesh_locate(&s->mesh, P->x[p], P->y[p], &s->loc_i[p], &s->loc_j[p],
                           &s->loc_u[p], &s->loc_v[p]) && p < first)
         first = p;
+      s->loc_n[p] = s->loc_j[p] * s->mesh.snx + s->loc_i[p];
+    }
   }
   return first;
 }

@@ -52,7 +52,7 @@ static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int kind, mpm_s
     *gy = b->gy;
   }
   if (kind == MPM_SIM_IN_Q4) {
-    mpm_mesh_unit_corners(&s->mesh, s->loc_i[p], s->loc_j[p], b->node);
+    mpm_mesh_corners_from(&s->mesh, s->loc_n[p], s->loc_i[p], s->loc_j[p], b->node);
     mpm_mesh_basis_q4(s->loc_u[p], s->loc_v[p], s->mesh.idx, s->mesh.idy, b->S, b->gx, b->gy);
     return 4;
   }
