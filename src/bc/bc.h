@@ -66,7 +66,7 @@ static inline void mpm_bc_apply_node(const mpm_bc *bc, int i, double *ax, double
  * need mpm_bc_clamp; inside it never does). */
 static inline int mpm_bc_outside(const mpm_mesh *m, double x, double y)
 {
-  return x < m->x0 || x > m->x0 + m->lx || y < m->y0 || y > m->y0 + m->ly;
+  return (x < m->x0) | (x > m->x0 + m->lx) | (y < m->y0) | (y > m->y0 + m->ly);
 }
 
 /* Move a point that crossed a wall edge (no-slip, frictionless, symmetry)

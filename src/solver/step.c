@@ -238,8 +238,8 @@ typedef struct chunk {
   double vgx[CHUNK], vgy[CHUNK];                         /* grid velocity that moved p */
 } chunk;
 
-/* Steps 4-5 for points [a, b): L_p to lxx[p - a] ... (and the grid velocity
- * to ck when ck is not NULL). */
+/* Steps 4-5 for points [a, b): L_p to lxx[p - a] ..., the grid velocity
+ * that moved point p to ck->vgx[p - a], ck->vgy[p - a]. */
 static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *lxx,
                              double *lxy, double *lyx, double *lyy, chunk *ck)
 {
@@ -254,12 +254,8 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *l
     lxy[p - a] = L[1];
     lyx[p - a] = L[2];
     lyy[p - a] = L[3];
-    if (ck) {
-      ck->vgx[p - a] = vg[0];
-      ck->vgy[p - a] = vg[1];
-    } else {
-      mpm_sim_in_bookkeeping(s, p, vg);
-    }
+    ck->vgx[p - a] = vg[0];
+    ck->vgy[p - a] = vg[1];
   }
 }
 
@@ -333,8 +329,7 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
     long bc = update_range(s, mat, 0, a, b, ck.lxx, ck.lxy, ck.lyx, ck.lyy,
                            state_rho(s, a, b, ck.rho), NULL, NULL, h, s->n_sub);
     bad = bc > bad ? bc : bad;
-    for (size_t p = a; p < b; p++)
-      mpm_sim_in_bookkeeping(s, p, (const double[2]){ck.vgx[p - a], ck.vgy[p - a]});
+    mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
   }
   return bad;
 }
@@ -384,8 +379,10 @@ static int move_points(mpm_sim *s, mpm_err *err)
     return rc;
 #pragma omp parallel for schedule(static)
   for (size_t c = 0; c < nc; c++) {
+    chunk ck;
     const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
-    move_range(s, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a, NULL);
+    move_range(s, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a, &ck);
+    mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
   }
   return MPM_OK;
 }

@@ -120,29 +120,43 @@ static inline void mpm_sim_in_g2p(mpm_sim *s, size_t p, int c, const int *node, 
   L[3] = lyy;
 }
 
-/* Step 7 for point p, moved by the grid velocity vg: walls hold, the
- * absorbing layer of [DK-silo] section 7.1 (upward motion high in a silo is
- * elastic waves), periodic wrap. */
-static inline void mpm_sim_in_bookkeeping(mpm_sim *s, size_t p, const double vg[2])
+/* Step 7 for points [a, b), each moved by the grid velocity
+ * (vgx, vgy)[p - a]: walls hold, the absorbing layer of [DK-silo] section
+ * 7.1 (upward motion high in a silo is elastic waves), periodic wrap. */
+static inline void mpm_sim_in_bookkeeping(mpm_sim *s, size_t a, size_t b, const double *vgx,
+                                          const double *vgy)
 {
   mpm_points *P = s->pts;
+  const mpm_mesh m = s->mesh;        /* a copy: its fields stay in registers over the loops */
+  double *restrict x = P->x, *restrict y = P->y, *restrict vy = P->vy;
   /* Walls hold. A disconnected point is a free particle: nothing but the
    * wall stops it, so its velocity into the wall is limited to the grid's.
    * A dense one keeps its FLIP velocity, whose wall part the held nodes'
    * a_i already take back (step 3). Only a point outside the mesh can be
-   * beyond a wall. */
-  if (mpm_bc_outside(&s->mesh, P->x[p], P->y[p])) {
-    double vx = P->vx[p], vy = P->vy[p];
-    mpm_bc_clamp(&s->bc, &s->mesh, &P->x[p], &P->y[p], &vx, &vy, vg[0], vg[1]);
+   * beyond a wall: one vectorised test first. */
+  int out = 0;
+#pragma omp simd reduction(| : out)
+  for (size_t p = a; p < b; p++)
+    out |= mpm_bc_outside(&m, x[p], y[p]);
+  for (size_t p = a; out && p < b; p++) {
+    if (!mpm_bc_outside(&m, x[p], y[p]))
+      continue;
+    double vx = P->vx[p], vyp = vy[p];
+    mpm_bc_clamp(&s->bc, &m, &x[p], &y[p], &vx, &vyp, vgx[p - a], vgy[p - a]);
     if (P->state[p] != MPM_STATE_DENSE) {
       P->vx[p] = vx;
-      P->vy[p] = vy;
+      vy[p] = vyp;
     }
   }
-  if (P->y[p] >= s->cfg.absorb.above && P->vy[p] > 0.0)
-    P->vy[p] *= s->cfg.absorb.factor;
-  if (s->mesh.periodic_x || s->mesh.periodic_y)
-    mpm_mesh_wrap(&s->mesh, &P->x[p], &P->y[p]);
+  const double above = s->cfg.absorb.above, factor = s->cfg.absorb.factor;
+  if (above < m.y0 + m.ly) {         /* the absorbing layer lies in the mesh */
+#pragma omp simd
+    for (size_t p = a; p < b; p++)
+      vy[p] = y[p] >= above && vy[p] > 0.0 ? vy[p] * factor : vy[p];
+  }
+  if (m.periodic_x || m.periodic_y)
+    for (size_t p = a; p < b; p++)
+      mpm_mesh_wrap(&m, &x[p], &y[p]);
 }
 
 /* Step 1 for every point: its weights (located points or the stored
