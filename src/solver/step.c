@@ -235,7 +235,8 @@ enum { CHUNK = 64 };
 typedef struct chunk {
   double lxx[CHUNK], lxy[CHUNK], lyx[CHUNK], lyy[CHUNK];  /* L_p */
   double rho[CHUNK], lap[CHUNK], isp[CHUNK];             /* the update's inputs */
-  double vgx[CHUNK], vgy[CHUNK];                         /* grid velocity that moved p */
+  double vgx[CHUNK], vgy[CHUNK];                         /* grid velocity that moves p */
+  double agx[CHUNK], agy[CHUNK];                         /* grid acceleration at p */
 } chunk;
 
 /* Steps 4-5 for points [a, b): L_p to lxx[p - a] ..., the grid velocity
@@ -247,16 +248,19 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *l
     mpm_sim_in_basis buf;
     const int *node;
     const double *S, *gx, *gy;
-    double L[4], vg[2];
+    double L[4], vg[2], ag[2];
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    mpm_sim_in_g2p(s, p, c, node, S, gx, gy, L, vg);
+    mpm_sim_in_gather(s, p, c, node, S, gx, gy, vg, ag, L);
     lxx[p - a] = L[0];
     lxy[p - a] = L[1];
     lyx[p - a] = L[2];
     lyy[p - a] = L[3];
     ck->vgx[p - a] = vg[0];
     ck->vgy[p - a] = vg[1];
+    ck->agx[p - a] = ag[0];
+    ck->agy[p - a] = ag[1];
   }
+  mpm_sim_in_advance(s, a, b, ck->vgx, ck->vgy, ck->agx, ck->agy, lxx, lyy);
 }
 
 /* Steps 4-5 for points [a, b) with the weights of the step; see g2p_range. */

@@ -6,7 +6,8 @@
  * stored stencil), the points binned by bands of unit rows, the periodic
  * reordering of the point store, and the grid phase (steps 2-3).
  * Here, inline for the point loops of step.c: the weights of one point,
- * grid-to-point (steps 4-5) and the walls and wraps of step 7.
+ * grid-to-point (steps 4-5; the gather point by point, the update of a chunk
+ * of points at once) and the walls and wraps of step 7.
  *
  * Nodal values are records of four: after point-to-grid s->nq[i] holds
  * ((mv)_x, (mv)_y, f_x, f_y), after the grid update (v_x, v_y, a_x, a_y), so
@@ -68,17 +69,15 @@ static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int kind, mpm_s
   return st->count[p];
 }
 
-/* Steps 4-5 for point p with weights (c, node, S, gx, gy), after the grid
- * update: v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i
- * when time.flip < 1); x_p += dt sum S v_i; L_p = sum v_i (x) gradS_ip (the
- * in-plane entries, L = {xx, xy, yx, yy}; with the B-bar dilatation its trace
- * replaced by the unit's divergence); V_p *= exp(dt tr L_p). vg = sum S v_i,
- * the grid velocity that moved the point. */
-static inline void mpm_sim_in_g2p(mpm_sim *s, size_t p, int c, const int *node, const double *S,
-                                  const double *gx, const double *gy, double L[4], double vg[2])
+/* Step 4 for point p with weights (c, node, S, gx, gy), after the grid
+ * update: vg = sum S v_i (the PIC velocity, the grid velocity that moves the
+ * point), ag = sum S a_i, and L_p = sum v_i (x) gradS_ip (the in-plane
+ * entries, L = {xx, xy, yx, yy}; with the B-bar dilatation its trace replaced
+ * by the unit's divergence). */
+static inline void mpm_sim_in_gather(const mpm_sim *s, size_t p, int c, const int *node,
+                                     const double *S, const double *gx, const double *gy,
+                                     double vg[2], double ag[2], double L[4])
 {
-  mpm_points *P = s->pts;
-  const double dt = s->dt;
   const double (*nq)[4] = (const double (*)[4])s->nq;
   double as[4] = {0.0}, ax[4] = {0.0}, ay[4] = {0.0};
   for (int k = 0; k < c; k++) {
@@ -105,19 +104,39 @@ static inline void mpm_sim_in_g2p(mpm_sim *s, size_t p, int c, const int *node, 
     lxx += corr;
     lyy += corr;
   }
-  const double fl = s->cfg.time.flip;                        /* FLIP share (1: [DK15]) */
-  const double fvx = P->vx[p] + dt * as[2], fvy = P->vy[p] + dt * as[3];   /* v_FLIP */
-  P->vx[p] = fl == 1.0 ? fvx : fl * fvx + (1.0 - fl) * as[0];  /* fl v_FLIP + (1-fl) v_PIC */
-  P->vy[p] = fl == 1.0 ? fvy : fl * fvy + (1.0 - fl) * as[1];
-  P->x[p] += dt * as[0];
-  P->y[p] += dt * as[1];
   vg[0] = as[0];
   vg[1] = as[1];
-  P->vol[p] *= exp(dt * (lxx + lyy));                        /* V *= exp(dt tr L) */
+  ag[0] = as[2];
+  ag[1] = as[3];
   L[0] = lxx;
   L[1] = lxy;
   L[2] = lyx;
   L[3] = lyy;
+}
+
+/* Step 4 (the rest) and 5 for points [a, b) from what mpm_sim_in_gather gave
+ * for point p at index p - a of vgx, vgy, agx, agy, lxx, lyy:
+ * v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i when
+ * time.flip < 1), x_p += dt sum S v_i, V_p *= exp(dt tr L_p). */
+static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const double *vgx,
+                                      const double *vgy, const double *agx, const double *agy,
+                                      const double *lxx, const double *lyy)
+{
+  mpm_points *P = s->pts;
+  double *restrict x = P->x, *restrict y = P->y, *restrict vx = P->vx, *restrict vy = P->vy;
+  double *restrict vol = P->vol;
+  const double dt = s->dt, fl = s->cfg.time.flip;            /* FLIP share (1: [DK15]) */
+#pragma omp simd
+  for (size_t p = a; p < b; p++) {
+    const size_t k = p - a;
+    const double fvx = vx[p] + dt * agx[k], fvy = vy[p] + dt * agy[k];   /* v_FLIP */
+    vx[p] = fl == 1.0 ? fvx : fl * fvx + (1.0 - fl) * vgx[k];  /* fl v_FLIP + (1-fl) v_PIC */
+    vy[p] = fl == 1.0 ? fvy : fl * fvy + (1.0 - fl) * vgy[k];
+    x[p] += dt * vgx[k];
+    y[p] += dt * vgy[k];
+  }
+  for (size_t p = a; p < b; p++)
+    vol[p] *= exp(dt * (lxx[p - a] + lyy[p - a]));             /* V *= exp(dt tr L) */
 }
 
 /* Step 7 for points [a, b), each moved by the grid velocity
