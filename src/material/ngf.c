@@ -194,21 +194,30 @@ static inline mpm_mpoint ngf_return(const mpm_material_params *par, double dt, m
   return pt;
 }
 
+/* The trial stress s_tr of a (sub)step and p = p_tr; 0 when the point
+ * disconnects instead (rho_{n+1} < rho_c or p_tr <= 0). */
+static inline int ngf_trial(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+                            const mpm_mpoint *pt, mpm_sym3 *s_tr, double *p)
+{
+  if (!(pt->rho >= par->rho_c))                                     /* rho_{n+1} < rho_c */
+    return 0;
+  *s_tr = mpm_material_trial(par, mpm_mat3_sym(L), L, pt->sigma, dt);  /* sigma_tr */
+  *p = mpm_sym3_pressure(*s_tr);                                   /* p = p_tr */
+  return *p > 0.0;
+}
+
 /* One (sub)step (see the top of this file) of the point pt, by value: the
  * kernel of update and update_plane. */
 MPM_MATERIAL_KERNEL mpm_mpoint ngf_step(const mpm_material_params *par, mpm_mat3 L, double dt,
                                         mpm_mpoint pt)
 {
-  mpm_sym3 D = mpm_mat3_sym(&L);
   double p_n = mpm_sym3_pressure(pt.sigma);
   double g_n = p_n > 0.0 ? pt.g : 0.0;                              /* reconsolidated: g = 0 */
   double mug_n = p_n > 0.0 ? g_n * mpm_sym3_tau(pt.sigma) / p_n : 0.0;  /* mu_n g_n */
-  if (!(pt.rho >= par->rho_c))                                      /* rho_{n+1} < rho_c */
-    return ngf_disconnect(D, pt);
-  mpm_sym3 s_tr = mpm_material_trial(par, D, &L, pt.sigma, dt);    /* sigma_tr */
-  double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
-  if (!(p > 0.0))
-    return ngf_disconnect(D, pt);
+  mpm_sym3 s_tr;
+  double p;
+  if (!ngf_trial(par, &L, dt, &pt, &s_tr, &p))
+    return ngf_disconnect(mpm_mat3_sym(&L), pt);
   double tau_tr = mpm_sym3_tau(s_tr);                              /* tau_tr */
   double gs = ngf_gstar(par, dt, g_n, pt.lap);                     /* g* */
   double x = ngf_fluidity(par, dt, p, tau_tr, gs, mug_n, pt.isp);  /* g_{n+1} */
@@ -246,13 +255,10 @@ static void ngf_steady_terms(const mpm_material_params *par, mpm_sym3 sigma, dou
 MPM_MATERIAL_KERNEL mpm_mpoint ngf_steady_step(const mpm_material_params *par, mpm_mat3 L,
                                                double dt, mpm_mpoint pt)
 {
-  mpm_sym3 D = mpm_mat3_sym(&L);
-  if (!(pt.rho >= par->rho_c))                                      /* rho_{n+1} < rho_c */
-    return ngf_disconnect(D, pt);
-  mpm_sym3 s_tr = mpm_material_trial(par, D, &L, pt.sigma, dt);    /* sigma_tr */
-  double p = mpm_sym3_pressure(s_tr);                              /* p = p_tr */
-  if (!(p > 0.0))
-    return ngf_disconnect(D, pt);
+  mpm_sym3 s_tr;
+  double p;
+  if (!ngf_trial(par, &L, dt, &pt, &s_tr, &p))
+    return ngf_disconnect(mpm_mat3_sym(&L), pt);
   return ngf_return(par, dt, s_tr, p, pt.g > 0.0 ? pt.g : 0.0, pt);  /* g_{n+1} = max(g, 0) */
 }
 

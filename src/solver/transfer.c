@@ -28,23 +28,20 @@ static int reserve_located(mpm_sim *s, size_t n, mpm_err *err)
     return MPM_OK;
   if (n == 0)
     n = 1;
-  int *i = realloc(s->loc_i, n * sizeof *i);
-  if (i)
-    s->loc_i = i;
-  int *j = realloc(s->loc_j, n * sizeof *j);
-  if (j)
-    s->loc_j = j;
-  int *c = realloc(s->loc_n, n * sizeof *c);
-  if (c)
-    s->loc_n = c;
-  double *u = realloc(s->loc_u, n * sizeof *u);
-  if (u)
-    s->loc_u = u;
-  double *v = realloc(s->loc_v, n * sizeof *v);
-  if (v)
-    s->loc_v = v;
-  if (!i || !j || !c || !u || !v)
-    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
+  int **ints[] = {&s->loc_i, &s->loc_j, &s->loc_n};
+  double **reals[] = {&s->loc_u, &s->loc_v};
+  for (size_t k = 0; k < sizeof ints / sizeof ints[0]; k++) {
+    int *a = realloc(*ints[k], n * sizeof **ints[k]);
+    if (!a)
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
+    *ints[k] = a;
+  }
+  for (size_t k = 0; k < sizeof reals / sizeof reals[0]; k++) {
+    double *a = realloc(*reals[k], n * sizeof **reals[k]);
+    if (!a)
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
+    *reals[k] = a;
+  }
   s->loc_cap = n;
   return MPM_OK;
 }
