@@ -41,6 +41,8 @@ static const char usage_text[] =
   "        per-frame speed, acceleration, mu, front, slope (docs/diagnostics.md)\n"
   "  extract RUNDIR --jam\n"
   "        silo classifier of [DK-silo] 7.2: static, flowing or unsure, with evidence\n"
+  "  extract RUNDIR --roughness [--frame N|last] [--radius R]\n"
+  "        pressure roughness and dense fraction of a frame (docs/diagnostics.md)\n"
   "  state INPUT RUNDIR [--frame N|last]\n"
   "        nodal density projected back to the points of one frame, and the\n"
   "        state it gives (dense / disconnected), as CSV\n"
