@@ -107,6 +107,8 @@ typedef struct mpm_config {
 
   struct {
     int left, right, bottom, top;  /* enum mpm_bc_kind */
+    int wall_acceleration;         /* enum mpm_bc_wall_acceleration: what the points
+                                      get from a held velocity component */
   } bc;
 
   int nfill;

@@ -88,6 +88,8 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "bottom", C_(bc.bottom), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "top", C_(bc.top), NK_BC, "free"),
+    NAMED(S_BOUNDARY, KT_ENUM, "wall_acceleration", C_(bc.wall_acceleration), NK_WALL_ACC,
+          "jump"),
 
     NAMED(S_FILL, KT_ENUM, "shape", F_(shape), NK_FILL_SHAPE, "rectangle"),
     GEOM(KT_REAL, "xmin", F_(xmin), -1e9, 1e9, 0, SH_RECT),
@@ -188,6 +190,7 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_DENSITY: return mpm_material_density_rule_name(i);
   case NK_DIFFUSION: return mpm_nonlocal_diffusion_name(i);
   case NK_G_WALL: return mpm_nonlocal_wall_name(i);
+  case NK_WALL_ACC: return mpm_bc_wall_acceleration_name(i);
   case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_name(i);
   case NK_G_MASS: return mpm_nonlocal_steady_mass_name(i);
   case NK_SHAPE:
@@ -219,6 +222,7 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_DENSITY: return mpm_material_density_rule_from_name(s);
   case NK_DIFFUSION: return mpm_nonlocal_diffusion_from_name(s);
   case NK_G_WALL: return mpm_nonlocal_wall_from_name(s);
+  case NK_WALL_ACC: return mpm_bc_wall_acceleration_from_name(s);
   case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_from_name(s);
   case NK_G_MASS: return mpm_nonlocal_steady_mass_from_name(s);
   case NK_EDGE: return NAME_INDEX(edge_names, s);

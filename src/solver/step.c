@@ -388,10 +388,12 @@ static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double 
  * step, a_i = f_i/m_i + (v_i^bc - v_i^n)/dt, where v_i^n = (mv)_i/m_i as
  * mapped and v_i^bc the same after the wall acted: f_i/m_i on free
  * components (the jump is exactly 0 there) and -v_i^n/dt on constrained
- * ones. With a_i = f_i/m_i = 0 there instead, a point stopped by a wall would
- * keep its velocity for ever (FLIP only adds increments): its position
- * follows the grid and stays put, but it reports kinetic energy it does not
- * have, and a kinetic-energy stop test never fires.
+ * ones. With a_i = f_i/m_i = 0 there instead (boundary.wall_acceleration =
+ * "zero", [DK15] read literally), a point stopped by a wall would keep its
+ * velocity for ever (FLIP only adds increments): its position follows the
+ * grid and stays put, but it reports kinetic energy it does not have, and a
+ * kinetic-energy stop test never fires; in steady flow along a wall the jump
+ * kicks the points beside it every step instead (docs/model.md).
  * With delta shape functions a node lighter than mlight (1e-3 of the mean
  * point mass: the points near it lie within about a thousandth of a unit of
  * its far edge) takes the body force only. Its internal force
@@ -401,7 +403,8 @@ static void bc_apply_range(const mpm_bc *bc, int lo, int hi, double *ax, double 
  * heap's surface. uGIMP gradients vanish with the weights (mlight = 0). */
 static void grid_update(mpm_sim *s, int lo, int hi, double bx, double by)
 {
-  const double dt = s->dt, idt = 1.0 / s->dt, mt = s->mtiny, ml = s->mlight;
+  const double dt = s->dt, mt = s->mtiny, ml = s->mlight;
+  const double idt = s->cfg.bc.wall_acceleration == MPM_WALL_ZERO ? 0.0 : 1.0 / s->dt;
   for (int i = lo; i < hi; i++) {                       /* v_i^n, before the wall */
     double m = s->nm[i];
     s->nvx[i] = m > mt ? s->nmvx[i] / m : 0.0;
@@ -416,7 +419,7 @@ static void grid_update(mpm_sim *s, int lo, int hi, double bx, double by)
   for (int i = lo; i < hi; i++) {
     double m = s->nm[i];
     if (m > mt) {
-      const double jx = (s->nmvx[i] / m - s->nvx[i]) * idt;  /* wall's velocity jump / dt */
+      const double jx = (s->nmvx[i] / m - s->nvx[i]) * idt;  /* wall's velocity jump / dt (or 0) */
       const double jy = (s->nmvy[i] / m - s->nvy[i]) * idt;
       s->nmvx[i] += dt * s->nfx[i];
       s->nmvy[i] += dt * s->nfy[i];
