@@ -96,7 +96,8 @@ START_TEST(t_table)
     ck_assert_str_eq(mpm_nonlocal_diffusion_name(k), name);
     ck_assert_int_eq(mpm_nonlocal_diffusion_from_name(name), k);
     /* a (sub)step solver has a laplacian; the steady one solves per step instead */
-    ck_assert(!mpm_nonlocal_diffusion_table[k]->laplacian == mpm_nonlocal_diffusion_table[k]->steady);
+    ck_assert((mpm_nonlocal_diffusion_table[k]->laplacian == NULL) ==
+              (mpm_nonlocal_diffusion_table[k]->steady != 0));
   }
   ck_assert_int_eq(mpm_nonlocal_diffusion_from_name("explicit"), MPM_DIFFUSION_EXPLICIT);
   ck_assert_int_eq(mpm_nonlocal_diffusion_from_name("implicit"), MPM_DIFFUSION_IMPLICIT);
