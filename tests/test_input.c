@@ -390,7 +390,7 @@ typedef struct bad_set {
 static const bad_set bad_sets[] = {
   {"mesh.nx=abc", "--set 'mesh.nx=abc': key 'mesh.nx': expected an integer, got 'abc'"},
   {"mesh.nx=0", "--set 'mesh.nx=0': key 'mesh.nx': value 0 out of range (allowed: 1 ... 100000)"},
-  {"time.dt=nan", "--set 'time.dt=nan': key 'time.dt': value nan out of range (allowed: 0 ... 1e6 s)"},
+  {"time.dt=nan", "--set 'time.dt=nan': key 'time.dt': value nan out of range (allowed: 0, or 1e-12 ... 1e6 s)"},
   {"mesh.nx", "--set 'mesh.nx': expected section.key=value"},
   {"nx=3", "--set 'nx=3': 'nx' is not section.key (allowed sections: mesh, time, gravity, "
            "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
@@ -607,7 +607,7 @@ START_TEST(t_error_lines)
   expect_error(BASE "material {\n  mu_2 = 0.2\n  mu_s = 0.1\n  mu_s = 0.3\n}\n", NULL,
                CASE ":19: key 'material.mu_s': mu_s = 0.3 >= mu_2 = 0.2 (allowed: mu_s < mu_2)");
   expect_error("time {\n  t_end = 1\n}\n\nmesh {\n  nx = 1\n  ny = 1\n  dx = 1\n}\n", NULL,
-               CASE ":5: key 'mesh.dy': required, not set (allowed: > 0 and <= 1e6 m)");
+               CASE ":5: key 'mesh.dy': required, not set (allowed: 1e-6 ... 1e6 m)");
   expect_error(BASE "fill b {\n  shape = disc\n  cx = 0.5\n}\n", NULL,
                CASE ":16: key 'fill.b.cy': required for shape \"disc\", not set (allowed: "
                "-1e9 ... 1e9 m)");

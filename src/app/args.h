@@ -25,7 +25,7 @@ int mpm_app_usage(const char *fmt, ...) MPM_APP_PRINTF_(1, 2);
  * MPM_APP_EXIT_RUNTIME. */
 int mpm_app_fail(const mpm_err *err);
 
-/* The whole of s as a finite number; 1 on success. */
+/* The whole of s as a finite decimal number (no hexadecimal); 1 on success. */
 int mpm_app_arg_real(const char *s, double *v);
 
 /* The whole of s as a whole number in [lo, hi] (written as any number:

@@ -24,6 +24,30 @@ void mpm_io_input_defaults(mpm_config *cfg);
 int mpm_io_input_load(const char *path, const char *const *overrides, int noverrides,
                       mpm_config *cfg, mpm_err *err);
 
+/* A loaded input kept with where each value came from (a file line, a
+ * --set), so that checks made after the load (the fills, the run's size, its
+ * time step: mpm_io_input_fail) report in the shape of the reader's own
+ * errors. The overrides must outlive it. */
+typedef struct mpm_io_input mpm_io_input;
+
+/* mpm_io_input_load, keeping the input in *in (NULL on error). */
+int mpm_io_input_open(mpm_io_input **in, const char *path, const char *const *overrides,
+                      int noverrides, mpm_config *cfg, mpm_err *err);
+
+/* The same from the text of an input (a resolved input stored with a run);
+ * name stands for the file in messages. */
+int mpm_io_input_open_text(mpm_io_input **in, const char *name, const char *content,
+                           const char *const *overrides, int noverrides, mpm_config *cfg,
+                           mpm_err *err);
+
+void mpm_io_input_free(mpm_io_input *in);  /* accepts NULL */
+
+/* MPM_EINPUT with "FILE:LINE: key 'KEY': MESSAGE" (or "--set '...': ..."),
+ * LINE where KEY was set, else where its section opens. KEY is
+ * "section.key" or "fill.TITLE.key" of cfg, the configuration in loaded. */
+int mpm_io_input_fail(mpm_io_input *in, const mpm_config *cfg, const char *key, mpm_err *err,
+                      const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+
 /* Write cfg in input-file syntax; reading it back gives the same cfg. */
 int mpm_io_input_write(FILE *f, const mpm_config *cfg);
 
