@@ -75,6 +75,32 @@ void mpm_sim_free(mpm_sim *s);  /* accepts NULL */
  * material.n_sub, or ceil(dt / material.dt_sub)), without building a run. */
 void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub);
 
+/* The largest stable time step of cfg: time.cfl = 1 in the rule above. */
+double mpm_sim_stable_dt(const mpm_config *cfg);
+
+/* Constitutive substeps per step of length dt: material.n_sub, or
+ * ceil(dt / material.dt_sub), not capped (mpm_sim_time_plan caps it at 1e6;
+ * a run that needs more is refused before it is built). */
+double mpm_sim_substeps(const mpm_config *cfg, double dt);
+
+/* The size of a run, from its input alone (plan.c). Counts that may be
+ * astronomical for a bad input are doubles. */
+typedef struct mpm_sim_size {
+  size_t points;                     /* material points of all fills (exact) */
+  size_t fill_points[MPM_MAX_FILLS]; /* ... of each fill */
+  long nodes;                        /* mesh nodes */
+  double dt;                         /* the time step [s] */
+  double dt_stable;                  /* the largest stable one, mpm_sim_stable_dt [s] */
+  double steps;                      /* ceil(t_end / dt) */
+  double n_sub;                      /* constitutive substeps per step (not capped) */
+  double frames;                     /* frames written, at most */
+  double memory;                     /* memory the run holds at its peak [bytes], estimate */
+  double output;                     /* bytes written: run.h5, run.xdmf, diagnostics.csv,
+                                        checkpoint.h5 (with its temporary copy), estimate */
+} mpm_sim_size;
+
+void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
+
 /* Gravity vector at time t (linear ramp over t_ramp). */
 void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy);
 
@@ -95,6 +121,18 @@ typedef void (*mpm_progress_fn)(void *ctx, const mpm_sim *s, double steps_per_s)
  * time t it got there. Called by mpm_sim_step once the points have moved
  * (for a nonlocal model before their units are frozen). */
 int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err);
+
+/* The state of every point at time t, checked (health.c): the first
+ * non-finite (or non-positive volume) field, stresses first, else the
+ * fastest point moving more than a mesh unit per step, is MPM_ENONFINITE
+ * naming the point id, the field, its value, the time and the likely cause
+ * (the time step against the stable one, the NGF diffusion limit, or a
+ * material parameter). MPM_OK when nothing is wrong. */
+int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err);
+
+/* The cheap test run after every step: every velocity finite and below one
+ * mesh unit per step; otherwise mpm_sim_check_state's report. */
+int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err);
 
 /* Mass in the region of cfg.region [kg/m]. */
 double mpm_sim_region_mass(const mpm_sim *s);
