@@ -89,18 +89,19 @@ check_bad set-cross "granmpm: --set 'time.t_end=0.001': key 'time.t_end': frame_
 
 # NGF with an unstable explicit diffusion of g: a warning, not an error (exit
 # 0, the resolved input on stdout, one line on stderr naming the smallest n_sub);
-# with that n_sub, silence. dt = 2e-4 s: 2e-4 * 0.25^2 * 0.005^2 / 1e-3 * 4e6 = 1.25.
+# with that n_sub, silence. dt = 3e-5 s (within the stable 3.34e-5 s) and
+# A = 0.6: 3e-5 * 0.6^2 * 0.005^2 / 1e-3 * 4e6 = 1.08.
 chute="$srcdir/inputs/ngf-chute.conf"
 count=$((count + 1))
-"$GRANMPM" check "$chute" --set time.dt=2e-4 >"$tmp/out" 2>"$tmp/err"
+"$GRANMPM" check "$chute" --set time.dt=3e-5 --set material.A=0.6 >"$tmp/out" 2>"$tmp/err"
 st=$?
-want="granmpm: warning: $chute: NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) = 1.25 > 1 with dt = 0.0002 s, n_sub = 1; needs n_sub >= 2 (key 'material.n_sub')"
+want="granmpm: warning: $chute: NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) = 1.08 > 1 with dt = 3e-05 s, n_sub = 1; needs n_sub >= 2 (key 'material.n_sub')"
 if [ "$st" -ne 0 ] || [ ! -s "$tmp/out" ] || [ "$(cat "$tmp/err")" != "$want" ]; then
   fail "ngf diffusion warning: exit $st, stderr '$(cat "$tmp/err")'"
   echo "  want: $want"
 fi
 count=$((count + 1))
-"$GRANMPM" check "$chute" --set time.dt=2e-4 --set material.n_sub=2 >"$tmp/out" 2>"$tmp/err"
+"$GRANMPM" check "$chute" --set time.dt=3e-5 --set material.A=0.6 --set material.n_sub=2 >"$tmp/out" 2>"$tmp/err"
 st=$?
 [ "$st" -eq 0 ] && [ ! -s "$tmp/err" ] || fail "ngf diffusion with n_sub = 2: exit $st, stderr '$(cat "$tmp/err")'"
 

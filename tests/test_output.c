@@ -22,6 +22,8 @@
 #include "io/io.h"
 
 #define NFRAMES 3
+
+static const mpm_io_origin no_origin = {"", NULL, 1};
 #define DIR_MAX 256
 
 static const char *const all_fields[] = {"x", "y", "vx", "vy", "sxx", "syy", "szz", "sxy",
@@ -128,9 +130,8 @@ static mpm_io_output *open_run(const char *dir, const char *input)
   mpm_mesh m;
   mpm_io_output *out = NULL;
   fill_mesh(&m);
-  ck_assert_msg(
-      mpm_io_output_open(&out, dir, "granmpm run test.conf --set a.b=1", input, &m, &err) == MPM_OK,
-      "%s", err.msg);
+  const mpm_io_origin origin = {"granmpm run test.conf --set a.b=1", "test-revision", 3};
+  ck_assert_msg(mpm_io_output_open(&out, dir, &origin, input, &m, &err) == MPM_OK, "%s", err.msg);
   ck_assert_ptr_nonnull(out);
   return out;
 }
@@ -721,16 +722,16 @@ START_TEST(t_open_fails)
   FILE *f = fopen(file, "w");
   fclose(f);
   snprintf(sub, sizeof sub, "%s/run", file);
-  ck_assert_int_eq(mpm_io_output_open(&out, sub, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, sub, &no_origin, "", &m, &err), MPM_EIO);
   ck_assert_ptr_null(out);
   snprintf(want, sizeof want, "cannot create directory '%s': Not a directory", sub);
   ck_assert_str_eq(err.msg, want);
-  ck_assert_int_eq(mpm_io_output_open(&out, file, "", "", &m, &err), MPM_EIO);
-  ck_assert_int_eq(mpm_io_output_open(&out, "", "", "", &m, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_output_open(&out, file, &no_origin, "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, "", &no_origin, "", &m, &err), MPM_EINVAL);
   /* run.h5 cannot be created: a directory is in the way */
   snprintf(sub, sizeof sub, "%s/run.h5", dir);
   ck_assert_int_eq(mkdir(sub, 0777), 0);
-  ck_assert_int_eq(mpm_io_output_open(&out, dir, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, dir, &no_origin, "", &m, &err), MPM_EIO);
   ck_assert_ptr_null(out);
   snprintf(want, sizeof want, "cannot create '%s/run.h5': Is a directory", dir);
   ck_assert_str_eq(err.msg, want);

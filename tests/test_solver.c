@@ -243,7 +243,7 @@ START_TEST(t_stop_at_rest)
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
-  ck_assert_int_eq(mpm_sim_run(s, NULL, NULL, NULL, &err), MPM_OK);
+  ck_assert_int_eq(mpm_sim_run(s, NULL, &err), MPM_OK);
   ck_assert_int_eq(s->stop, MPM_STOP_KE);
   ck_assert_double_eq_tol(s->t, 2.5e-3, 1e-12);   /* 25 steps of 1e-4 s */
   ck_assert_double_eq(s->stop_value, 0.0);
@@ -264,7 +264,7 @@ START_TEST(t_stop_runs_to_end)
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
-  ck_assert_int_eq(mpm_sim_run(s, NULL, NULL, NULL, &err), MPM_OK);
+  ck_assert_int_eq(mpm_sim_run(s, NULL, &err), MPM_OK);
   ck_assert_int_eq(s->stop, MPM_STOP_T_END);
   ck_assert_double_eq_tol(s->t, 1e-2, 1e-12);
   ck_assert_double_eq_tol(mpm_diag_kinetic_per_mass(s->pts), 0.5, 1e-12);
@@ -307,7 +307,7 @@ static mpm_sim *run_to_end(const mpm_config *c)
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, c, &err), MPM_OK);
-  ck_assert_msg(mpm_sim_run(s, NULL, NULL, NULL, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(mpm_sim_run(s, NULL, &err) == MPM_OK, "%s", err.msg);
   return s;
 }
 

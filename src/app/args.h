@@ -7,8 +7,11 @@
 #include "core/error.h"
 
 /* Exit status: 0 success, 1 a run failed (physical or I/O failure while
- * running), 2 bad usage or input. */
-enum mpm_app_exit { MPM_APP_EXIT_RUNTIME = 1, MPM_APP_EXIT_USAGE = 2 };
+ * running), 2 bad usage or input (or a run refused before its first step),
+ * 3 a run stopped by a signal after writing its checkpoint (resumable). */
+enum mpm_app_exit {
+  MPM_APP_EXIT_RUNTIME = 1, MPM_APP_EXIT_USAGE = 2, MPM_APP_EXIT_STOPPED = 3
+};
 
 #if defined(__GNUC__)
 #define MPM_APP_PRINTF_(f, a) __attribute__((format(printf, f, a)))

@@ -2,5 +2,6 @@ bin_PROGRAMS += src/app/granmpm
 src_app_granmpm_SOURCES = src/app/main.c src/app/constitutive.c src/app/constitutive.h \
 	src/app/analyse.c src/app/analyse.h \
 	src/app/state.c src/app/state.h \
-	src/app/args.c src/app/args.h
+	src/app/args.c src/app/args.h \
+	src/app/run.c src/app/run.h src/app/plan.c src/app/plan.h src/app/info.c src/app/info.h
 src_app_granmpm_LDADD = libgranmpm.la $(DEP_LIBS)

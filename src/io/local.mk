@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_io.la
 libmpm_io_la_SOURCES = src/io/input.c src/io/output.c src/io/extract.c src/io/frame.c \
-	src/io/io.h src/io/h5err.c src/io/h5err.h
+	src/io/io.h src/io/h5err.c src/io/h5err.h src/io/checkpoint.c
 libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/text.h
 
 # test_output compiles the output and extract sources directly, so it does not
@@ -8,7 +8,7 @@ libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/t
 check_PROGRAMS += tests/test_output
 TESTS += tests/test_output
 tests_test_output_SOURCES = tests/test_output.c src/io/output.c src/io/extract.c \
-	src/io/frame.c src/io/h5err.c
+	src/io/frame.c src/io/h5err.c src/io/checkpoint.c
 tests_test_output_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LIBS) \
 	$(CHECK_LIBS) -lm

@@ -3,9 +3,12 @@
  * and estimates of the memory the run holds at its peak and of the bytes it
  * writes. The byte counts follow the allocations of step.c, the shape,
  * nonlocal and density workspaces and io/output.c; the constants not
- * derived from them (the libraries' own memory, HDF5's per-frame metadata,
- * the XDMF text of a frame, the Cholesky factor of the implicit diffusion)
- * were measured (docs/input-reference.md, "The size of a run"). */
+ * derived from them (the libraries' own memory, HDF5's metadata cache and
+ * per-frame objects, the XDMF text of a frame) were measured, and the
+ * Cholesky factor of the implicit diffusion is taken as N log N. Compared
+ * with the peak resident memory and the bytes written of runs from 4 to
+ * 409600 points, the estimates were 1.0 - 1.5 times the measured values
+ * (docs/input-reference.md, "The size of a run"). */
 #include "solver/solver.h"
 
 #include <math.h>
@@ -26,11 +29,18 @@ static const size_t frame_point_bytes =
 #undef OUT_REAL_
 #undef OUT_INT_
 
+/* Measured on the 2-core Xeon this is developed on (HDF5 1.10.8, Debian 12):
+ * a run of 4 points holds 15 MB, and HDF5's metadata cache adds about 160
+ * kB per frame written up to 45 MB (19 MB with 20 frames, 60 MB with 475 or
+ * 1896); a frame's HDF5 objects take 8.2 kB of run.h5 besides its data,
+ * its XDMF grid 4.4 kB and its diagnostics row 0.14 kB. */
+#define BASE_BYTES (16.0 * (1 << 20))
+#define H5_CACHE_PER_FRAME (160.0 * 1024)
+#define H5_CACHE_MAX (48.0 * (1 << 20))
 enum {
-  BASE_BYTES = 24 << 20,       /* the program and its libraries, measured: 16 - 21 MB */
-  FRAME_META_BYTES = 40 << 10, /* HDF5 objects of one frame (19 datasets with attributes,
-                                  the XY view), measured: 32 - 38 KiB */
-  FRAME_TEXT_BYTES = 5 << 10,  /* a frame's XDMF grid and diagnostics row: 4.5 KiB */
+  FRAME_META_BYTES = 9 << 10,  /* HDF5 objects of one frame (19 datasets with attributes,
+                                  the XY view) */
+  FRAME_TEXT_BYTES = 5 << 10,  /* a frame's XDMF grid and diagnostics row */
   HEADER_BYTES = 64 << 10      /* run.h5 header, mesh lines excepted */
 };
 
@@ -86,7 +96,9 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   /* one frame at t = 0, at most one per step on the schedule, one at the end */
   sz->frames = 2.0 + fmin(sz->steps, floor(cfg->time.t_end / cfg->time.frame_dt));
   const double n = (double)sz->points, units = (double)cfg->mesh.nx * cfg->mesh.ny;
-  sz->memory = BASE_BYTES + workspace_bytes(cfg, n, (double)sz->nodes, units);
+  sz->memory = BASE_BYTES + fmin(sz->frames * H5_CACHE_PER_FRAME, H5_CACHE_MAX) +
+               workspace_bytes(cfg, n, (double)sz->nodes, units) +
+               n * (double)point_store_bytes;        /* a checkpoint assembled in memory */
   const double frame = n * (double)frame_point_bytes + FRAME_META_BYTES + FRAME_TEXT_BYTES;
   const double checkpoint = 2.0 * (n * (double)point_store_bytes + HEADER_BYTES);  /* + its
                                                                                        temporary */

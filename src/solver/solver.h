@@ -14,6 +14,7 @@
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
+#include "core/state.h"
 #include "diag/diag.h"
 #include "material/density.h"
 #include "material/material.h"
@@ -64,6 +65,11 @@ typedef struct mpm_sim {
   double mlight;                  /* nodes lighter than this take the body force only */
   double mass_removed;            /* mass of the points removed so far [kg/m] */
   long nremoved;                  /* their number */
+
+  /* The run driver's schedule (run.c), here so that a checkpoint holds it. */
+  long frames;                    /* frames emitted so far */
+  long frame_next;                /* the next frame is due at frame_next * frame_dt */
+  long check_next;                /* the next checkpoint at check_next * checkpoint_dt */
 } mpm_sim;
 
 /* Build a simulation from a resolved configuration. */
@@ -137,10 +143,34 @@ int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err);
 /* Mass in the region of cfg.region [kg/m]. */
 double mpm_sim_region_mass(const mpm_sim *s);
 
-/* Step until cfg.time.t_end or until a stop condition of cfg.stop holds,
- * emitting frames; s->stop says which ended the run (set before the last
- * frame is emitted, so the frame callback can record it). */
-int mpm_sim_run(mpm_sim *s, mpm_frame_fn frame, mpm_progress_fn progress, void *ctx,
-                mpm_err *err);
+/* What the run driver calls besides the step; every member may be NULL. */
+typedef struct mpm_sim_hooks {
+  void *ctx;                      /* passed to each */
+  mpm_frame_fn frame;             /* frames: at t = 0 of a new run, every frame_dt, at the
+                                   * end, and at a stop on request when the step wrote none */
+  mpm_progress_fn progress;
+  mpm_frame_fn checkpoint;        /* every output.checkpoint_dt of simulated time, every
+                                   * output.checkpoint_wall seconds, and at a stop on
+                                   * request, after the step's frame (never at the end) */
+  int (*stop_requested)(void *ctx);  /* asked after every step: nonzero stops the run
+                                      * (MPM_STOP_REQUEST) with a checkpoint */
+} mpm_sim_hooks;
+
+/* Step until cfg.time.t_end, until a stop condition of cfg.stop holds or
+ * until a stop is requested, emitting frames and checkpoints; s->stop says
+ * which ended the run (set before the last frame is emitted, so the frame
+ * hook can record it). A simulation restored from a checkpoint continues
+ * with the schedule it had (s->frames > 0: no new frame at its start).
+ * hooks may be NULL. */
+int mpm_sim_run(mpm_sim *s, const mpm_sim_hooks *hooks, mpm_err *err);
+
+/* The state beyond the input (core/state.h), for a checkpoint: st->pts
+ * points into s; the frame series of st are left alone. */
+void mpm_sim_state_get(const mpm_sim *s, mpm_run_state *st);
+
+/* Put a checkpoint's state back into a simulation just built from the same
+ * input. MPM_EINPUT when they do not match (time step, substeps, initial
+ * mass, more points than the input makes). */
+int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err);
 
 #endif
