@@ -78,9 +78,9 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
   likely_cause(s, cause, sizeof cause);
   return mpm_err_set(err, MPM_ENONFINITE,
                      "point %d: speed %.3g m/s at (%.6g, %.6g) m, t = %.6g s: a runaway, more "
-                     "than a mesh unit per step (min(dx, dy) / dt = %.3g m/s, %.3g times the "
-                     "P-wave speed of the input); likely cause: %s", P->id[fast], vmax,
-                     P->x[fast], P->y[fast], t, lim, mpm_sim_stable_dt(&s->cfg) / s->dt, cause);
+                     "than a mesh unit per step (min(dx, dy) / dt = %.3g m/s; P-wave and fill "
+                     "speed of the input %.3g m/s); likely cause: %s", P->id[fast], vmax,
+                     P->x[fast], P->y[fast], t, lim, h / mpm_sim_stable_dt(&s->cfg), cause);
 }
 
 int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err)
