@@ -1,14 +1,18 @@
 #!/bin/sh
-# cli-input.sh: `granmpm check` on bad and good inputs (docs/input-reference.md).
+# cli-input.sh: `granmpm check` and `granmpm run` on bad inputs, `check` on
+# good ones (docs/input-reference.md).
 #
 # Every file in tests/inputs/bad must give exit status 2 (not a signal),
 # nothing on stdout and exactly one line on stderr, naming the file and the
 # line: "granmpm: FILE:LINE: ...", equal to the message on the file's
 # "# expect: " line (one ending in "..." is a prefix: for lists of names that
-# other modules own, such as the material models). So must a missing file, a directory, a file with a NUL
-# byte and bad --set arguments. Good inputs (tests/inputs/good and the shipped
-# inputs/) exit 0, and the resolved input they print is itself an input that
-# checks and prints the same.
+# other modules own, such as the material models, and for the machine's
+# memory and free space), from `check` and from `run` alike (run then writes
+# nothing). So must a missing file, a directory, a file with a NUL byte,
+# bad --set arguments, a line too long and a text of unclosed "${" (in
+# linear time). Good inputs (tests/inputs/good and the shipped inputs/) exit
+# 0, and the resolved input they print is itself an input that checks and
+# prints the same.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -22,14 +26,16 @@ fail() {
   fails=$((fails + 1))
 }
 
-# check_bad LABEL WANT [ARGS...]: `granmpm check ARGS` must exit 2 and print
-# exactly the line WANT on stderr, nothing on stdout.
+# check_bad LABEL WANT [ARGS...]: `granmpm $cmd ARGS` (cmd: check unless
+# set) must exit 2 and print exactly the line WANT on stderr, nothing on
+# stdout.
+cmd=check
 check_bad() {
   label=$1
   want=$2
   shift 2
   count=$((count + 1))
-  "$GRANMPM" check "$@" >"$tmp/out" 2>"$tmp/err"
+  "$GRANMPM" $cmd "$@" >"$tmp/out" 2>"$tmp/err"
   st=$?
   if [ "$st" -ge 128 ]; then
     fail "$label: killed by signal $((st - 128))"
@@ -60,6 +66,36 @@ for f in "$srcdir"/tests/inputs/bad/*.conf; do
   check_bad "$(basename "$f")" "granmpm: $f:$msg" "$f"
 done
 [ "$count" -ge 50 ] || fail "only $count bad inputs found under $srcdir/tests/inputs/bad"
+
+# run stops at the same line as check, before it writes anything.
+cmd=run
+for f in "$srcdir"/tests/inputs/bad/*.conf; do
+  msg=$(sed -n 's/^# expect: //p' "$f" | head -n 1)
+  check_bad "run $(basename "$f")" "granmpm: $f:$msg" "$f" --output "$tmp/run"
+  [ -e "$tmp/run/run.h5" ] && fail "run $(basename "$f"): wrote $tmp/run/run.h5"
+done
+cmd=check
+
+# A fill that holds no point at a coarser mesh: check used to pass it, and
+# run failed naming neither line nor key.
+for cmd in check run; do
+  check_bad "$cmd fill without points" "granmpm: $srcdir/tests/inputs/good/full.conf:52: key 'fill.block.ppu': the region holds no point: no centre of the 3 x 3 sub-cells of a unit (5.33 m x 0.0333 m each) lies in it (allowed: a region or a ppu that puts at least one point in the fill)" \
+    "$srcdir/tests/inputs/good/full.conf" --set mesh.dx=16 --output "$tmp/run"
+done
+cmd=check
+
+# Unclosed "${" and long lines cost one pass: 4 MB of "${" took 82 s, a
+# 4 MB line 10 s; under a second here with room for a slow machine.
+awk 'BEGIN { for (i = 0; i < 65536; i++) { for (j = 0; j < 32; j++) printf "${"; printf "\n" } }' \
+  >"$tmp/dollars.conf"
+start=$(date +%s)
+check_bad dollars "granmpm: $tmp/dollars.conf:1: '\${' starts no variable reference (allowed: \${NAME} or \${NAME:-fallback}, NAME of letters, digits, '_')" \
+  "$tmp/dollars.conf"
+awk 'BEGIN { printf "mesh {\n  nx = "; for (i = 0; i < 4194304; i++) printf "1"; printf "\n}\n" }' \
+  >"$tmp/long.conf"
+check_bad long-line "granmpm: $tmp/long.conf:2: a line of 4194311 characters (allowed: at most 65536 per line)" \
+  "$tmp/long.conf"
+[ $(($(date +%s) - start)) -le 5 ] || fail "unclosed \${ and a long line: $(($(date +%s) - start)) s"
 
 # The file itself is the problem.
 check_bad missing "granmpm: $tmp/missing.conf: cannot open input file: No such file or directory" \
