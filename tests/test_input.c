@@ -505,6 +505,20 @@ static void expected_message(const char *path, char *msg, size_t cap)
   ck_assert_msg(msg[0], "%s has no '# expect: ' line", path);
 }
 
+/* 1 for a bad input that only check and run refuse, after the reader (the
+ * fills, the time step, the size: "# stage: plan"). */
+static int plan_stage(const char *path)
+{
+  FILE *f = fopen(path, "r");
+  char line[256];
+  int plan = 0;
+  while (f && !plan && fgets(line, sizeof line, f))
+    plan = strncmp(line, "# stage: plan", 13) == 0;
+  if (f)
+    fclose(f);
+  return plan;
+}
+
 static int count_bad_files(void)
 {
   glob_t g;
@@ -524,6 +538,11 @@ START_TEST(t_bad_file)
   mpm_config c;
   mpm_err err = {0};
   int rc = mpm_io_input_load(path, NULL, 0, &c, &err);
+  if (plan_stage(path)) {     /* a valid input whose run cannot be made: not the reader's */
+    ck_assert_msg(rc == MPM_OK, "%s: status %d, message '%s'", path, rc, err.msg);
+    globfree(&g);
+    return;
+  }
   ck_assert_msg(rc == MPM_EINPUT, "%s: status %d, message '%s'", path, rc, err.msg);
   ck_assert_int_eq(err.code, MPM_EINPUT);
   size_t n = strlen(msg);
