@@ -243,6 +243,39 @@ static int execute(mpm_app_plan *p, run_ctx *ctx)
   return 0;
 }
 
+/* The built run of plan p with its output opened (new, or reopened after
+ * `reopen` frames when reopen >= 0), stepped to its end; then everything of
+ * ctx freed. Returns the exit status (st when it is not 0 already). */
+static int open_and_execute(int st, mpm_app_plan *p, run_ctx *ctx, int argc, char **argv,
+                            long reopen)
+{
+  char *cmdline = st == 0 ? join_args(argc, argv) : NULL;
+  char *text = st == 0 ? input_text(&p->cfg) : NULL;  /* resolved, for run.h5 and checkpoints */
+  mpm_err err = {0};
+  if (st == 0 && (!cmdline || !text)) {
+    fprintf(stderr, "granmpm: out of memory\n");
+    st = MPM_APP_EXIT_RUNTIME;
+  }
+  if (st == 0) {
+    const mpm_io_origin origin = {cmdline, GRANMPM_REVISION, threads()};
+    ctx->input = text;
+    int rc = reopen < 0 ? mpm_io_output_open(&ctx->out, ctx->dir, &origin, text, &p->sim->mesh, &err)
+                        : mpm_io_output_reopen(&ctx->out, ctx->dir, &origin, reopen, &err);
+    if (rc != MPM_OK) {
+      fprintf(stderr, "granmpm: %s\n", err.msg);
+      st = MPM_APP_EXIT_RUNTIME;
+    } else {
+      st = execute(p, ctx);
+    }
+  }
+  free(cmdline);
+  free(text);
+  free(ctx->ft);
+  free(ctx->fm);
+  mpm_app_plan_free(p);
+  return st;
+}
+
 /* ---- run ------------------------------------------------------------------------- */
 
 typedef struct run_opts {
@@ -284,14 +317,20 @@ static int parse_run(int argc, char **argv, run_opts *o)
   return 0;
 }
 
+/* The options and the input of check and run (p is freed by the caller
+ * whatever this returns). */
+static int load_run(int argc, char **argv, run_opts *o, mpm_app_plan *p)
+{
+  memset(p, 0, sizeof *p);
+  int st = parse_run(argc, argv, o);
+  return st != 0 ? st : mpm_app_plan_load(p, o->file, NULL, o->sets, o->nset, o->outdir);
+}
+
 int mpm_app_check(int argc, char **argv)
 {
   run_opts o;
   mpm_app_plan p;
-  int st = parse_run(argc, argv, &o);
-  if (st != 0)
-    return st;
-  st = mpm_app_plan_load(&p, o.file, NULL, o.sets, o.nset, o.outdir);
+  int st = load_run(argc, argv, &o, &p);
   if (st == 0)
     st = mpm_app_plan_build(&p);
   if (st == 0) {
@@ -331,10 +370,7 @@ int mpm_app_run(int argc, char **argv, int full_argc, char **full_argv,
 {
   run_opts o;
   mpm_app_plan p;
-  int st = parse_run(argc, argv, &o);
-  if (st != 0)
-    return st;
-  st = mpm_app_plan_load(&p, o.file, NULL, o.sets, o.nset, o.outdir);
+  int st = load_run(argc, argv, &o, &p);
   if (st == 0)
     st = claim_output(p.cfg.output.dir, o.force);
   if (st == 0)
@@ -343,29 +379,7 @@ int mpm_app_run(int argc, char **argv, int full_argc, char **full_argv,
     st = mpm_app_plan_build(&p);
   run_ctx ctx = {.dir = p.cfg.output.dir, .stop = stop, .quiet = o.quiet,
                  .tty = isatty(STDERR_FILENO)};
-  char *cmdline = st == 0 ? join_args(full_argc, full_argv) : NULL;
-  char *text = st == 0 ? input_text(&p.cfg) : NULL;
-  if (st == 0 && (!cmdline || !text)) {
-    fprintf(stderr, "granmpm: out of memory\n");
-    st = MPM_APP_EXIT_RUNTIME;
-  }
-  if (st == 0) {
-    mpm_err err = {0};
-    const mpm_io_origin origin = {cmdline, GRANMPM_REVISION, threads()};
-    ctx.input = text;
-    if (mpm_io_output_open(&ctx.out, p.cfg.output.dir, &origin, text, &p.sim->mesh, &err) != MPM_OK) {
-      fprintf(stderr, "granmpm: %s\n", err.msg);
-      st = MPM_APP_EXIT_RUNTIME;
-    } else {
-      st = execute(&p, &ctx);
-    }
-  }
-  free(cmdline);
-  free(text);
-  free(ctx.ft);
-  free(ctx.fm);
-  mpm_app_plan_free(&p);
-  return st;
+  return open_and_execute(st, &p, &ctx, full_argc, full_argv, -1);
 }
 
 /* ---- resume ---------------------------------------------------------------------- */
@@ -433,27 +447,7 @@ int mpm_app_resume(int argc, char **argv, int full_argc, char **full_argv,
     st = mpm_app_plan_build(&p);
   if (st == 0)
     st = restore(&p, &ck, &ctx);
-  char *cmdline = st == 0 ? join_args(full_argc, full_argv) : NULL;
-  char *text = st == 0 ? input_text(&p.cfg) : NULL;  /* with the new t_end, for checkpoints */
-  ctx.input = text;
-  if (st == 0 && (!cmdline || !text)) {
-    fprintf(stderr, "granmpm: out of memory\n");
-    st = MPM_APP_EXIT_RUNTIME;
-  }
-  if (st == 0) {
-    const mpm_io_origin origin = {cmdline, GRANMPM_REVISION, threads()};
-    if (mpm_io_output_reopen(&ctx.out, dir, &origin, ck.state.frames, &err) != MPM_OK) {
-      fprintf(stderr, "granmpm: %s\n", err.msg);
-      st = MPM_APP_EXIT_RUNTIME;
-    } else {
-      st = execute(&p, &ctx);
-    }
-  }
-  free(cmdline);
-  free(text);
-  free(ctx.ft);
-  free(ctx.fm);
-  mpm_app_plan_free(&p);
+  st = open_and_execute(st, &p, &ctx, full_argc, full_argv, ck.state.frames);
   mpm_io_checkpoint_clear(&ck);
   return st;
 }

@@ -70,15 +70,6 @@ static hid_t scalar_type(int kind)
   return kind == 0 ? H5T_NATIVE_DOUBLE : kind == 1 ? H5T_NATIVE_LONG : H5T_NATIVE_INT;
 }
 
-static char *path_in(const char *dir, const char *name)
-{
-  size_t n = strlen(dir) + strlen(name) + 2;
-  char *p = malloc(n);
-  if (p)
-    snprintf(p, n, "%s/%s", dir, name);
-  return p;
-}
-
 /* ---- writing --------------------------------------------------------------- */
 
 static herr_t write_state(hid_t file, const mpm_run_state *st, const char *input,
@@ -197,7 +188,7 @@ int mpm_io_checkpoint_write(const char *dir, const mpm_run_state *st, const char
 {
   if (!dir || !st || !st->pts)
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_checkpoint_write: invalid arguments");
-  char *path = path_in(dir, "checkpoint.h5"), *tmp = path_in(dir, "checkpoint.h5.tmp");
+  char *path = mpm_io_path_join(dir, "checkpoint.h5"), *tmp = mpm_io_path_join(dir, "checkpoint.h5.tmp");
   void *image = NULL;
   size_t len = 0;
   int rc = path && tmp ? MPM_OK : mpm_err_set(err, MPM_ENOMEM, "out of memory for a checkpoint");
@@ -220,7 +211,7 @@ int mpm_io_checkpoint_write(const char *dir, const mpm_run_state *st, const char
 
 int mpm_io_checkpoint_remove(const char *dir, mpm_err *err)
 {
-  char *path = path_in(dir, "checkpoint.h5");
+  char *path = mpm_io_path_join(dir, "checkpoint.h5");
   if (!path)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory");
   int rc = unlink(path) == 0 || errno == ENOENT
@@ -319,13 +310,32 @@ static int read_checkpoint(hid_t file, mpm_io_checkpoint *ck, const char *path, 
   return rc == MPM_OK ? read_series(file, &ck->state, path, err) : rc;
 }
 
-int mpm_io_checkpoint_read(const char *dir, mpm_io_checkpoint *ck, mpm_err *err)
+/* What to read of an open checkpoint: all of it into ck, or its time and
+ * step only. */
+typedef struct reading {
+  mpm_io_checkpoint *ck;
+  double *t;
+  long *step;
+} reading;
+
+static int read_open(hid_t file, const reading *r, const char *path, const mpm_io_h5_quiet *q,
+                     mpm_err *err)
 {
-  memset(ck, 0, sizeof *ck);
-  char *path = path_in(dir, "checkpoint.h5");
+  if (r->ck)
+    return read_checkpoint(file, r->ck, path, err);
+  if (mpm_io_h5_attr_read(file, "t", H5T_NATIVE_DOUBLE, r->t) != 0 ||
+      mpm_io_h5_attr_read(file, "step", H5T_NATIVE_LONG, r->step) != 0)
+    return mpm_io_h5_fail(err, q, "cannot read", path);
+  return MPM_OK;
+}
+
+/* Open DIR/checkpoint.h5 and read it as r says. */
+static int read_dir(const char *dir, const reading *r, mpm_err *err)
+{
+  char *path = mpm_io_path_join(dir, "checkpoint.h5");
+  struct stat sb;
   if (!path)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  struct stat sb;
   if (stat(path, &sb) != 0) {
     int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", path, strerror(errno));
     free(path);
@@ -335,10 +345,18 @@ int mpm_io_checkpoint_read(const char *dir, mpm_io_checkpoint *ck, mpm_err *err)
   mpm_io_h5_quiet_begin(&q);
   hid_t file = mpm_io_h5_open_read(path);
   int rc = file < 0 ? mpm_io_h5_fail(err, &q, "cannot open", path)
-                    : read_checkpoint(file, ck, path, err);
+                    : read_open(file, r, path, &q, err);
   mpm_io_h5_close(file);
   mpm_io_h5_quiet_end(&q);
   free(path);
+  return rc;
+}
+
+int mpm_io_checkpoint_read(const char *dir, mpm_io_checkpoint *ck, mpm_err *err)
+{
+  memset(ck, 0, sizeof *ck);
+  const reading r = {.ck = ck};
+  int rc = read_dir(dir, &r, err);
   if (rc != MPM_OK)
     mpm_io_checkpoint_clear(ck);
   return rc;
@@ -346,26 +364,8 @@ int mpm_io_checkpoint_read(const char *dir, mpm_io_checkpoint *ck, mpm_err *err)
 
 int mpm_io_checkpoint_when(const char *dir, double *t, long *step, mpm_err *err)
 {
-  char *path = path_in(dir, "checkpoint.h5");
-  struct stat sb;
-  if (!path)
-    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  if (stat(path, &sb) != 0) {
-    int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", path, strerror(errno));
-    free(path);
-    return rc;
-  }
-  mpm_io_h5_quiet q;
-  mpm_io_h5_quiet_begin(&q);
-  hid_t file = mpm_io_h5_open_read(path);
-  int rc = file >= 0 && mpm_io_h5_attr_read(file, "t", H5T_NATIVE_DOUBLE, t) == 0 &&
-                   mpm_io_h5_attr_read(file, "step", H5T_NATIVE_LONG, step) == 0
-               ? MPM_OK
-               : mpm_io_h5_fail(err, &q, "cannot read", path);
-  mpm_io_h5_close(file);
-  mpm_io_h5_quiet_end(&q);
-  free(path);
-  return rc;
+  const reading r = {.t = t, .step = step};
+  return read_dir(dir, &r, err);
 }
 
 void mpm_io_checkpoint_clear(mpm_io_checkpoint *ck)

@@ -247,3 +247,12 @@ const char *mpm_io_frame_missing_field(hid_t g)
       return frame_fields[k];
   return NULL;
 }
+
+char *mpm_io_path_join(const char *dir, const char *name)
+{
+  size_t n = strlen(dir) + strlen(name) + 2;
+  char *p = malloc(n);
+  if (p)
+    snprintf(p, n, "%s/%s", dir, name);
+  return p;
+}

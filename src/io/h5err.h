@@ -70,6 +70,9 @@ long long mpm_io_h5_array_length(hid_t loc, const char *name);
 int mpm_io_frame_field_optional(const char *name);
 const char *mpm_io_frame_missing_field(hid_t g);
 
+/* "DIR/NAME" in a new string (free it); NULL when out of memory. */
+char *mpm_io_path_join(const char *dir, const char *name);
+
 /* Close an HDF5 identifier of any kind (file, group, dataset, attribute,
  * dataspace, datatype, property list); a negative one, never opened, is left
  * alone. Returns the status of the close, 0 for a negative identifier. */

@@ -97,15 +97,6 @@ struct mpm_io_output {
 
 /* ---- directory and paths --------------------------------------------------- */
 
-static char *path_join(const char *dir, const char *name)
-{
-  size_t n = strlen(dir) + strlen(name) + 2;
-  char *p = malloc(n);
-  if (p)
-    snprintf(p, n, "%s/%s", dir, name);
-  return p;
-}
-
 /* Create one directory; an existing one is fine (a file in the way shows up
  * at the next level, or in make_dirs' final check). */
 static int mkdir_one(const char *path, mpm_err *err)
@@ -173,9 +164,9 @@ static mpm_io_output *output_alloc(const char *dir)
     return NULL;
   out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
   out->vertex_frame = -1;
-  out->h5_path = path_join(dir, "run.h5");
-  out->csv_path = path_join(dir, "diagnostics.csv");
-  out->xdmf_path = path_join(dir, "run.xdmf");
+  out->h5_path = mpm_io_path_join(dir, "run.h5");
+  out->csv_path = mpm_io_path_join(dir, "diagnostics.csv");
+  out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
   if (!out->h5_path || !out->csv_path || !out->xdmf_path) {
     output_free(out);
     return NULL;
@@ -369,7 +360,7 @@ int mpm_io_output_occupied(const char *dir, const char **what)
 {
   const char *const names[] = {"run.h5", "checkpoint.h5"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
-    char *p = path_join(dir, names[k]);
+    char *p = mpm_io_path_join(dir, names[k]);
     struct stat st;
     int there = p && stat(p, &st) == 0;
     free(p);
