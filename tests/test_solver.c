@@ -10,6 +10,7 @@
 #include <check.h>
 #include <math.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/config.h"
 #include "diag/diag.h"
@@ -594,6 +595,51 @@ START_TEST(t_restart_bitwise)
 }
 END_TEST
 
+static int sleep_at_step_50(void *ctx, const mpm_sim *s, mpm_err *err)
+{
+  (void)err;
+  if (s->step == 50) {
+    const struct timespec pause = {1, 100000000};  /* 1.1 s */
+    nanosleep(&pause, NULL);
+  }
+  return count_frame(ctx, s, err);
+}
+
+static int checkpoint_step(void *ctx, const mpm_sim *s, mpm_err *err)
+{
+  (void)err;
+  ((counter *)ctx)->stop_after = s->step;          /* where it was written */
+  return count_checkpoint(ctx, s, err);
+}
+
+/* output.checkpoint_wall = 1 s: 100 steps with frames at steps 0, 50 and
+ * 100, the frame at step 50 taking 1.1 s of wall time: one checkpoint, at
+ * step 50, and none at the end (a finished run needs none). One thread:
+ * the 99 other steps of 4 points take microseconds (two threads on busy
+ * cores can wait milliseconds at every parallel region). */
+START_TEST(t_checkpoint_wall)
+{
+#ifdef _OPENMP
+  omp_set_num_threads(1);
+#endif
+  mpm_config c;
+  base_config(&c, 2, 1, 0.0, 0.0);
+  c.time.frame_dt = 5e-3;
+  c.output.checkpoint_wall = 1.0;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  counter n = {0};
+  const mpm_sim_hooks h = {.ctx = &n, .frame = sleep_at_step_50, .checkpoint = checkpoint_step};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  ck_assert_msg(mpm_sim_run(s, &h, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_int_eq(s->step, 100);
+  ck_assert_int_eq(n.frames, 3);
+  ck_assert_int_eq(n.checkpoints, 1);
+  ck_assert_int_eq(n.stop_after, 50);
+  mpm_sim_free(s);
+}
+END_TEST
+
 int main(void)
 {
   Suite *su = suite_create("solver");
@@ -611,6 +657,7 @@ int main(void)
   tcase_add_test(tc, t_light_node_body_force_only);
   tcase_add_test(tc, t_health_messages);
   tcase_add_test(tc, t_restart_bitwise);
+  tcase_add_test(tc, t_checkpoint_wall);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);
