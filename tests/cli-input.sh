@@ -7,8 +7,8 @@
 # line: "granmpm: FILE:LINE: ...", equal to the message on the file's
 # "# expect: " line (one ending in "..." is a prefix: for lists of names that
 # other modules own, such as the material models, and for the machine's
-# memory and free space), from `check` and from `run` alike (run then writes
-# nothing). So must a missing file, a directory, a file with a NUL byte,
+# memory and free space); the hostile ones give it from `run` too, which
+# then writes nothing. So must a missing file, a directory, a file with a NUL byte,
 # bad --set arguments, a line too long and a text of unclosed "${" (in
 # linear time). Good inputs (tests/inputs/good and the shipped inputs/) exit
 # 0, and the resolved input they print is itself an input that checks and
@@ -67,9 +67,14 @@ for f in "$srcdir"/tests/inputs/bad/*.conf; do
 done
 [ "$count" -ge 50 ] || fail "only $count bad inputs found under $srcdir/tests/inputs/bad"
 
-# run stops at the same line as check, before it writes anything.
+# run stops at the same line as check, before it writes anything: the
+# hostile inputs (those found by fuzzing and fault injection, and those that
+# pass the reader) and one of each kind of reader error.
 cmd=run
-for f in "$srcdir"/tests/inputs/bad/*.conf; do
+for name in dt-unstable size-memory size-output dt-sub-tiny dt-sub-too-many fill-no-point \
+            real-denormal real-hex real-nan real-inf real-overflow int-overflow env-unclosed \
+            unclosed-section unknown-key syntax-missing-equals polygon-no-area; do
+  f=$srcdir/tests/inputs/bad/$name.conf
   msg=$(sed -n 's/^# expect: //p' "$f" | head -n 1)
   check_bad "run $(basename "$f")" "granmpm: $f:$msg" "$f" --output "$tmp/run"
   [ -e "$tmp/run/run.h5" ] && fail "run $(basename "$f"): wrote $tmp/run/run.h5"

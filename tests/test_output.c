@@ -19,6 +19,7 @@
 
 #include "core/points.h"
 #include "diag/diag.h"
+#include "io/h5err.h"
 #include "io/io.h"
 
 #define NFRAMES 3
@@ -956,8 +957,65 @@ static int damage_main(const char *dir, const char *frame)
   return H5Fclose(f) < 0 || bad;
 }
 
+/* `test_output --same-frames A B`: every frame of A/run.h5 and B/run.h5,
+ * dataset by dataset, byte for byte (for tests/cli-survive.sh). */
+static herr_t same_dataset(hid_t ga, const char *name, const H5L_info_t *info, void *gb)
+{
+  (void)info;
+  hid_t da = H5Dopen2(ga, name, H5P_DEFAULT), db = H5Dopen2(*(hid_t *)gb, name, H5P_DEFAULT);
+  hid_t ta = da < 0 ? -1 : H5Dget_type(da);
+  hsize_t na = da < 0 ? 0 : H5Dget_storage_size(da), nb = db < 0 ? 0 : H5Dget_storage_size(db);
+  char *a = malloc(na + 1), *b = malloc(nb + 1);
+  int same = da >= 0 && db >= 0 && ta >= 0 && na == nb && a && b &&
+             H5Dread(da, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 &&
+             H5Dread(db, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) >= 0 && !memcmp(a, b, na);
+  if (!same)
+    fprintf(stderr, "dataset %s differs\n", name);
+  free(a);
+  free(b);
+  H5Tclose(ta);
+  H5Dclose(da);
+  H5Dclose(db);
+  return same ? 0 : 1;
+}
+
+static int same_frames_main(const char *dir_a, const char *dir_b)
+{
+  char pa[DIR_MAX + 32], pb[DIR_MAX + 32], name[32];
+  snprintf(pa, sizeof pa, "%s/run.h5", dir_a);
+  snprintf(pb, sizeof pb, "%s/run.h5", dir_b);
+  hid_t fa = H5Fopen(pa, H5F_ACC_RDONLY, H5P_DEFAULT), fb = H5Fopen(pb, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t fra = fa < 0 ? -1 : H5Gopen2(fa, "frames", H5P_DEFAULT);
+  hid_t frb = fb < 0 ? -1 : H5Gopen2(fb, "frames", H5P_DEFAULT);
+  H5G_info_t ia, ib;
+  int bad = fra < 0 || frb < 0 || H5Gget_info(fra, &ia) < 0 || H5Gget_info(frb, &ib) < 0 ||
+            ia.nlinks != ib.nlinks || ia.nlinks == 0;
+  if (bad)
+    fprintf(stderr, "frame counts differ or are missing\n");
+  for (hsize_t k = 0; !bad && k < ia.nlinks; k++) {
+    snprintf(name, sizeof name, "%06llu", (unsigned long long)k);
+    hid_t ga = H5Gopen2(fra, name, H5P_DEFAULT), gb = H5Gopen2(frb, name, H5P_DEFAULT);
+    double ta = 0, tb = 1;
+    bad = ga < 0 || gb < 0 || mpm_io_h5_attr_read(ga, "time", H5T_NATIVE_DOUBLE, &ta) < 0 ||
+          mpm_io_h5_attr_read(gb, "time", H5T_NATIVE_DOUBLE, &tb) < 0 ||
+          memcmp(&ta, &tb, sizeof ta) != 0 ||
+          H5Literate(ga, H5_INDEX_NAME, H5_ITER_INC, NULL, same_dataset, &gb) != 0;
+    if (bad)
+      fprintf(stderr, "frame %s differs\n", name);
+    H5Gclose(ga);
+    H5Gclose(gb);
+  }
+  H5Gclose(fra);
+  H5Gclose(frb);
+  H5Fclose(fa);
+  H5Fclose(fb);
+  return bad;
+}
+
 int main(int argc, char **argv)
 {
+  if (argc == 4 && strcmp(argv[1], "--same-frames") == 0)
+    return same_frames_main(argv[2], argv[3]);
   if (argc == 4 && strcmp(argv[1], "--extract") == 0)
     return extract_main(argv[2], argv[3]);
   if (argc == 4 && strcmp(argv[1], "--damage") == 0)
