@@ -70,10 +70,8 @@ static volatile sig_atomic_t stop_signal;
  * Second: the default action, at once. */
 static void on_signal(int sig)
 {
-  if (stop_signal) {
-    struct sigaction dfl;
-    memset(&dfl, 0, sizeof dfl);
-    dfl.sa_handler = SIG_DFL;
+  if (stop_signal) {                       /* only async-signal-safe calls here */
+    struct sigaction dfl = {.sa_handler = SIG_DFL};
     sigaction(sig, &dfl, NULL);
     raise(sig);
     return;
