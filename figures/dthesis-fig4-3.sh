@@ -2,7 +2,7 @@
 # [D-thesis] Fig. 4-3: the steady velocity across the vertical chute, local
 # and nonlocal (the steady fluidity solve), 80 units across with one point
 # per unit, against the closed form and the 1D reference
-# (verification/V8-vertical-chute/case; about 30 minutes on one core). The
+# (verification/V8-vertical-chute/case; a few minutes on one core). The
 # runs go to OUTDIR/vertical-chute (or V8_OUTDIR), where dthesis-fig4-5.sh
 # finds them.
 #   figures/dthesis-fig4-3.sh OUTDIR
@@ -17,7 +17,8 @@ work=$out/dthesis-fig4-3.d
 runs=${V8_OUTDIR:-$out/vertical-chute}   # shared with dthesis-fig4-5.sh (V8's case names)
 mkdir -p "$work" "$runs"
 export V8_REUSE=1
-mesh=(--set mesh.nx=80 --set mesh.ny=80 --set mesh.dx=0.0125 --set mesh.dy=0.0125 --set fill.ppu=1)
+mesh=(--set mesh.nx=80 --set mesh.ny=4 --set mesh.dx=0.0125 --set mesh.dy=0.0125 --set fill.ymax=0.05
+      --set fill.ppu=1)                   # a strip 4 units high, as V8 runs it
 "$src/verification/V8-vertical-chute/case" local-80x1 "$runs" "${mesh[@]}" --set material.A=0 &
 "$src/verification/V8-vertical-chute/case" linear-80x1 "$runs" "${mesh[@]}" \
   --set material.g_sample=linear

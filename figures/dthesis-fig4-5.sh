@@ -26,4 +26,8 @@ awk -F, 'NR > 1 { split($1, a, "-"); split(a[2], r, "x")
   t = ($9 == "-" ? "NaN" : $9); tab = ($1 in ta ? ta[$1] : "NaN")
   printf "%s %s %s %s %s %s %s %s\n", r[2], r[1], $2, $3, $4, $5, t, tab > (dir "/" a[1] ".dat") }' \
   dir="$work" "$work/v8.csv"
+# one file per panel: 20 units by points per unit (linear, element), one point by units
+awk '$2 == 20' "$work/linear.dat" | sort -k1,1n > "$work/linear-20.dat"
+awk '$2 == 20' "$work/element.dat" | sort -k1,1n > "$work/element-20.dat"
+awk '$1 == 1' "$work/linear.dat" | sort -k2,2n > "$work/linear-1.dat"
 gnuplot -e "dir='$work'; out='$out/dthesis-fig4-5.png'" "$src/figures/dthesis-fig4-5.gp"

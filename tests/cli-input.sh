@@ -1,14 +1,18 @@
 #!/bin/sh
-# cli-input.sh: `granmpm check` on bad and good inputs (docs/input-reference.md).
+# cli-input.sh: `granmpm check` and `granmpm run` on bad inputs, `check` on
+# good ones (docs/input-reference.md).
 #
 # Every file in tests/inputs/bad must give exit status 2 (not a signal),
 # nothing on stdout and exactly one line on stderr, naming the file and the
 # line: "granmpm: FILE:LINE: ...", equal to the message on the file's
 # "# expect: " line (one ending in "..." is a prefix: for lists of names that
-# other modules own, such as the material models). So must a missing file, a directory, a file with a NUL
-# byte and bad --set arguments. Good inputs (tests/inputs/good and the shipped
-# inputs/) exit 0, and the resolved input they print is itself an input that
-# checks and prints the same.
+# other modules own, such as the material models, and for the machine's
+# memory and free space); the hostile ones give it from `run` too, which
+# then writes nothing. So must a missing file, a directory, a file with a NUL byte,
+# bad --set arguments, a line too long and a text of unclosed "${" (in
+# linear time). Good inputs (tests/inputs/good and the shipped inputs/) exit
+# 0, and the resolved input they print is itself an input that checks and
+# prints the same.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -22,14 +26,16 @@ fail() {
   fails=$((fails + 1))
 }
 
-# check_bad LABEL WANT [ARGS...]: `granmpm check ARGS` must exit 2 and print
-# exactly the line WANT on stderr, nothing on stdout.
+# check_bad LABEL WANT [ARGS...]: `granmpm $cmd ARGS` (cmd: check unless
+# set) must exit 2 and print exactly the line WANT on stderr, nothing on
+# stdout.
+cmd=check
 check_bad() {
   label=$1
   want=$2
   shift 2
   count=$((count + 1))
-  "$GRANMPM" check "$@" >"$tmp/out" 2>"$tmp/err"
+  "$GRANMPM" $cmd "$@" >"$tmp/out" 2>"$tmp/err"
   st=$?
   if [ "$st" -ge 128 ]; then
     fail "$label: killed by signal $((st - 128))"
@@ -61,6 +67,41 @@ for f in "$srcdir"/tests/inputs/bad/*.conf; do
 done
 [ "$count" -ge 50 ] || fail "only $count bad inputs found under $srcdir/tests/inputs/bad"
 
+# run stops at the same line as check, before it writes anything: the
+# hostile inputs (those found by fuzzing and fault injection, and those that
+# pass the reader) and one of each kind of reader error.
+cmd=run
+for name in dt-unstable size-memory size-output dt-sub-tiny dt-sub-too-many fill-no-point \
+            real-denormal real-hex real-nan real-inf real-overflow int-overflow env-unclosed \
+            unclosed-section unknown-key syntax-missing-equals polygon-no-area; do
+  f=$srcdir/tests/inputs/bad/$name.conf
+  msg=$(sed -n 's/^# expect: //p' "$f" | head -n 1)
+  check_bad "run $(basename "$f")" "granmpm: $f:$msg" "$f" --output "$tmp/run"
+  [ -e "$tmp/run/run.h5" ] && fail "run $(basename "$f"): wrote $tmp/run/run.h5"
+done
+cmd=check
+
+# A fill that holds no point at a coarser mesh: check used to pass it, and
+# run failed naming neither line nor key.
+for cmd in check run; do
+  check_bad "$cmd fill without points" "granmpm: $srcdir/tests/inputs/good/full.conf:52: key 'fill.block.ppu': the region holds no point: no centre of the 3 x 3 sub-cells of a unit (5.33 m x 0.0333 m each) lies in it (allowed: a region or a ppu that puts at least one point in the fill)" \
+    "$srcdir/tests/inputs/good/full.conf" --set mesh.dx=16 --output "$tmp/run"
+done
+cmd=check
+
+# Unclosed "${" and long lines cost one pass: 4 MB of "${" took 82 s, a
+# 4 MB line 10 s; under a second here with room for a slow machine.
+awk 'BEGIN { for (i = 0; i < 65536; i++) { for (j = 0; j < 32; j++) printf "${"; printf "\n" } }' \
+  >"$tmp/dollars.conf"
+start=$(date +%s)
+check_bad dollars "granmpm: $tmp/dollars.conf:1: '\${' starts no variable reference (allowed: \${NAME} or \${NAME:-fallback}, NAME of letters, digits, '_')" \
+  "$tmp/dollars.conf"
+awk 'BEGIN { printf "mesh {\n  nx = "; for (i = 0; i < 4194304; i++) printf "1"; printf "\n}\n" }' \
+  >"$tmp/long.conf"
+check_bad long-line "granmpm: $tmp/long.conf:2: a line of 4194311 characters (allowed: at most 65536 per line)" \
+  "$tmp/long.conf"
+[ $(($(date +%s) - start)) -le 5 ] || fail "unclosed \${ and a long line: $(($(date +%s) - start)) s"
+
 # The file itself is the problem.
 check_bad missing "granmpm: $tmp/missing.conf: cannot open input file: No such file or directory" \
   "$tmp/missing.conf"
@@ -81,7 +122,7 @@ check_bad set-type "granmpm: --set 'mesh.nx=abc': key 'mesh.nx': expected an int
   "$good" --set mesh.nx=abc
 check_bad set-range "granmpm: --set 'fill.ppu=9': key 'fill.ppu': value 9 out of range (allowed: 1 ... 8)" \
   "$good" --set fill.ppu=9
-check_bad set-key "granmpm: --set 'time.tend=1': unknown key 'time.tend' (allowed keys in 'time': dt, cfl, t_end, frame_dt, flip)" \
+check_bad set-key "granmpm: --set 'time.tend=1': unknown key 'time.tend' (allowed keys in 'time': dt, cfl, t_end, frame_dt, flip, dt_unstable_ok)" \
   "$good" --set time.tend=1
 check_bad set-form "granmpm: --set 'mesh.nx': expected section.key=value" "$good" --set mesh.nx
 check_bad set-cross "granmpm: --set 'time.t_end=0.001': key 'time.t_end': frame_dt = 0.01 > t_end = 0.001 (allowed: frame_dt <= t_end)" \
@@ -89,20 +130,32 @@ check_bad set-cross "granmpm: --set 'time.t_end=0.001': key 'time.t_end': frame_
 
 # NGF with an unstable explicit diffusion of g: a warning, not an error (exit
 # 0, the resolved input on stdout, one line on stderr naming the smallest n_sub);
-# with that n_sub, silence. dt = 2e-4 s: 2e-4 * 0.25^2 * 0.005^2 / 1e-3 * 4e6 = 1.25.
+# with that n_sub, silence. dt = 3e-5 s (within the stable 3.34e-5 s) and
+# A = 0.6: 3e-5 * 0.6^2 * 0.005^2 / 1e-3 * 4e6 = 1.08.
 chute="$srcdir/inputs/ngf-chute.conf"
 count=$((count + 1))
-"$GRANMPM" check "$chute" --set time.dt=2e-4 >"$tmp/out" 2>"$tmp/err"
+"$GRANMPM" check "$chute" --set time.dt=3e-5 --set material.A=0.6 >"$tmp/out" 2>"$tmp/err"
 st=$?
-want="granmpm: warning: $chute: NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) = 1.25 > 1 with dt = 0.0002 s, n_sub = 1; needs n_sub >= 2 (key 'material.n_sub')"
+want="granmpm: warning: $chute: NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2) = 1.08 > 1 with dt = 3e-05 s, n_sub = 1; needs n_sub >= 2 (key 'material.n_sub')"
 if [ "$st" -ne 0 ] || [ ! -s "$tmp/out" ] || [ "$(cat "$tmp/err")" != "$want" ]; then
   fail "ngf diffusion warning: exit $st, stderr '$(cat "$tmp/err")'"
   echo "  want: $want"
 fi
 count=$((count + 1))
-"$GRANMPM" check "$chute" --set time.dt=2e-4 --set material.n_sub=2 >"$tmp/out" 2>"$tmp/err"
+"$GRANMPM" check "$chute" --set time.dt=3e-5 --set material.A=0.6 --set material.n_sub=2 >"$tmp/out" 2>"$tmp/err"
 st=$?
 [ "$st" -eq 0 ] && [ ! -s "$tmp/err" ] || fail "ngf diffusion with n_sub = 2: exit $st, stderr '$(cat "$tmp/err")'"
+
+# check prints the size of the run: the example's column of 0.2 m x 0.2 m in
+# units of 0.01 m with 2 x 2 points each has 40 x 40 = 1600 points, its mesh
+# of 60 x 25 units 61 x 26 = 1586 nodes; 0.6 s in steps of 5.27799e-05 s
+# (cfl 0.5 of the stable 1.05560e-4 s) make ceil(11367.96) = 11368 steps;
+# frames at 0, every 0.02 s and at the end: at most 2 + 30.
+count=$((count + 1))
+"$GRANMPM" check "$srcdir/inputs/example.conf" >"$tmp/out" 2>"$tmp/err"
+grep -qx "# size: 1600 points, 1586 nodes, 11368 steps of 5.27799e-05 s (stable: 0.00010556 s), 1 substeps per step, at most 32 frames" "$tmp/out" &&
+  grep -q "^# estimated memory .* MB (.* available), output .* MB (.* free where it goes)\$" "$tmp/out" ||
+  { fail "the size of the example"; grep '^# ' "$tmp/out"; }
 
 # Good inputs: exit 0, and the printed input reads back to the same.
 for f in "$srcdir"/tests/inputs/good/*.conf "$srcdir"/inputs/*.conf; do
@@ -120,8 +173,9 @@ for f in "$srcdir"/tests/inputs/good/*.conf "$srcdir"/inputs/*.conf; do
     cat "$tmp/err"
     continue
   fi
-  sed 1d "$tmp/resolved.conf" >"$tmp/a"  # line 1 names the source file
-  sed 1d "$tmp/again.conf" >"$tmp/b"
+  # line 1 names the source file; the machine's free memory and disk change
+  sed '1d; /^# estimated memory /d' "$tmp/resolved.conf" >"$tmp/a"
+  sed '1d; /^# estimated memory /d' "$tmp/again.conf" >"$tmp/b"
   cmp -s "$tmp/a" "$tmp/b" || fail "$name: the resolved input changes when checked again"
 done
 

@@ -390,7 +390,7 @@ typedef struct bad_set {
 static const bad_set bad_sets[] = {
   {"mesh.nx=abc", "--set 'mesh.nx=abc': key 'mesh.nx': expected an integer, got 'abc'"},
   {"mesh.nx=0", "--set 'mesh.nx=0': key 'mesh.nx': value 0 out of range (allowed: 1 ... 100000)"},
-  {"time.dt=nan", "--set 'time.dt=nan': key 'time.dt': value nan out of range (allowed: 0 ... 1e6 s)"},
+  {"time.dt=nan", "--set 'time.dt=nan': key 'time.dt': value nan out of range (allowed: 0, or 1e-12 ... 1e6 s)"},
   {"mesh.nx", "--set 'mesh.nx': expected section.key=value"},
   {"nx=3", "--set 'nx=3': 'nx' is not section.key (allowed sections: mesh, time, gravity, "
            "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
@@ -505,6 +505,20 @@ static void expected_message(const char *path, char *msg, size_t cap)
   ck_assert_msg(msg[0], "%s has no '# expect: ' line", path);
 }
 
+/* 1 for a bad input that only check and run refuse, after the reader (the
+ * fills, the time step, the size: "# stage: plan"). */
+static int plan_stage(const char *path)
+{
+  FILE *f = fopen(path, "r");
+  char line[256];
+  int plan = 0;
+  while (f && !plan && fgets(line, sizeof line, f))
+    plan = strncmp(line, "# stage: plan", 13) == 0;
+  if (f)
+    fclose(f);
+  return plan;
+}
+
 static int count_bad_files(void)
 {
   glob_t g;
@@ -524,6 +538,11 @@ START_TEST(t_bad_file)
   mpm_config c;
   mpm_err err = {0};
   int rc = mpm_io_input_load(path, NULL, 0, &c, &err);
+  if (plan_stage(path)) {     /* a valid input whose run cannot be made: not the reader's */
+    ck_assert_msg(rc == MPM_OK, "%s: status %d, message '%s'", path, rc, err.msg);
+    globfree(&g);
+    return;
+  }
   ck_assert_msg(rc == MPM_EINPUT, "%s: status %d, message '%s'", path, rc, err.msg);
   ck_assert_int_eq(err.code, MPM_EINPUT);
   size_t n = strlen(msg);
@@ -607,7 +626,7 @@ START_TEST(t_error_lines)
   expect_error(BASE "material {\n  mu_2 = 0.2\n  mu_s = 0.1\n  mu_s = 0.3\n}\n", NULL,
                CASE ":19: key 'material.mu_s': mu_s = 0.3 >= mu_2 = 0.2 (allowed: mu_s < mu_2)");
   expect_error("time {\n  t_end = 1\n}\n\nmesh {\n  nx = 1\n  ny = 1\n  dx = 1\n}\n", NULL,
-               CASE ":5: key 'mesh.dy': required, not set (allowed: > 0 and <= 1e6 m)");
+               CASE ":5: key 'mesh.dy': required, not set (allowed: 1e-6 ... 1e6 m)");
   expect_error(BASE "fill b {\n  shape = disc\n  cx = 0.5\n}\n", NULL,
                CASE ":16: key 'fill.b.cy': required for shape \"disc\", not set (allowed: "
                "-1e9 ... 1e9 m)");

@@ -19,9 +19,12 @@
 
 #include "core/points.h"
 #include "diag/diag.h"
+#include "io/h5err.h"
 #include "io/io.h"
 
 #define NFRAMES 3
+
+static const mpm_io_origin no_origin = {"", NULL, 1};
 #define DIR_MAX 256
 
 static const char *const all_fields[] = {"x", "y", "vx", "vy", "sxx", "syy", "szz", "sxy",
@@ -128,9 +131,8 @@ static mpm_io_output *open_run(const char *dir, const char *input)
   mpm_mesh m;
   mpm_io_output *out = NULL;
   fill_mesh(&m);
-  ck_assert_msg(
-      mpm_io_output_open(&out, dir, "granmpm run test.conf --set a.b=1", input, &m, &err) == MPM_OK,
-      "%s", err.msg);
+  const mpm_io_origin origin = {"granmpm run test.conf --set a.b=1", "test-revision", 3};
+  ck_assert_msg(mpm_io_output_open(&out, dir, &origin, input, &m, &err) == MPM_OK, "%s", err.msg);
   ck_assert_ptr_nonnull(out);
   return out;
 }
@@ -721,20 +723,209 @@ START_TEST(t_open_fails)
   FILE *f = fopen(file, "w");
   fclose(f);
   snprintf(sub, sizeof sub, "%s/run", file);
-  ck_assert_int_eq(mpm_io_output_open(&out, sub, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, sub, &no_origin, "", &m, &err), MPM_EIO);
   ck_assert_ptr_null(out);
   snprintf(want, sizeof want, "cannot create directory '%s': Not a directory", sub);
   ck_assert_str_eq(err.msg, want);
-  ck_assert_int_eq(mpm_io_output_open(&out, file, "", "", &m, &err), MPM_EIO);
-  ck_assert_int_eq(mpm_io_output_open(&out, "", "", "", &m, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_io_output_open(&out, file, &no_origin, "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, "", &no_origin, "", &m, &err), MPM_EINVAL);
   /* run.h5 cannot be created: a directory is in the way */
   snprintf(sub, sizeof sub, "%s/run.h5", dir);
   ck_assert_int_eq(mkdir(sub, 0777), 0);
-  ck_assert_int_eq(mpm_io_output_open(&out, dir, "", "", &m, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_output_open(&out, dir, &no_origin, "", &m, &err), MPM_EIO);
   ck_assert_ptr_null(out);
   snprintf(want, sizeof want, "cannot create '%s/run.h5': Is a directory", dir);
   ck_assert_str_eq(err.msg, want);
   ck_assert_int_eq(mpm_io_output_close(NULL, &err), MPM_OK);
+  remove_tree(dir);
+}
+END_TEST
+
+/* ---- checkpoints, reopening, damaged runs --------------------------------------- */
+
+static void same_points(const mpm_points *a, const mpm_points *b)
+{
+  ck_assert_uint_eq(a->n, b->n);
+  ck_assert_int_eq(a->next_id, b->next_id);
+#define SAME_(f, nm, d, u) \
+  ck_assert_msg(a->n == 0 || !memcmp(a->f, b->f, a->n * sizeof *a->f), "field %s differs", nm);
+  MPM_POINT_REAL_FIELDS(SAME_)
+  MPM_POINT_INT_FIELDS(SAME_)
+#undef SAME_
+}
+
+/* A checkpoint reads back bit for bit: every point field (with -0, the
+ * smallest subnormal and -DBL_MAX among them), every scalar, the frame
+ * series and an input text of 100 kB (more than an HDF5 attribute of the
+ * 1.8 format holds); a second one replaces the first, leaving no temporary
+ * file; a file that is not a checkpoint, or a truncated one, is MPM_EIO. */
+START_TEST(t_checkpoint_roundtrip)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  struct stat sb;
+  make_tmpdir(dir);
+  double series_t[3] = {0.0, 0.1, 0.2}, series_m[3] = {3.5, 3.25, -0.0};
+  mpm_run_state st = {.pts = frame_points(1), .t = 0.30000000000000004, .dt = 1.1e-5,
+                      .step = 27273, .n_sub = 3, .mass0 = 12.5, .mass_removed = 1e-300,
+                      .nremoved = 7, .seeded = 1, .outlet_open = 1, .frames = 3,
+                      .frame_next = 4, .check_next = 2, .nseries = 3, .series_t = series_t,
+                      .series_m = series_m};
+  st.pts->next_id = 2147483647;
+  char *input = malloc(100001);
+  for (int i = 0; i < 100000; i++)
+    input[i] = i % 80 == 79 ? '\n' : (char)('a' + i % 26);
+  input[100000] = '\0';
+  ck_assert_msg(mpm_io_checkpoint_write(dir, &st, "short", "0.1.0 (x)", &err) == MPM_OK, "%s",
+                err.msg);
+  ck_assert_msg(mpm_io_checkpoint_write(dir, &st, input, "0.1.0 (test)", &err) == MPM_OK, "%s",
+                err.msg);
+  snprintf(path, sizeof path, "%s/checkpoint.h5.tmp", dir);
+  ck_assert_int_ne(stat(path, &sb), 0);
+  mpm_io_checkpoint ck;
+  ck_assert_msg(mpm_io_checkpoint_read(dir, &ck, &err) == MPM_OK, "%s", err.msg);
+  same_points(st.pts, ck.state.pts);
+  ck_assert_str_eq(ck.input, input);
+  ck_assert_str_eq(ck.written_by, "0.1.0 (test)");
+  ck_assert(ck.state.t == st.t && ck.state.dt == st.dt && ck.state.mass0 == st.mass0 &&
+            ck.state.mass_removed == st.mass_removed);
+  ck_assert(ck.state.step == 27273 && ck.state.n_sub == 3 && ck.state.nremoved == 7 &&
+            ck.state.seeded == 1 && ck.state.outlet_open == 1 && ck.state.frames == 3 &&
+            ck.state.frame_next == 4 && ck.state.check_next == 2);
+  ck_assert_uint_eq(ck.state.nseries, 3);
+  ck_assert(!memcmp(ck.state.series_t, series_t, sizeof series_t) &&
+            !memcmp(ck.state.series_m, series_m, sizeof series_m));
+  mpm_io_checkpoint_clear(&ck);
+  double t = 0.0;
+  long step = 0;
+  ck_assert_int_eq(mpm_io_checkpoint_when(dir, &t, &step, &err), MPM_OK);
+  ck_assert(t == st.t && step == 27273);
+  /* damaged: cut in half, then not HDF5 at all */
+  snprintf(path, sizeof path, "%s/checkpoint.h5", dir);
+  ck_assert_int_eq(stat(path, &sb), 0);
+  ck_assert_int_eq(truncate(path, sb.st_size / 2), 0);
+  ck_assert_int_eq(mpm_io_checkpoint_read(dir, &ck, &err), MPM_EIO);
+  ck_assert_ptr_null(ck.state.pts);
+  FILE *f = fopen(path, "w");
+  fputs("not a checkpoint\n", f);
+  fclose(f);
+  ck_assert_int_eq(mpm_io_checkpoint_read(dir, &ck, &err), MPM_EIO);
+  ck_assert_int_eq(mpm_io_checkpoint_remove(dir, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_checkpoint_remove(dir, &err), MPM_OK);  /* none: fine */
+  ck_assert_int_eq(mpm_io_checkpoint_read(dir, &ck, &err), MPM_EIO);
+  free(input);
+  mpm_points_free(st.pts);
+  remove_tree(dir);
+}
+END_TEST
+
+/* A run reopened after its first two of three frames: the third frame is
+ * gone from run.h5, diagnostics.csv and run.xdmf, a new third frame is
+ * appended and reads back; the provenance records the resumption and the
+ * end. */
+START_TEST(t_reopen_truncates)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  text t = {0};
+  write_run(dir);
+  const mpm_io_origin again = {"granmpm resume x", "rev-2", 2};
+  mpm_io_output *out = NULL;
+  ck_assert_msg(mpm_io_output_reopen(&out, dir, &again, 2, &err) == MPM_OK, "%s", err.msg);
+  char *c = read_file(dir, "diagnostics.csv");
+  ck_assert_int_eq(count_lines(c), 3);
+  free(c);
+  char *x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 2);
+  free(x);
+  write_frame(out, 2);
+  ck_assert_int_eq(mpm_io_output_end(out, "finished", &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
+  ck_assert_msg(extract(dir, 2, NULL, &t, &err) == MPM_OK, "%s", err.msg);
+  check_table(t.buf, 2, all_fields, NALL);
+  free(t.buf);
+  c = read_file(dir, "diagnostics.csv");
+  ck_assert_int_eq(count_lines(c), 4);
+  free(c);
+  x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 3);
+  free(x);
+  mpm_io_run *r = NULL;
+  mpm_io_provenance p;
+  ck_assert_int_eq(mpm_io_run_open(&r, dir, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_run_provenance(r, &p, &err), MPM_OK);
+  mpm_io_run_close(r);
+  ck_assert_str_eq(p.version, PACKAGE_VERSION);
+  ck_assert_str_eq(p.revision, "test-revision");
+  ck_assert_str_eq(p.command_line, "granmpm run test.conf --set a.b=1");
+  ck_assert_int_eq(p.threads, 3);
+  ck_assert_int_eq(p.resumed, 1);
+  ck_assert_str_eq(p.status, "finished");
+  ck_assert_msg(strstr(p.resume_log, " threads=2: granmpm resume x\n"), "%s", p.resume_log);
+  ck_assert_int_eq((int)strlen(p.start_time), 20);                 /* 2025-01-31T12:00:00Z */
+  ck_assert_int_eq((int)strlen(p.end_time), 20);
+  ck_assert_int_eq(p.nframes, 3);
+  ck_assert(p.t_last == frame_time(2));
+  mpm_io_run_provenance_clear(&p);
+  remove_tree(dir);
+}
+END_TEST
+
+/* Damaged runs are errors, found before anything large is allocated: a
+ * frame without its x (extract used to print the other columns and exit
+ * 0), a frame whose npoints says 2^60 (the frame reader asked for 2^63
+ * bytes), a run.h5 cut short. */
+START_TEST(t_damaged_run)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  text t = {0};
+  mpm_io_run *r = NULL;
+  double time;
+  struct stat sb;
+  write_run(dir);
+  snprintf(path, sizeof path, "%s/run.h5", dir);
+  hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  ck_assert_int_ge(H5Ldelete(f, "frames/000002/x", H5P_DEFAULT), 0);
+  hid_t g = H5Gopen2(f, "frames/000001", H5P_DEFAULT), a = H5Aopen(g, "npoints", H5P_DEFAULT);
+  unsigned long long huge = 1ULL << 60;
+  ck_assert_int_ge(H5Awrite(a, H5T_NATIVE_ULLONG, &huge), 0);
+  H5Aclose(a);
+  H5Gclose(g);
+  H5Fclose(f);
+  mpm_points *pts = mpm_points_alloc(0);
+  ck_assert_int_eq(extract(dir, -1, NULL, &t, &err), MPM_EIO);
+  ck_assert_msg(strstr(err.msg, "frame 2 of ") && strstr(err.msg, "has no field 'x'"), "%s",
+                err.msg);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_int_eq(extract(dir, 1, NULL, &t, &err), MPM_EIO);
+  ck_assert_msg(strstr(err.msg, "npoints = 1152921504606846976 but field 'x' holds 5 values"),
+                "%s", err.msg);
+  free(t.buf);
+  t.buf = NULL;
+  ck_assert_int_eq(mpm_io_run_open(&r, dir, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_run_frame(r, -1, pts, &time, &err), MPM_EIO);
+  ck_assert_msg(strstr(err.msg, "has no field 'x'"), "%s", err.msg);
+  ck_assert_int_eq(mpm_io_run_frame(r, 1, pts, &time, &err), MPM_EIO);
+  ck_assert_msg(strstr(err.msg, "npoints = 1152921504606846976"), "%s", err.msg);
+  ck_assert_int_eq(mpm_io_run_frame(r, 0, pts, &time, &err), MPM_OK);
+  mpm_io_run_close(r);
+  ck_assert_int_eq(stat(path, &sb), 0);
+  ck_assert_int_eq(truncate(path, sb.st_size / 2), 0);
+  ck_assert_int_ne(extract(dir, 0, NULL, &t, &err), MPM_OK);
+  free(t.buf);
+  r = NULL;
+  int rc = mpm_io_run_open(&r, dir, &err);
+  if (rc == MPM_OK)
+    rc = mpm_io_run_frame(r, 0, pts, &time, &err) == MPM_OK &&
+                 mpm_io_run_frame(r, -1, pts, &time, &err) == MPM_OK
+             ? MPM_OK
+             : MPM_EIO;
+  ck_assert_int_eq(rc, MPM_EIO);
+  mpm_io_run_close(r);
+  mpm_points_free(pts);
   remove_tree(dir);
 }
 END_TEST
@@ -749,10 +940,86 @@ static int extract_main(const char *dir, const char *frame)
   return rc;
 }
 
+/* `test_output --damage DIR FRAME`: remove field x of frame FRAME of DIR's
+ * run.h5 and set npoints of frame 0 to 2^60 (for tests/cli-faults.sh). */
+static int damage_main(const char *dir, const char *frame)
+{
+  char path[DIR_MAX + 32], name[64];
+  snprintf(path, sizeof path, "%s/run.h5", dir);
+  snprintf(name, sizeof name, "frames/%06d/x", atoi(frame));
+  hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t g = f < 0 ? -1 : H5Gopen2(f, "frames/000000", H5P_DEFAULT);
+  hid_t a = g < 0 ? -1 : H5Aopen(g, "npoints", H5P_DEFAULT);
+  unsigned long long huge = 1ULL << 60;
+  int bad = a < 0 || H5Awrite(a, H5T_NATIVE_ULLONG, &huge) < 0 || H5Ldelete(f, name, H5P_DEFAULT) < 0;
+  H5Aclose(a);
+  H5Gclose(g);
+  return H5Fclose(f) < 0 || bad;
+}
+
+/* `test_output --same-frames A B`: every frame of A/run.h5 and B/run.h5,
+ * dataset by dataset, byte for byte (for tests/cli-survive.sh). */
+static herr_t same_dataset(hid_t ga, const char *name, const H5L_info_t *info, void *gb)
+{
+  (void)info;
+  hid_t da = H5Dopen2(ga, name, H5P_DEFAULT), db = H5Dopen2(*(hid_t *)gb, name, H5P_DEFAULT);
+  hid_t ta = da < 0 ? -1 : H5Dget_type(da);
+  hsize_t na = da < 0 ? 0 : H5Dget_storage_size(da), nb = db < 0 ? 0 : H5Dget_storage_size(db);
+  char *a = malloc(na + 1), *b = malloc(nb + 1);
+  int same = da >= 0 && db >= 0 && ta >= 0 && na == nb && a && b &&
+             H5Dread(da, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 &&
+             H5Dread(db, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) >= 0 && !memcmp(a, b, na);
+  if (!same)
+    fprintf(stderr, "dataset %s differs\n", name);
+  free(a);
+  free(b);
+  H5Tclose(ta);
+  H5Dclose(da);
+  H5Dclose(db);
+  return same ? 0 : 1;
+}
+
+static int same_frames_main(const char *dir_a, const char *dir_b)
+{
+  char pa[DIR_MAX + 32], pb[DIR_MAX + 32], name[32];
+  snprintf(pa, sizeof pa, "%s/run.h5", dir_a);
+  snprintf(pb, sizeof pb, "%s/run.h5", dir_b);
+  hid_t fa = H5Fopen(pa, H5F_ACC_RDONLY, H5P_DEFAULT), fb = H5Fopen(pb, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t fra = fa < 0 ? -1 : H5Gopen2(fa, "frames", H5P_DEFAULT);
+  hid_t frb = fb < 0 ? -1 : H5Gopen2(fb, "frames", H5P_DEFAULT);
+  H5G_info_t ia, ib;
+  int bad = fra < 0 || frb < 0 || H5Gget_info(fra, &ia) < 0 || H5Gget_info(frb, &ib) < 0 ||
+            ia.nlinks != ib.nlinks || ia.nlinks == 0;
+  if (bad)
+    fprintf(stderr, "frame counts differ or are missing\n");
+  for (hsize_t k = 0; !bad && k < ia.nlinks; k++) {
+    snprintf(name, sizeof name, "%06llu", (unsigned long long)k);
+    hid_t ga = H5Gopen2(fra, name, H5P_DEFAULT), gb = H5Gopen2(frb, name, H5P_DEFAULT);
+    double ta = 0, tb = 1;
+    bad = ga < 0 || gb < 0 || mpm_io_h5_attr_read(ga, "time", H5T_NATIVE_DOUBLE, &ta) < 0 ||
+          mpm_io_h5_attr_read(gb, "time", H5T_NATIVE_DOUBLE, &tb) < 0 ||
+          memcmp(&ta, &tb, sizeof ta) != 0 ||
+          H5Literate(ga, H5_INDEX_NAME, H5_ITER_INC, NULL, same_dataset, &gb) != 0;
+    if (bad)
+      fprintf(stderr, "frame %s differs\n", name);
+    H5Gclose(ga);
+    H5Gclose(gb);
+  }
+  H5Gclose(fra);
+  H5Gclose(frb);
+  H5Fclose(fa);
+  H5Fclose(fb);
+  return bad;
+}
+
 int main(int argc, char **argv)
 {
+  if (argc == 4 && strcmp(argv[1], "--same-frames") == 0)
+    return same_frames_main(argv[2], argv[3]);
   if (argc == 4 && strcmp(argv[1], "--extract") == 0)
     return extract_main(argv[2], argv[3]);
+  if (argc == 4 && strcmp(argv[1], "--damage") == 0)
+    return damage_main(argv[2], argv[3]);
   setenv("TEST_OUTPUT_PROGRAM", argv[0], 1);
   Suite *s = suite_create("output");
   TCase *tc = tcase_create("output");
@@ -772,6 +1039,9 @@ int main(int argc, char **argv)
   tcase_add_test(tc, t_empty_frame);
   tcase_add_test(tc, t_open_creates_parents);
   tcase_add_test(tc, t_open_fails);
+  tcase_add_test(tc, t_checkpoint_roundtrip);
+  tcase_add_test(tc, t_reopen_truncates);
+  tcase_add_test(tc, t_damaged_run);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

@@ -334,7 +334,7 @@ START_TEST(t_stop_mass)
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
-  ck_assert_int_eq(mpm_sim_run(s, NULL, NULL, NULL, &err), MPM_OK);
+  ck_assert_int_eq(mpm_sim_run(s, NULL, &err), MPM_OK);
   ck_assert_int_eq(s->stop, MPM_STOP_MASS);
   ck_assert(s->t < c.time.t_end);
   ck_assert(domain_mass(s->pts) < c.stop.mass);

@@ -2,8 +2,9 @@
  * (docs/diagnostics.md): a frame's velocity profile across the depth, its
  * free surface, its points with nodally smoothed pressure ([DK15] eqs.
  * 4.1-4.3), a per-frame series of depth-averaged speed and acceleration,
- * mean mu of the flowing layer, front position and heap slope, and the
- * silo classifier of [DK-silo] section 7.2 (static, flowing or unsure). Frames are
+ * mean mu of the flowing layer, front position and heap slope, the
+ * silo classifier of [DK-silo] section 7.2 (static, flowing or unsure), and
+ * the roughness of a frame's pressure with its dense fraction. Frames are
  * read back with io/frame.c; the numbers come from diag/flow.c. */
 #define _POSIX_C_SOURCE 200809L
 #include "app/analyse.h"
@@ -16,15 +17,18 @@
 #include "app/args.h"
 #include "diag/flow.h"
 #include "diag/jam.h"
+#include "diag/rough.h"
 #include "io/io.h"
 #include "shape/shape.h"
 
-enum mode { MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES, MODE_JAM };
+enum mode {
+  MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES, MODE_JAM, MODE_ROUGH
+};
 
 /* The options that ask for a measurement, by mode; --profile takes a value. */
 static const char *const mode_option[] = {
   [MODE_PROFILE] = "--profile", [MODE_SURFACE] = "--surface", [MODE_SMOOTH] = "--smooth",
-  [MODE_SERIES] = "--series", [MODE_JAM] = "--jam",
+  [MODE_SERIES] = "--series", [MODE_JAM] = "--jam", [MODE_ROUGH] = "--roughness",
 };
 
 typedef struct opts {
@@ -36,6 +40,7 @@ typedef struct opts {
   double width;         /* column width [m]; 0: mesh dx */
   double gdot_min;      /* flowing-layer threshold [1/s] */
   double front_cell;    /* 0: mesh dx */
+  double radius;        /* --roughness neighbourhood [m]; 0: 1.5 mesh dx */
   int front_min;        /* 1: no filtering */
   int slope;            /* 0 none, 1 range, 2 auto */
   double xa, xb;
@@ -66,6 +71,7 @@ static int parse_valued(const char *a, const char *v, opts *o)
     {"--width", &o->width, 1, "a column width > 0 [m]"},
     {"--gdot-min", &o->gdot_min, 0, "a shear rate >= 0 [1/s]"},
     {"--front-cell", &o->front_cell, 1, "a cell size > 0 [m]"},
+    {"--radius", &o->radius, 1, "a radius > 0 [m]"},
   };
   const struct { const char *name; int *dst; int lo, hi; const char *what; } whole[] = {
     {"--profile", &o->nbins, 1, 100000, "a number of bins 1..100000"},
@@ -101,7 +107,7 @@ static int parse_valued(const char *a, const char *v, opts *o)
 
 static int mode_of(const char *a)
 {
-  for (int m = MODE_PROFILE; m <= MODE_JAM; m++)
+  for (int m = MODE_PROFILE; m <= MODE_ROUGH; m++)
     if (strcmp(a, mode_option[m]) == 0)
       return m;
   return MODE_NONE;
@@ -288,6 +294,22 @@ static int do_series(const opts *o, mpm_io_run *r, const mpm_mesh *m, mpm_err *e
   return rc;
 }
 
+/* --roughness: the pressure roughness and dense fraction of one frame
+ * (diag/rough.h), neighbours within 1.5 units (max(dx, dy)) unless --radius. */
+static int do_rough(const opts *o, const mpm_points *pts, const mpm_mesh *m, double t,
+                    mpm_err *err)
+{
+  const double r = o->radius > 0.0 ? o->radius : 1.5 * fmax(m->dx, m->dy);
+  mpm_roughness q;
+  int rc = mpm_diag_roughness(pts, r, &q, err);
+  if (rc == MPM_OK) {
+    printf("t,roughness,dense_fraction,mean_p,points,dense,counted,radius\n");
+    printf("%.10g,%.6g,%.6g,%.8g,%zu,%zu,%zu,%.6g\n", t, q.roughness, q.dense_fraction,
+           q.mean_p, q.npoints, q.ndense, q.nused, r);
+  }
+  return rc;
+}
+
 /* --jam: the mean vy of the dense points and the point count of every frame,
  * classified (diag/jam.h); one CSV row with the evidence. */
 static int do_jam(mpm_io_run *r, mpm_err *err)
@@ -340,6 +362,7 @@ int mpm_app_analyse(int argc, char **argv)
     case MODE_SURFACE: rc = do_surface(&o, pts, &m, &err); break;
     case MODE_SMOOTH: rc = do_smooth(pts, &m, shape, t, &err); break;
     case MODE_JAM: rc = do_jam(r, &err); break;
+    case MODE_ROUGH: rc = do_rough(&o, pts, &m, t, &err); break;
     default: rc = do_series(&o, r, &m, &err); break;
     }
   }

@@ -30,7 +30,7 @@ int mpm_app_arg_real(const char *s, double *v)
 {
   char *end;
   *v = strtod(s, &end);
-  return *s != '\0' && *end == '\0' && isfinite(*v);
+  return *s != '\0' && *end == '\0' && isfinite(*v) && !strpbrk(s, "xX");  /* decimal only */
 }
 
 int mpm_app_arg_int(const char *s, int lo, int hi, int *v)

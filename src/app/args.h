@@ -7,8 +7,11 @@
 #include "core/error.h"
 
 /* Exit status: 0 success, 1 a run failed (physical or I/O failure while
- * running), 2 bad usage or input. */
-enum mpm_app_exit { MPM_APP_EXIT_RUNTIME = 1, MPM_APP_EXIT_USAGE = 2 };
+ * running), 2 bad usage or input (or a run refused before its first step),
+ * 3 a run stopped by a signal after writing its checkpoint (resumable). */
+enum mpm_app_exit {
+  MPM_APP_EXIT_RUNTIME = 1, MPM_APP_EXIT_USAGE = 2, MPM_APP_EXIT_STOPPED = 3
+};
 
 #if defined(__GNUC__)
 #define MPM_APP_PRINTF_(f, a) __attribute__((format(printf, f, a)))
@@ -25,7 +28,7 @@ int mpm_app_usage(const char *fmt, ...) MPM_APP_PRINTF_(1, 2);
  * MPM_APP_EXIT_RUNTIME. */
 int mpm_app_fail(const mpm_err *err);
 
-/* The whole of s as a finite number; 1 on success. */
+/* The whole of s as a finite decimal number (no hexadecimal); 1 on success. */
 int mpm_app_arg_real(const char *s, double *v);
 
 /* The whole of s as a whole number in [lo, hi] (written as any number:

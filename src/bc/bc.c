@@ -19,6 +19,17 @@ static const char *const bc_names[] = {
 };
 
 static const char *const edge_names[] = {"left", "right", "bottom", "top"};
+static const char *const wall_acceleration_names[] = {"jump", "zero"};
+
+int mpm_bc_wall_acceleration_from_name(const char *name)
+{
+  return mpm_names_index(wall_acceleration_names, MPM_NAMES_COUNT(wall_acceleration_names), name);
+}
+
+const char *mpm_bc_wall_acceleration_name(int rule)
+{
+  return mpm_names_at(wall_acceleration_names, MPM_NAMES_COUNT(wall_acceleration_names), rule);
+}
 
 int mpm_bc_kind_from_name(const char *name)
 {

@@ -29,6 +29,19 @@ typedef struct mpm_bc {
 
 enum { MPM_EDGE_LEFT = 0, MPM_EDGE_RIGHT, MPM_EDGE_BOTTOM, MPM_EDGE_TOP };
 
+/* The acceleration handed to the points on a held (constrained) velocity
+ * component of a node, boundary.wall_acceleration (docs/model.md, step 3):
+ *   MPM_WALL_JUMP: the change of the nodal velocity over the step, the wall's
+ *                  jump (v_wall - v_mapped)/dt included, so a point stopped
+ *                  by a wall loses its velocity;
+ *   MPM_WALL_ZERO: 0, [DK15] section 4 read literally (the wall fixes the
+ *                  nodal momentum and suppresses its update), as [D-thesis]. */
+enum mpm_bc_wall_acceleration { MPM_WALL_JUMP = 0, MPM_WALL_ZERO };
+
+/* "jump" | "zero" <-> enum mpm_bc_wall_acceleration; -1 / NULL if unknown. */
+int mpm_bc_wall_acceleration_from_name(const char *name);
+const char *mpm_bc_wall_acceleration_name(int rule);
+
 /* Name <-> enum mpm_bc_kind ("free", "noslip", "frictionless", "symmetry",
  * "periodic"); -1 if unknown. */
 int mpm_bc_kind_from_name(const char *name);

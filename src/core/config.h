@@ -68,6 +68,7 @@ typedef struct mpm_config {
     double frame_dt;           /* output interval [s] */
     double flip;               /* FLIP share of the point velocity update (1: pure
                                   FLIP, [DK15]; 0: PIC) */
+    int dt_unstable_ok;        /* 1: a dt above the stable step is deliberate */
   } time;
 
   struct {
@@ -107,6 +108,8 @@ typedef struct mpm_config {
 
   struct {
     int left, right, bottom, top;  /* enum mpm_bc_kind */
+    int wall_acceleration;         /* enum mpm_bc_wall_acceleration: what the points
+                                      get from a held velocity component */
   } bc;
 
   int nfill;
@@ -122,6 +125,10 @@ typedef struct mpm_config {
 
   struct {
     char dir[MPM_PATH_MAX];    /* run directory */
+    double checkpoint_dt;      /* checkpoint every this much simulated time [s]; 0: off */
+    double checkpoint_wall;    /* checkpoint every this much wall-clock time [s]; 0: off */
+    int allow_large;           /* 1: run even when the size estimate exceeds the
+                                  machine's memory or the output's free space */
   } output;
 
   /* Silo and hourglass features (docs/input-reference.md). */

@@ -71,6 +71,21 @@ int mpm_points_push(mpm_points *pts, size_t *idx)
   return MPM_OK;
 }
 
+int mpm_points_copy(mpm_points *dst, const mpm_points *src)
+{
+  int rc = mpm_points_reserve(dst, src->n);
+  if (rc != MPM_OK)
+    return rc;
+#define MPM_POINT_COPY_(f, nm, d, u) \
+  if (src->n) memcpy(dst->f, src->f, src->n * sizeof *src->f);
+  MPM_POINT_REAL_FIELDS(MPM_POINT_COPY_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_COPY_)
+#undef MPM_POINT_COPY_
+  dst->n = src->n;
+  dst->next_id = src->next_id;
+  return MPM_OK;
+}
+
 void mpm_points_compact(mpm_points *pts, const unsigned char *keep)
 {
   size_t j = 0;

@@ -87,6 +87,9 @@ int mpm_points_reserve(mpm_points *pts, size_t cap);
  * afterwards; returns its index in *idx. The id is a running count that removal never reuses. */
 int mpm_points_push(mpm_points *pts, size_t *idx);
 
+/* dst becomes a copy of src (points, order, next_id); dst grows if needed. */
+int mpm_points_copy(mpm_points *dst, const mpm_points *src);
+
 /* Remove every point i with keep[i] == 0, preserving the order of the rest. */
 void mpm_points_compact(mpm_points *pts, const unsigned char *keep);
 

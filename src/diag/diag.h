@@ -11,7 +11,8 @@ enum mpm_stop_reason {
   MPM_STOP_NONE = 0,   /* still running */
   MPM_STOP_T_END,      /* reached time.t_end */
   MPM_STOP_KE,         /* kinetic energy per unit mass fell below stop.ke */
-  MPM_STOP_MASS        /* the mass in region fell below stop.mass */
+  MPM_STOP_MASS,       /* the mass in region fell below stop.mass */
+  MPM_STOP_REQUEST     /* stopped on request (a signal) after a checkpoint: resumable */
 };
 
 typedef struct mpm_diag {

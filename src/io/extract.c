@@ -107,6 +107,18 @@ static int open_frame(extract_ctx *c, int frame, mpm_err *err)
   c->group = H5Gopen2(c->file, name, H5P_DEFAULT);
   if (c->group < 0)
     return h5_fail(err, c, "cannot open frame group in");
+  /* A damaged frame is an error, not a frame with a column less or with
+   * rows that do not match its point count. */
+  const char *missing = mpm_io_frame_missing_field(c->group);
+  unsigned long long np = 0;
+  long long have = mpm_io_h5_array_length(c->group, "x");
+  if (missing)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)", frame,
+                       c->path, missing);
+  if (mpm_io_h5_attr_read(c->group, "npoints", H5T_NATIVE_ULLONG, &np) < 0 ||
+      have != (long long)np)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': npoints = %llu but field 'x' holds %lld "
+                       "values (a damaged run)", frame, c->path, np, have);
   return MPM_OK;
 }
 

@@ -74,13 +74,6 @@ int mpm_io_run_nframes(const mpm_io_run *r)
   return r->nframes;
 }
 
-static int read_attr(hid_t obj, const char *name, hid_t type, void *v)
-{
-  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-  herr_t rc = a < 0 ? -1 : H5Aread(a, type, v);
-  mpm_io_h5_close(a);
-  return rc < 0 ? -1 : 0;
-}
 
 /* The value of `shape = "..."` inside the "mesh {" section of the resolved
  * input text (written by mpm_io_input_write, one key per line). */
@@ -106,14 +99,14 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
   int rc = g < 0 ? -1 : 0;
   memset(m, 0, sizeof *m);
   if (rc == 0)
-    rc = read_attr(g, "nx", H5T_NATIVE_INT, &m->nx) | read_attr(g, "ny", H5T_NATIVE_INT, &m->ny) |
-         read_attr(g, "x0", H5T_NATIVE_DOUBLE, &m->x0) |
-         read_attr(g, "y0", H5T_NATIVE_DOUBLE, &m->y0) |
-         read_attr(g, "dx", H5T_NATIVE_DOUBLE, &m->dx) |
-         read_attr(g, "dy", H5T_NATIVE_DOUBLE, &m->dy) |
-         read_attr(g, "mirror_x", H5T_NATIVE_DOUBLE, &m->mirror_x) |
-         read_attr(g, "periodic_x", H5T_NATIVE_INT, &m->periodic_x) |
-         read_attr(g, "periodic_y", H5T_NATIVE_INT, &m->periodic_y);
+    rc = mpm_io_h5_attr_read(g, "nx", H5T_NATIVE_INT, &m->nx) | mpm_io_h5_attr_read(g, "ny", H5T_NATIVE_INT, &m->ny) |
+         mpm_io_h5_attr_read(g, "x0", H5T_NATIVE_DOUBLE, &m->x0) |
+         mpm_io_h5_attr_read(g, "y0", H5T_NATIVE_DOUBLE, &m->y0) |
+         mpm_io_h5_attr_read(g, "dx", H5T_NATIVE_DOUBLE, &m->dx) |
+         mpm_io_h5_attr_read(g, "dy", H5T_NATIVE_DOUBLE, &m->dy) |
+         mpm_io_h5_attr_read(g, "mirror_x", H5T_NATIVE_DOUBLE, &m->mirror_x) |
+         mpm_io_h5_attr_read(g, "periodic_x", H5T_NATIVE_INT, &m->periodic_x) |
+         mpm_io_h5_attr_read(g, "periodic_y", H5T_NATIVE_INT, &m->periodic_y);
   for (int k = 0; rc == 0 && k < 2; k++) {
     hid_t a = H5Aopen(g, k ? "diagonal" : "topology", H5P_DEFAULT);
     hid_t t = a < 0 ? -1 : H5Aget_type(a);
@@ -131,18 +124,11 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
   if (m->topology < 0 || m->diagonal < 0)
     return fail((mpm_io_run *)r, err, "unknown mesh topology or diagonal");
   if (shape && len) {
-    hid_t a = H5Aopen(r->file, "input", H5P_DEFAULT);
-    hid_t t = a < 0 ? -1 : H5Aget_type(a);
-    size_t n = t < 0 ? 0 : H5Tget_size(t);
-    char *text = n ? malloc(n + 1) : NULL;
+    char *text = mpm_io_h5_attr_text(r->file, "input");
     snprintf(shape, len, "%s", "ugimp");
-    if (text && H5Aread(a, t, text) >= 0) {
-      text[n] = '\0';
+    if (text)
       shape_from_input(text, shape, len);
-    }
     free(text);
-    mpm_io_h5_close(t);
-    mpm_io_h5_close(a);
   }
   return mpm_mesh_setup(m, err);
 }
@@ -164,11 +150,6 @@ static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *ds
   return ok ? 0 : -1;
 }
 
-/* Fields that runs written before they were output lack: the extents. */
-static int written_later(const mpm_points *pts, const void *dst)
-{
-  return dst == pts->r1x || dst == pts->r1y || dst == pts->r2x || dst == pts->r2y;
-}
 
 int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
                      mpm_err *err)
@@ -182,10 +163,22 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
                        r->nframes - 1);
   snprintf(name, sizeof name, "frames/%06d", frame);
   hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
-  if (g < 0 || read_attr(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
-      read_attr(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
+  if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
+      mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
     mpm_io_h5_close(g);
     return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s'", frame, r->path);
+  }
+  /* The count is checked against the data before anything is allocated:
+   * a damaged npoints must not ask for 2^63 bytes. */
+  const char *missing = mpm_io_frame_missing_field(g);
+  long long have = mpm_io_h5_array_length(g, "x");
+  if (missing || have != (long long)n) {
+    H5Gclose(g);
+    if (missing)
+      return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)",
+                         frame, r->path, missing);
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': npoints = %llu but field 'x' holds %lld "
+                       "values (a damaged run)", frame, r->path, n, have);
   }
   pts->n = 0;
   if (mpm_points_reserve(pts, (size_t)n) != MPM_OK) {
@@ -205,14 +198,64 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
     if (read_field(g, field[k].name, field[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, n,
                    field[k].dst) == 0)
       continue;
-    if (written_later(pts, field[k].dst))
+    if (mpm_io_frame_field_optional(field[k].name) &&
+        H5Lexists(g, field[k].name, H5P_DEFAULT) <= 0)   /* written by an older version */
       memset(field[k].dst, 0, (size_t)n * field[k].size);
     else
-      rc = mpm_err_set(err, MPM_EIO, "cannot read field '%s' of frame %d in '%s'",
-                       field[k].name, frame, r->path);
+      rc = mpm_err_set(err, MPM_EIO, "cannot read field '%s' of frame %d in '%s' (not %llu "
+                       "values?)", field[k].name, frame, r->path, n);
   }
   H5Gclose(g);
   if (rc != MPM_OK)
     pts->n = 0;
   return rc;
+}
+
+/* ---- provenance ------------------------------------------------------------- */
+
+static char *text_or_empty(hid_t obj, const char *name)
+{
+  char *t = mpm_io_h5_attr_text(obj, name);
+  if (!t && (t = malloc(1)))
+    t[0] = '\0';
+  return t;
+}
+
+int mpm_io_run_provenance(const mpm_io_run *r, mpm_io_provenance *p, mpm_err *err)
+{
+  memset(p, 0, sizeof *p);
+  char **texts[] = {&p->version, &p->revision, &p->command_line, &p->input, &p->host,
+                    &p->start_time, &p->end_time, &p->status, &p->resume_log};
+  const char *names[] = {"version", "revision", "command_line", "input", "host",
+                         "start_time", "end_time", "status", "resume_log"};
+  for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+    if (!(*texts[k] = text_or_empty(r->file, names[k]))) {
+      mpm_io_run_provenance_clear(p);
+      return mpm_err_set(err, MPM_ENOMEM, "out of memory reading '%s'", r->path);
+    }
+  p->threads = p->resumed = -1;                   /* -1: not recorded (an older run) */
+  mpm_io_h5_attr_read(r->file, "threads", H5T_NATIVE_INT, &p->threads);
+  mpm_io_h5_attr_read(r->file, "resumed", H5T_NATIVE_INT, &p->resumed);
+  p->nframes = r->nframes;
+  p->t_last = 0.0;
+  if (r->nframes > 0) {
+    char name[48];
+    snprintf(name, sizeof name, "frames/%06d", r->nframes - 1);
+    hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
+    if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, &p->t_last) < 0)
+      p->t_last = -1.0;
+    mpm_io_h5_close(g);
+  }
+  return MPM_OK;
+}
+
+void mpm_io_run_provenance_clear(mpm_io_provenance *p)
+{
+  if (!p)
+    return;
+  char *texts[] = {p->version, p->revision, p->command_line, p->input, p->host,
+                   p->start_time, p->end_time, p->status, p->resume_log};
+  for (size_t k = 0; k < sizeof texts / sizeof texts[0]; k++)
+    free(texts[k]);
+  memset(p, 0, sizeof *p);
 }

@@ -1,7 +1,11 @@
-/* h5err.c: HDF5 errors as one mpm_err message; opening and closing (h5err.h). */
+/* h5err.c: HDF5 errors as one mpm_err message; opening and closing;
+ * attributes and arrays (h5err.h). */
 #include "io/h5err.h"
 
+#include "core/points.h"
+
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct reason_buf {
@@ -91,4 +95,164 @@ herr_t mpm_io_h5_close(hid_t id)
   case H5I_GENPROP_LST: return H5Pclose(id);
   default: return H5Idec_ref(id) < 0 ? -1 : 0;
   }
+}
+
+void mpm_io_h5_init(void)
+{
+  H5dont_atexit();
+}
+
+/* ---- attributes and arrays ------------------------------------------------ */
+
+herr_t mpm_io_h5_attr_scalar(hid_t obj, const char *name, hid_t type, const void *v)
+{
+  if (H5Aexists(obj, name) > 0 && H5Adelete(obj, name) < 0)
+    return -1;
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = space < 0 ? H5I_INVALID_HID
+                         : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t rc = attr < 0 ? -1 : H5Awrite(attr, type, v);
+  mpm_io_h5_close(attr);
+  mpm_io_h5_close(space);
+  return rc;
+}
+
+herr_t mpm_io_h5_attr_double(hid_t obj, const char *name, double v)
+{
+  return mpm_io_h5_attr_scalar(obj, name, H5T_NATIVE_DOUBLE, &v);
+}
+
+herr_t mpm_io_h5_attr_int(hid_t obj, const char *name, int v)
+{
+  return mpm_io_h5_attr_scalar(obj, name, H5T_NATIVE_INT, &v);
+}
+
+herr_t mpm_io_h5_attr_long(hid_t obj, const char *name, long v)
+{
+  return mpm_io_h5_attr_scalar(obj, name, H5T_NATIVE_LONG, &v);
+}
+
+/* Fixed-length, NUL-terminated string attribute. */
+herr_t mpm_io_h5_attr_string(hid_t obj, const char *name, const char *s)
+{
+  const char *v = s ? s : "";
+  if (H5Aexists(obj, name) > 0 && H5Adelete(obj, name) < 0)
+    return -1;
+  hid_t type = H5Tcopy(H5T_C_S1);
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = H5I_INVALID_HID;
+  herr_t rc = -1;
+  if (type >= 0 && space >= 0 && H5Tset_size(type, strlen(v) + 1) >= 0 &&
+      H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0) {
+    attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (attr >= 0)
+      rc = H5Awrite(attr, type, v);
+  }
+  mpm_io_h5_close(attr);
+  mpm_io_h5_close(space);
+  mpm_io_h5_close(type);
+  return rc;
+}
+
+int mpm_io_h5_attr_read(hid_t obj, const char *name, hid_t type, void *v)
+{
+  if (H5Aexists(obj, name) <= 0)
+    return -1;
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t s = a < 0 ? H5I_INVALID_HID : H5Aget_space(a);
+  herr_t rc = s < 0 || H5Sget_simple_extent_npoints(s) != 1 ? -1 : H5Aread(a, type, v);
+  mpm_io_h5_close(s);
+  mpm_io_h5_close(a);
+  return rc < 0 ? -1 : 0;
+}
+
+char *mpm_io_h5_attr_text(hid_t obj, const char *name)
+{
+  if (H5Aexists(obj, name) <= 0)
+    return NULL;
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t t = a < 0 ? H5I_INVALID_HID : H5Aget_type(a);
+  size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t) ? H5Tget_size(t)
+                                                                               : 0;
+  char *text = n ? malloc(n + 1) : NULL;
+  if (text && H5Aread(a, t, text) < 0) {
+    free(text);
+    text = NULL;
+  }
+  if (text)
+    text[n] = '\0';
+  mpm_io_h5_close(t);
+  mpm_io_h5_close(a);
+  return text;
+}
+
+herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype, size_t n,
+                             const void *buf, const char *unit, const char *desc)
+{
+  hsize_t dims[1] = {(hsize_t)n};
+  hid_t space = H5Screate_simple(1, dims, NULL);
+  hid_t dset = space < 0 ? H5I_INVALID_HID
+                         : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT,
+                                      H5P_DEFAULT);
+  herr_t rc = dset < 0 ? -1 : 0;
+  if (rc >= 0 && n > 0)
+    rc = H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
+  if (rc >= 0 && unit)
+    rc = mpm_io_h5_attr_string(dset, "unit", unit);
+  if (rc >= 0 && desc)
+    rc = mpm_io_h5_attr_string(dset, "description", desc);
+  mpm_io_h5_close(dset);
+  mpm_io_h5_close(space);
+  return rc;
+}
+
+long long mpm_io_h5_array_length(hid_t loc, const char *name)
+{
+  if (H5Lexists(loc, name, H5P_DEFAULT) <= 0)
+    return -1;
+  hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+  hid_t s = d < 0 ? H5I_INVALID_HID : H5Dget_space(d);
+  hsize_t dims[1] = {0};
+  long long n = s >= 0 && H5Sget_simple_extent_ndims(s) == 1 &&
+                        H5Sget_simple_extent_dims(s, dims, NULL) == 1
+                    ? (long long)dims[0]
+                    : -1;
+  mpm_io_h5_close(s);
+  mpm_io_h5_close(d);
+  return n;
+}
+
+/* ---- frames ----------------------------------------------------------------- */
+
+/* The extents came after the first runs: frames may lack them. */
+static int optional_field(const char *name)
+{
+  return !strcmp(name, "r1x") || !strcmp(name, "r1y") || !strcmp(name, "r2x") ||
+         !strcmp(name, "r2y");
+}
+
+int mpm_io_frame_field_optional(const char *name)
+{
+  return optional_field(name);
+}
+
+#define NAME_(f, nm, d, u) nm,
+static const char *const frame_fields[] = {MPM_POINT_FIELDS(NAME_, NAME_, NAME_)};
+#undef NAME_
+
+const char *mpm_io_frame_missing_field(hid_t g)
+{
+  for (size_t k = 0; k < sizeof frame_fields / sizeof frame_fields[0]; k++)
+    if (!optional_field(frame_fields[k]) && H5Lexists(g, frame_fields[k], H5P_DEFAULT) <= 0)
+      return frame_fields[k];
+  return NULL;
+}
+
+char *mpm_io_path_join(const char *dir, const char *name)
+{
+  size_t n = strlen(dir) + strlen(name) + 2;
+  char *p = malloc(n);
+  if (p)
+    snprintf(p, n, "%s/%s", dir, name);
+  return p;
 }

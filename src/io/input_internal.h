@@ -67,7 +67,7 @@ enum key_type {
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
   NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE, NK_DILATATION, NK_DIFFUSION,
-  NK_G_WALL, NK_G_SAMPLE, NK_G_MASS
+  NK_G_WALL, NK_G_SAMPLE, NK_G_MASS, NK_WALL_ACC
 };
 
 enum key_flag {
@@ -75,7 +75,8 @@ enum key_flag {
   KF_LO_OPEN = 2,   /* value > lo rather than >= lo */
   KF_HI_OPEN = 4,   /* value < hi rather than <= hi */
   KF_RHO_C = 8,     /* default: material.rho_c */
-  KF_T0X10 = 16     /* default: 10 material.t0 */
+  KF_T0X10 = 16,    /* default: 10 material.t0 */
+  KF_ZERO_OFF = 32  /* 0 ("off", "from another key") or a value in the range */
 };
 
 /* Fill shapes that use a key (0: every shape). */
@@ -93,7 +94,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 85
+#define NKEYS 90
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];

@@ -38,19 +38,20 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_MESH, KT_INT, "ny", C_(mesh.ny), 0, 1, 100000, KF_REQUIRED, "-"),
     NUM(S_MESH, KT_REAL, "x0", C_(mesh.x0), 0, -1e9, 1e9, 0, "m"),
     NUM(S_MESH, KT_REAL, "y0", C_(mesh.y0), 0, -1e9, 1e9, 0, "m"),
-    NUM(S_MESH, KT_REAL, "dx", C_(mesh.dx), 0, 0, 1e6, KF_REQUIRED | KF_LO_OPEN, "m"),
-    NUM(S_MESH, KT_REAL, "dy", C_(mesh.dy), 0, 0, 1e6, KF_REQUIRED | KF_LO_OPEN, "m"),
+    NUM(S_MESH, KT_REAL, "dx", C_(mesh.dx), 0, 1e-6, 1e6, KF_REQUIRED, "m"),
+    NUM(S_MESH, KT_REAL, "dy", C_(mesh.dy), 0, 1e-6, 1e6, KF_REQUIRED, "m"),
     NAMED(S_MESH, KT_NAME, "topology", C_(mesh.topology), NK_TOPOLOGY, "q4"),
     NAMED(S_MESH, KT_NAME, "diagonal", C_(mesh.diagonal), NK_DIAGONAL, "/"),
     NUM(S_MESH, KT_REAL, "mirror_x", C_(mesh.mirror_x), 0, -1e9, 1e9, 0, "m"),
     NAMED(S_MESH, KT_NAME, "shape", C_(mesh.shape), NK_SHAPE, "ugimp"),
     NAMED(S_MESH, KT_ENUM, "dilatation", C_(mesh.dilatation), NK_DILATATION, "point"),
 
-    NUM(S_TIME, KT_REAL, "dt", C_(time.dt), 0, 0, 1e6, 0, "s"),
-    NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 0, 1, KF_LO_OPEN, "-"),
-    NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 0, 1e9, KF_REQUIRED | KF_LO_OPEN, "s"),
-    NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 0, 1e9, KF_LO_OPEN, "s"),
+    NUM(S_TIME, KT_REAL, "dt", C_(time.dt), 0, 1e-12, 1e6, KF_ZERO_OFF, "s"),
+    NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 1e-6, 1, 0, "-"),
+    NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 1e-9, 1e9, KF_REQUIRED, "s"),
+    NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 1e-9, 1e9, 0, "s"),
     NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
+    NUM(S_TIME, KT_BOOL, "dt_unstable_ok", C_(time.dt_unstable_ok), 0, 0, 1, 0, "-"),
 
     NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
     NUM(S_GRAVITY, KT_REAL, "gy", C_(gravity.gy), -9.8, -1e5, 1e5, 0, "m/s^2"),
@@ -59,19 +60,19 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_GRAVITY, KT_REAL, "t_ramp", C_(gravity.t_ramp), 0.1, 0, 1e9, 0, "s"),
 
     NAMED(S_MATERIAL, KT_NAME, "model", C_(material.model), NK_MODEL, "mu_i"),
-    NUM(S_MATERIAL, KT_REAL, "E", C_(material.E), 1e9, 0, 1e13, KF_LO_OPEN, "Pa"),
+    NUM(S_MATERIAL, KT_REAL, "E", C_(material.E), 1e9, 1e3, 1e13, 0, "Pa"),
     NUM(S_MATERIAL, KT_REAL, "nu", C_(material.nu), MPM_DK15_NU, -1, 0.5, KF_LO_OPEN | KF_HI_OPEN,
         "-"),
-    NUM(S_MATERIAL, KT_REAL, "rho_s", C_(material.rho_s), MPM_DK15_RHO_S, 0, 1e5, KF_LO_OPEN,
+    NUM(S_MATERIAL, KT_REAL, "rho_s", C_(material.rho_s), MPM_DK15_RHO_S, 1, 1e5, 0,
         "kg/m^3"),
-    NUM(S_MATERIAL, KT_REAL, "rho_c", C_(material.rho_c), MPM_DK15_RHO_C, 0, 1e5, KF_LO_OPEN,
+    NUM(S_MATERIAL, KT_REAL, "rho_c", C_(material.rho_c), MPM_DK15_RHO_C, 1, 1e5, 0,
         "kg/m^3"),
     NUM(S_MATERIAL, KT_REAL, "mu_s", C_(material.mu_s), MPM_DK15_MU_S, 0, 10, 0, "-"),
-    NUM(S_MATERIAL, KT_REAL, "mu_2", C_(material.mu_2), MPM_DK15_MU_2, 0, 1000, KF_LO_OPEN, "-"),
-    NUM(S_MATERIAL, KT_REAL, "I0", C_(material.I0), MPM_DK15_I0, 0, 1000, KF_LO_OPEN, "-"),
-    NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), MPM_DK15_D, 0, 1, KF_LO_OPEN, "m"),
+    NUM(S_MATERIAL, KT_REAL, "mu_2", C_(material.mu_2), MPM_DK15_MU_2, 1e-6, 1000, 0, "-"),
+    NUM(S_MATERIAL, KT_REAL, "I0", C_(material.I0), MPM_DK15_I0, 1e-6, 1000, 0, "-"),
+    NUM(S_MATERIAL, KT_REAL, "d", C_(material.d), MPM_DK15_D, 1e-7, 1, 0, "m"),
     NUM(S_MATERIAL, KT_REAL, "A", C_(material.A), 0.48, 0, 100, 0, "-"),
-    NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 0, 1e3, KF_LO_OPEN, "s"),
+    NUM(S_MATERIAL, KT_REAL, "t0", C_(material.t0), 1e-3, 1e-9, 1e3, 0, "s"),
     NAMED(S_MATERIAL, KT_ENUM, "form", C_(material.form), NK_NGF_FORM, "dk"),
     NAMED(S_MATERIAL, KT_ENUM, "p_sample", C_(material.p_sample), NK_NGF_P_SAMPLE, "point"),
     NAMED(S_MATERIAL, KT_ENUM, "g_average", C_(material.g_average), NK_NGF_G_AVERAGE, "centre"),
@@ -81,13 +82,15 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_MATERIAL, KT_ENUM, "g_sample", C_(material.g_sample), NK_G_SAMPLE, "element"),
     NAMED(S_MATERIAL, KT_ENUM, "g_mass", C_(material.g_mass), NK_G_MASS, "consistent"),
     NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
-    NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 0, 1e6, 0, "s"),
+    NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 1e-12, 1e6, KF_ZERO_OFF, "s"),
     NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
 
     NAMED(S_BOUNDARY, KT_ENUM, "left", C_(bc.left), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "bottom", C_(bc.bottom), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "top", C_(bc.top), NK_BC, "free"),
+    NAMED(S_BOUNDARY, KT_ENUM, "wall_acceleration", C_(bc.wall_acceleration), NK_WALL_ACC,
+          "jump"),
 
     NAMED(S_FILL, KT_ENUM, "shape", F_(shape), NK_FILL_SHAPE, "rectangle"),
     GEOM(KT_REAL, "xmin", F_(xmin), -1e9, 1e9, 0, SH_RECT),
@@ -96,11 +99,11 @@ const key_def mpm_io_in_keys[] = {
     GEOM(KT_REAL, "ymax", F_(ymax), -1e9, 1e9, 0, SH_RECT),
     GEOM(KT_REAL, "cx", F_(cx), -1e9, 1e9, 0, SH_DISC),
     GEOM(KT_REAL, "cy", F_(cy), -1e9, 1e9, 0, SH_DISC),
-    GEOM(KT_REAL, "radius", F_(radius), 0, 1e9, KF_LO_OPEN, SH_DISC),
+    GEOM(KT_REAL, "radius", F_(radius), 1e-6, 1e9, 0, SH_DISC),
     GEOM(KT_LIST, "x", F_(px), -1e9, 1e9, 0, SH_POLY),
     GEOM(KT_LIST, "y", F_(py), -1e9, 1e9, 0, SH_POLY),
     NUM(S_FILL, KT_INT, "ppu", F_(ppu), 2, 1, 8, 0, "-"),
-    NUM(S_FILL, KT_REAL, "density", F_(density), 0, 0, 1e5, KF_LO_OPEN | KF_RHO_C, "kg/m^3"),
+    NUM(S_FILL, KT_REAL, "density", F_(density), 0, 1, 1e5, KF_RHO_C, "kg/m^3"),
     NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
     NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
     NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
@@ -111,6 +114,11 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_STOP, KT_REAL, "mass", C_(stop.mass), 0, 0, 1e9, 0, "kg/m"),
 
     NAMED(S_OUTPUT, KT_PATH, "dir", C_(output.dir), NK_NONE, "run"),
+    NUM(S_OUTPUT, KT_REAL, "checkpoint_dt", C_(output.checkpoint_dt), 0, 1e-9, 1e9, KF_ZERO_OFF,
+        "s"),
+    NUM(S_OUTPUT, KT_REAL, "checkpoint_wall", C_(output.checkpoint_wall), 0, 1, 1e9, KF_ZERO_OFF,
+        "s"),
+    NUM(S_OUTPUT, KT_BOOL, "allow_large", C_(output.allow_large), 0, 0, 1, 0, "-"),
 
     NAMED(S_OUTLET, KT_ENUM, "edge", C_(outlet.edge), NK_EDGE, "none"),
     NUM(S_OUTLET, KT_REAL, "from", C_(outlet.from), 0, -1e9, 1e9, 0, "m"),
@@ -188,6 +196,7 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_DENSITY: return mpm_material_density_rule_name(i);
   case NK_DIFFUSION: return mpm_nonlocal_diffusion_name(i);
   case NK_G_WALL: return mpm_nonlocal_wall_name(i);
+  case NK_WALL_ACC: return mpm_bc_wall_acceleration_name(i);
   case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_name(i);
   case NK_G_MASS: return mpm_nonlocal_steady_mass_name(i);
   case NK_SHAPE:
@@ -219,6 +228,7 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_DENSITY: return mpm_material_density_rule_from_name(s);
   case NK_DIFFUSION: return mpm_nonlocal_diffusion_from_name(s);
   case NK_G_WALL: return mpm_nonlocal_wall_from_name(s);
+  case NK_WALL_ACC: return mpm_bc_wall_acceleration_from_name(s);
   case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_from_name(s);
   case NK_G_MASS: return mpm_nonlocal_steady_mass_from_name(s);
   case NK_EDGE: return NAME_INDEX(edge_names, s);

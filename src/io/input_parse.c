@@ -16,6 +16,7 @@
 
 #define INPUT_MAX_BYTES (16L << 20)  /* larger input files are refused */
 #define CTX_KEY "granmpm-input-context"
+#define LINE_MAX_CHARS 65536  /* longer lines are refused (check_line_lengths) */
 
 /* ------------------------------------------------------- libconfuse glue */
 
@@ -220,6 +221,7 @@ enum scan_state { SC_CODE, SC_DQ, SC_SQ, SC_LINE, SC_BLOCK };
 
 typedef struct scan {
   int state, line, from, depth;
+  int bad_ref;                /* line of the first "${" that starts no reference, 0: none */
   int open_line[SCAN_DEPTH];  /* line of each open '{' */
 } scan;
 
@@ -230,6 +232,33 @@ static void note_section_brace(in_ctx *c, const char *s, const char *p, int line
     c->brace_pos[c->nbrace] = (size_t)(p - s);
     c->brace_line[c->nbrace++] = line;
   }
+}
+
+/* The '}' that ends the ${NAME} or ${NAME:-fallback} starting at p (NAME:
+ * a letter or '_', then letters, digits, '_'; the fallback on one line
+ * without '}'), NULL if p starts no such reference. libconfuse takes
+ * anything up to a '}' and searches the rest of the text for one at every
+ * "${" it cannot close, which made many unclosed ones quadratic: they are
+ * refused here, in one pass. */
+static const char *env_ref_end(const char *p)
+{
+  const char *q = p + 2;
+  if (!(isalpha((unsigned char)*q) || *q == '_'))
+    return NULL;
+  while (isalnum((unsigned char)*q) || *q == '_')
+    q++;
+  if (q[0] == ':' && q[1] == '-')
+    for (q += 2; *q && *q != '}' && *q != '\n'; q++)
+      ;
+  return *q == '}' ? q : NULL;
+}
+
+/* A "${" that starts no reference, at line `line`. */
+static int bad_env_ref(in_ctx *c, int line)
+{
+  where w = {.at = {line, 0}, .sec = -1, .key = -1, .fill = -1};
+  return mpm_io_in_fail_at(c, &w, "'${' starts no variable reference "
+                           "(allowed: ${NAME} or ${NAME:-fallback}, NAME of letters, digits, '_')");
 }
 
 /* One character of code outside strings and comments; p may advance. A
@@ -248,9 +277,12 @@ static void scan_code(in_ctx *c, scan *sc, const char *s, char **pp)
     sc->from = sc->line;
     *p++ = ' ';
     *p = ' ';
-  } else if (*p == '$' && p[1] == '{' && strchr(p, '}')) {
-    for (const char *q = strchr(p, '}'); p < q; p++)  /* ${NAME}: one token */
-      sc->line += *p == '\n';
+  } else if (*p == '$' && p[1] == '{') {
+    const char *q = env_ref_end(p);  /* ${NAME}: one token, on one line */
+    if (!q)
+      sc->bad_ref = sc->bad_ref ? sc->bad_ref : sc->line;
+    else
+      p += q - p;
   } else if (*p == '{') {
     if (sc->depth == 0)
       note_section_brace(c, s, p, sc->line);
@@ -277,6 +309,8 @@ static int blank_comments(in_ctx *c, char *s)
     } else if (sc.state == SC_DQ || sc.state == SC_SQ) {
       if (*p == '\\' && p[1])
         p++;  /* an escaped character */
+      else if (sc.state == SC_DQ && *p == '$' && p[1] == '{' && !env_ref_end(p) && !sc.bad_ref)
+        sc.bad_ref = sc.line;
       else if (*p == (sc.state == SC_DQ ? '"' : '\''))
         sc.state = SC_CODE;
     } else if (*p == '\n') {
@@ -291,6 +325,8 @@ static int blank_comments(in_ctx *c, char *s)
     sc.line += *p == '\n';  /* a skipped first character is never a newline */
   }
   where w = {.at = {sc.from, 0}, .sec = -1, .key = -1, .fill = -1};
+  if (sc.bad_ref)
+    return bad_env_ref(c, sc.bad_ref);
   if (sc.state == SC_BLOCK)
     return mpm_io_in_fail_at(c, &w, "comment '/*' is not closed (allowed: /* ... */)");
   if (sc.state == SC_DQ || sc.state == SC_SQ)
@@ -349,6 +385,26 @@ static void find_section_lines(in_ctx *c, const char *s)
   }
 }
 
+/* libconfuse's scanner reads its text in blocks and starts a token again
+ * from its first character after each block, so one token of n characters
+ * costs n^2 / 8 KiB: a line of 4 MB took 10 s. No line of an input needs
+ * more than a few hundred characters; longer than LINE_MAX_CHARS is refused. */
+static int check_line_lengths(in_ctx *c, const char *s)
+{
+  int line = 1;
+  for (const char *p = s; *p; line++) {
+    const char *nl = strchr(p, '\n');
+    size_t n = nl ? (size_t)(nl - p) : strlen(p);
+    if (n > LINE_MAX_CHARS) {
+      where w = {.at = {line, 0}, .sec = -1, .key = -1, .fill = -1};
+      return mpm_io_in_fail_at(c, &w, "a line of %zu characters (allowed: at most %d per line)",
+                               n, LINE_MAX_CHARS);
+    }
+    p += n + (nl != NULL);
+  }
+  return MPM_OK;
+}
+
 int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
 {
   const char *nul = memchr(s, '\0', len);
@@ -358,6 +414,8 @@ int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
   }
   int lines = line_at(s, len) - (len > 0 && s[len - 1] == '\n');
   c->eof_line = lines > 0 ? lines : 1;
+  if (check_line_lengths(c, s) != MPM_OK)
+    return MPM_EINPUT;
   if (blank_comments(c, s) != MPM_OK)
     return MPM_EINPUT;
   find_section_lines(c, s);

@@ -109,11 +109,14 @@ static int has_unit(const key_def *kd)
   return kd->unit && kd->unit[0] && strcmp(kd->unit, "-") != 0;
 }
 
-/* The allowed range of a numeric key: "1 ... 8", "> 0 and <= 1e6 m". */
+/* The allowed range of a numeric key: "1 ... 8", "> -1 and < 0.5",
+ * "0, or 1e-12 ... 1e6 s". */
 text mpm_io_in_range_text(const key_def *kd)
 {
   text t = {{0}};
   int lo_open = kd->flags & KF_LO_OPEN, hi_open = kd->flags & KF_HI_OPEN;
+  if (kd->flags & KF_ZERO_OFF)
+    mpm_io_in_addf(&t, "0, or ");
   if (!lo_open && !hi_open)
     mpm_io_in_addf(&t, "%s ... %s", mpm_io_in_num(kd->lo).s, mpm_io_in_num(kd->hi).s);
   else

@@ -34,14 +34,17 @@ static int parse_long(const char *s, long *v)
   return errno == ERANGE ? 2 : 0;
 }
 
-/* 0: ok (possibly non-finite), 1: not a number. */
+/* 0: ok (possibly non-finite), 1: not a number, 2: a hexadecimal number
+ * (strtod reads them, but an input is for people: decimal only). */
 static int parse_double(const char *s, double *v)
 {
   char *end;
   if (starts_blank(s))
     return 1;
   *v = strtod(s, &end);
-  return *end != '\0';
+  if (*end != '\0')
+    return 1;
+  return strpbrk(s, "xX") ? 2 : 0;
 }
 
 static int same_word(const char *a, const char *b)
@@ -71,6 +74,8 @@ static int within_range(const key_def *kd, double v)
 {
   if (!isfinite(v))
     return 0;
+  if ((kd->flags & KF_ZERO_OFF) && v == 0.0)
+    return 1;
   if ((kd->flags & KF_LO_OPEN) ? v <= kd->lo : v < kd->lo)
     return 0;
   if ((kd->flags & KF_HI_OPEN) ? v >= kd->hi : v > kd->hi)
@@ -93,7 +98,11 @@ static int store_int(in_ctx *c, const where *w, const char *s, int *out)
 static int store_real(in_ctx *c, const where *w, const char *s, double *out)
 {
   double v;
-  if (parse_double(s, &v))
+  int st = parse_double(s, &v);
+  if (st == 2)
+    return mpm_io_in_fail_key(c, w, "'%s' is a hexadecimal number (allowed: decimal numbers "
+                              "such as 1500, 0.005, 2.5e-7)", mpm_io_in_show(s).s);
+  if (st)
     return mpm_io_in_fail_key(c, w, "expected a number, got '%s'", mpm_io_in_show(s).s);
   if (!within_range(&mpm_io_in_keys[w->key], v))
     return mpm_io_in_fail_range(c, w, s);

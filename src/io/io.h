@@ -12,6 +12,7 @@
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
+#include "core/state.h"
 #include "diag/diag.h"
 #include "mesh/mesh.h"
 
@@ -24,23 +25,97 @@ void mpm_io_input_defaults(mpm_config *cfg);
 int mpm_io_input_load(const char *path, const char *const *overrides, int noverrides,
                       mpm_config *cfg, mpm_err *err);
 
+/* A loaded input kept with where each value came from (a file line, a
+ * --set), so that checks made after the load (the fills, the run's size, its
+ * time step: mpm_io_input_fail) report in the shape of the reader's own
+ * errors. The overrides must outlive it. */
+typedef struct mpm_io_input mpm_io_input;
+
+/* mpm_io_input_load, keeping the input in *in (NULL on error). */
+int mpm_io_input_open(mpm_io_input **in, const char *path, const char *const *overrides,
+                      int noverrides, mpm_config *cfg, mpm_err *err);
+
+/* The same from the text of an input (a resolved input stored with a run);
+ * name stands for the file in messages. */
+int mpm_io_input_open_text(mpm_io_input **in, const char *name, const char *content,
+                           const char *const *overrides, int noverrides, mpm_config *cfg,
+                           mpm_err *err);
+
+void mpm_io_input_free(mpm_io_input *in);  /* accepts NULL */
+
+/* MPM_EINPUT with "FILE:LINE: key 'KEY': MESSAGE" (or "--set '...': ..."),
+ * LINE where KEY was set, else where its section opens. KEY is
+ * "section.key" or "fill.TITLE.key" of cfg, the configuration in loaded. */
+int mpm_io_input_fail(mpm_io_input *in, const mpm_config *cfg, const char *key, mpm_err *err,
+                      const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+
 /* Write cfg in input-file syntax; reading it back gives the same cfg. */
 int mpm_io_input_write(FILE *f, const mpm_config *cfg);
 
 /* Run output: run.h5, run.xdmf and diagnostics.csv in one directory. */
 typedef struct mpm_io_output mpm_io_output;
 
-/* Create dir (and parents) if needed and open the files. The version, the
- * command line and the resolved input text (mpm_io_input_write) are stored as
- * attributes of run.h5. */
-int mpm_io_output_open(mpm_io_output **out, const char *dir, const char *cmdline,
+/* Where a run comes from, for the attributes of run.h5 (with the program
+ * version, the host and the times, which io finds itself). */
+typedef struct mpm_io_origin {
+  const char *command_line;   /* as typed */
+  const char *revision;       /* source revision of the program; NULL: "unknown" */
+  int threads;                /* OpenMP threads of the run */
+} mpm_io_origin;
+
+/* Create dir (and parents) if needed and open the files. run.h5's root
+ * attributes: version, revision, command_line, input (the resolved text,
+ * mpm_io_input_write), host, threads, start_time, end_time ("" until
+ * mpm_io_output_end), status ("running" until then), resumed (0) and
+ * resume_log (""). */
+int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                        const char *input_text, const mpm_mesh *m, mpm_err *err);
+
+/* Open the output of a run in dir to continue it after its first nframes
+ * frames: later frames (written after the checkpoint it continues from) are
+ * removed from run.h5, diagnostics.csv is cut after its nframes rows and
+ * run.xdmf written again; resumed grows by one, resume_log gains a line
+ * "START host=H threads=N: COMMAND", status is "running" again. */
+int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                         long nframes, mpm_err *err);
+
+/* The end of a run in run.h5: end_time now and status ("finished",
+ * "stopped" (resumable), "failed"). */
+int mpm_io_output_end(mpm_io_output *out, const char *status, mpm_err *err);
+
+/* 1 when dir holds a run (run.h5 or checkpoint.h5), with *what the file. */
+int mpm_io_output_occupied(const char *dir, const char **what);
 
 /* Append one frame of point fields and one diagnostics row. */
 int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_diag *d, mpm_err *err);
 
 /* Write run.xdmf and close everything; accepts NULL. */
 int mpm_io_output_close(mpm_io_output *out, mpm_err *err);
+
+/* ---- checkpoints (checkpoint.c) ----------------------------------------------
+ * DIR/checkpoint.h5: a run's state (core/state.h) and its resolved input,
+ * written whole to DIR/checkpoint.h5.tmp (assembled in memory, written with
+ * one write and fsync) and renamed over the previous one, so a checkpoint is
+ * either the old one or the new one, never half of each. */
+int mpm_io_checkpoint_write(const char *dir, const mpm_run_state *st, const char *input_text,
+                            const char *written_by, mpm_err *err);
+
+/* A checkpoint read back: the state (its points and series allocated), the
+ * resolved input and the program that wrote it ("VERSION (REVISION)"). */
+typedef struct mpm_io_checkpoint {
+  mpm_run_state state;
+  char *input;
+  char written_by[128];
+} mpm_io_checkpoint;
+
+int mpm_io_checkpoint_read(const char *dir, mpm_io_checkpoint *ck, mpm_err *err);
+void mpm_io_checkpoint_clear(mpm_io_checkpoint *ck);   /* frees what read allocated */
+
+/* The time and step of DIR/checkpoint.h5, without reading its points. */
+int mpm_io_checkpoint_when(const char *dir, double *t, long *step, mpm_err *err);
+
+/* Remove DIR/checkpoint.h5 (a finished run needs none); none there is fine. */
+int mpm_io_checkpoint_remove(const char *dir, mpm_err *err);
 
 /* Print one frame (frame < 0: the last) of run directory dir as CSV with a
  * header row; fields is a comma list of field names or NULL for all. */
@@ -59,8 +134,23 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
                     mpm_err *err);
 
 /* Frame `frame` (< 0: the last) into pts (previous contents replaced) and
- * its time *t. Extents are zero when the run did not write them. */
+ * its time *t. Extents are zero when the run did not write them; a frame
+ * that lacks another field, or whose npoints does not match its data, is
+ * MPM_EIO (a damaged run), found before anything is allocated. */
 int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
                      mpm_err *err);
+
+/* Where a run came from and how it ended: run.h5's root attributes
+ * (mpm_io_output_open; "" for those an older run lacks) and its frames. */
+typedef struct mpm_io_provenance {
+  char *version, *revision, *command_line, *input, *host;
+  char *start_time, *end_time, *status, *resume_log;
+  int threads, resumed;       /* -1: not recorded */
+  int nframes;
+  double t_last;              /* time of the last frame [s] */
+} mpm_io_provenance;
+
+int mpm_io_run_provenance(const mpm_io_run *r, mpm_io_provenance *p, mpm_err *err);
+void mpm_io_run_provenance_clear(mpm_io_provenance *p);  /* accepts NULL */
 
 #endif

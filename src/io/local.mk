@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_io.la
 libmpm_io_la_SOURCES = src/io/input.c src/io/output.c src/io/extract.c src/io/frame.c \
-	src/io/io.h src/io/h5err.c src/io/h5err.h
+	src/io/io.h src/io/h5err.c src/io/h5err.h src/io/checkpoint.c
 libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/text.h
 
 # test_output compiles the output and extract sources directly, so it does not
@@ -8,7 +8,7 @@ libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/t
 check_PROGRAMS += tests/test_output
 TESTS += tests/test_output
 tests_test_output_SOURCES = tests/test_output.c src/io/output.c src/io/extract.c \
-	src/io/frame.c src/io/h5err.c
+	src/io/frame.c src/io/h5err.c src/io/checkpoint.c
 tests_test_output_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LIBS) \
 	$(CHECK_LIBS) -lm
@@ -24,10 +24,10 @@ libmpm_io_la_SOURCES += $(INPUT_PARTS)
 # name tables (material, shape, bc, mesh, nonlocal) but not HDF5. cli-input.sh runs
 # `granmpm check` on every file under tests/inputs/bad and on the good inputs.
 check_PROGRAMS += tests/test_input
-TESTS += tests/test_input tests/cli-input.sh tests/cli-extract.sh
+TESTS += tests/test_input tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh
 tests_test_input_SOURCES = tests/test_input.c src/io/input.c $(INPUT_PARTS) src/io/text.c
 tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
 tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \
 	libmpm_mesh.la libmpm_linalg.la libmpm_core.la $(SUITESPARSE_LIBS) $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
-EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/inputs
+EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh tests/inputs

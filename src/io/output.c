@@ -30,6 +30,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "diag/flow.h"
 #include "io/h5err.h"
@@ -93,81 +95,7 @@ struct mpm_io_output {
   size_t work_cap;
 };
 
-/* ---- small HDF5 writers --------------------------------------------------- */
-
-/* Scalar attribute of a predefined type. */
-static herr_t attr_scalar(hid_t obj, const char *name, hid_t type, const void *v)
-{
-  hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = space < 0 ? H5I_INVALID_HID
-                         : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-  herr_t rc = attr < 0 ? -1 : H5Awrite(attr, type, v);
-  mpm_io_h5_close(attr);
-  mpm_io_h5_close(space);
-  return rc;
-}
-
-static herr_t attr_double(hid_t obj, const char *name, double v)
-{
-  return attr_scalar(obj, name, H5T_NATIVE_DOUBLE, &v);
-}
-
-static herr_t attr_int(hid_t obj, const char *name, int v)
-{
-  return attr_scalar(obj, name, H5T_NATIVE_INT, &v);
-}
-
-/* Fixed-length, NUL-terminated string attribute; NULL is the empty string. */
-static herr_t attr_string(hid_t obj, const char *name, const char *s)
-{
-  const char *v = s ? s : "";
-  hid_t type = H5Tcopy(H5T_C_S1);
-  hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = H5I_INVALID_HID;
-  herr_t rc = -1;
-  if (type >= 0 && space >= 0 && H5Tset_size(type, strlen(v) + 1) >= 0 &&
-      H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0) {
-    attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    if (attr >= 0)
-      rc = H5Awrite(attr, type, v);
-  }
-  mpm_io_h5_close(attr);
-  mpm_io_h5_close(space);
-  mpm_io_h5_close(type);
-  return rc;
-}
-
-/* 1-D dataset of n values with unit and description attributes. */
-static herr_t write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype, size_t n,
-                          const void *buf, const char *unit, const char *desc)
-{
-  hsize_t dims[1] = {(hsize_t)n};
-  hid_t space = H5Screate_simple(1, dims, NULL);
-  hid_t dset = space < 0 ? H5I_INVALID_HID
-                         : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT);
-  herr_t rc = dset < 0 ? -1 : 0;
-  if (rc >= 0 && n > 0)
-    rc = H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
-  if (rc >= 0 && unit)
-    rc = attr_string(dset, "unit", unit);
-  if (rc >= 0 && desc)
-    rc = attr_string(dset, "description", desc);
-  mpm_io_h5_close(dset);
-  mpm_io_h5_close(space);
-  return rc;
-}
-
 /* ---- directory and paths --------------------------------------------------- */
-
-static char *path_join(const char *dir, const char *name)
-{
-  size_t n = strlen(dir) + strlen(name) + 2;
-  char *p = malloc(n);
-  if (p)
-    snprintf(p, n, "%s/%s", dir, name);
-  return p;
-}
 
 /* Create one directory; an existing one is fine (a file in the way shows up
  * at the next level, or in make_dirs' final check). */
@@ -236,9 +164,9 @@ static mpm_io_output *output_alloc(const char *dir)
     return NULL;
   out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
   out->vertex_frame = -1;
-  out->h5_path = path_join(dir, "run.h5");
-  out->csv_path = path_join(dir, "diagnostics.csv");
-  out->xdmf_path = path_join(dir, "run.xdmf");
+  out->h5_path = mpm_io_path_join(dir, "run.h5");
+  out->csv_path = mpm_io_path_join(dir, "diagnostics.csv");
+  out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
   if (!out->h5_path || !out->csv_path || !out->xdmf_path) {
     output_free(out);
     return NULL;
@@ -296,7 +224,7 @@ static herr_t write_lines(hid_t g, const char *name, int n, double x0, double dx
     return -1;
   for (size_t i = 0; i < len; i++)
     c[i] = x0 + (double)i * dx;
-  rc = write_array(g, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, len, c, "m", desc);
+  rc = mpm_io_h5_write_array(g, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, len, c, "m", desc);
   free(c);
   return rc;
 }
@@ -306,13 +234,13 @@ static herr_t write_mesh(hid_t file, const mpm_mesh *m)
   hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   herr_t rc = g < 0 ? -1 : 0;
   if (rc >= 0) /* a negative status in any term makes the OR negative */
-    rc = attr_int(g, "nx", m->nx) | attr_int(g, "ny", m->ny) | attr_double(g, "x0", m->x0) |
-         attr_double(g, "y0", m->y0) | attr_double(g, "dx", m->dx) |
-         attr_double(g, "dy", m->dy) |
-         attr_string(g, "topology", known(mpm_mesh_topology_name(m->topology))) |
-         attr_string(g, "diagonal", known(mpm_mesh_diagonal_name(m->diagonal))) |
-         attr_double(g, "mirror_x", m->mirror_x) | attr_int(g, "periodic_x", m->periodic_x) |
-         attr_int(g, "periodic_y", m->periodic_y);
+    rc = mpm_io_h5_attr_int(g, "nx", m->nx) | mpm_io_h5_attr_int(g, "ny", m->ny) | mpm_io_h5_attr_double(g, "x0", m->x0) |
+         mpm_io_h5_attr_double(g, "y0", m->y0) | mpm_io_h5_attr_double(g, "dx", m->dx) |
+         mpm_io_h5_attr_double(g, "dy", m->dy) |
+         mpm_io_h5_attr_string(g, "topology", known(mpm_mesh_topology_name(m->topology))) |
+         mpm_io_h5_attr_string(g, "diagonal", known(mpm_mesh_diagonal_name(m->diagonal))) |
+         mpm_io_h5_attr_double(g, "mirror_x", m->mirror_x) | mpm_io_h5_attr_int(g, "periodic_x", m->periodic_x) |
+         mpm_io_h5_attr_int(g, "periodic_y", m->periodic_y);
   if (rc >= 0)
     rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the vertical mesh lines");
   if (rc >= 0)
@@ -321,14 +249,56 @@ static herr_t write_mesh(hid_t file, const mpm_mesh *m)
   return rc;
 }
 
-static herr_t write_header(mpm_io_output *out, const char *cmdline, const char *input,
+/* The time now, UTC, ISO 8601. */
+static void utc_now(char *buf, size_t len)
+{
+  time_t now = time(NULL);
+  struct tm tm;
+  if (!gmtime_r(&now, &tm) || !strftime(buf, len, "%Y-%m-%dT%H:%M:%SZ", &tm))
+    snprintf(buf, len, "unknown");
+}
+
+static void host_name(char *buf, size_t len)
+{
+  if (gethostname(buf, len) != 0)
+    snprintf(buf, len, "unknown");
+  buf[len - 1] = '\0';
+}
+
+/* Provenance of a new run: program, command line, host, threads, start. */
+static herr_t write_origin(hid_t file, const mpm_io_origin *o, const char *input)
+{
+  char now[32], host[256];
+  utc_now(now, sizeof now);
+  host_name(host, sizeof host);
+  herr_t rc = mpm_io_h5_attr_string(file, "version", PACKAGE_VERSION);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "revision", o->revision ? o->revision : "unknown");
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "command_line", o->command_line);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "input", input);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "host", host);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_int(file, "threads", o->threads);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "start_time", now);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "end_time", "");
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "status", "running");
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_int(file, "resumed", 0);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "resume_log", "");
+  return rc;
+}
+
+static herr_t write_header(mpm_io_output *out, const mpm_io_origin *o, const char *input,
                            const mpm_mesh *m)
 {
-  herr_t rc = attr_string(out->file, "version", PACKAGE_VERSION);
-  if (rc >= 0)
-    rc = attr_string(out->file, "command_line", cmdline);
-  if (rc >= 0)
-    rc = attr_string(out->file, "input", input);
+  herr_t rc = write_origin(out->file, o, input);
   if (rc >= 0 && m)
     rc = write_mesh(out->file, m);
   if (rc >= 0) {
@@ -341,7 +311,7 @@ static herr_t write_header(mpm_io_output *out, const char *cmdline, const char *
   return rc;
 }
 
-static int output_open(mpm_io_output **pout, const char *dir, const char *cmdline,
+static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origin *o,
                        const char *input, const mpm_mesh *m, const mpm_io_h5_quiet *q, mpm_err *err)
 {
   int rc = make_dirs(dir, err);
@@ -359,7 +329,7 @@ static int output_open(mpm_io_output **pout, const char *dir, const char *cmdlin
     if (out->file < 0)
       rc = mpm_io_h5_fail(err, q, "cannot create", out->h5_path);
   }
-  if (rc == MPM_OK && write_header(out, cmdline, input, m) < 0)
+  if (rc == MPM_OK && write_header(out, o, input, m) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot write header of", out->h5_path);
   if (rc != MPM_OK) {
     output_free(out);
@@ -369,18 +339,199 @@ static int output_open(mpm_io_output **pout, const char *dir, const char *cmdlin
   return MPM_OK;
 }
 
-int mpm_io_output_open(mpm_io_output **out, const char *dir, const char *cmdline,
+int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                        const char *input_text, const mpm_mesh *m, mpm_err *err)
 {
   mpm_io_h5_quiet q;
   int rc;
-  if (!out)
-    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: no output handle");
+  if (!out || !origin)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: no output handle or origin");
   *out = NULL;
   if (!dir || !dir[0])
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: empty output directory");
+  mpm_io_h5_init();
   mpm_io_h5_quiet_begin(&q);
-  rc = output_open(out, dir, cmdline, input_text, m, &q, err);
+  rc = output_open(out, dir, origin, input_text, m, &q, err);
+  mpm_io_h5_quiet_end(&q);
+  return rc;
+}
+
+int mpm_io_output_occupied(const char *dir, const char **what)
+{
+  const char *const names[] = {"run.h5", "checkpoint.h5"};
+  for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+    char *p = mpm_io_path_join(dir, names[k]);
+    struct stat st;
+    int there = p && stat(p, &st) == 0;
+    free(p);
+    if (there) {
+      if (what)
+        *what = names[k];
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* ---- reopening a run to append to it ---------------------------------------- */
+
+static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, mpm_err *err);
+
+/* Frames from `first` on (with their XY views and connectivity) removed:
+ * written after the checkpoint a run continues from. */
+static herr_t drop_frames(mpm_io_output *out, long first)
+{
+  char name[32];
+  for (long k = first;; k++) {
+    snprintf(name, sizeof name, "%06ld", k);
+    if (H5Lexists(out->frames, name, H5P_DEFAULT) <= 0)
+      return 0;
+    if (H5Ldelete(out->frames, name, H5P_DEFAULT) < 0)
+      return -1;
+    const char *views[] = {"xy_%06ld", "vertex_%06ld"};
+    for (int v = 0; v < 2; v++) {
+      snprintf(name, sizeof name, views[v], k);
+      if (H5Lexists(out->xdmf_group, name, H5P_DEFAULT) > 0 &&
+          H5Ldelete(out->xdmf_group, name, H5P_DEFAULT) < 0)
+        return -1;
+    }
+  }
+}
+
+/* The resumption recorded: resumed + 1, a line "START host=H threads=N: COMMAND"
+ * in resume_log, and the run running again. */
+static herr_t record_resume(hid_t file, const mpm_io_origin *o)
+{
+  char now[32], host[256];
+  int resumed = 0;
+  utc_now(now, sizeof now);
+  host_name(host, sizeof host);
+  mpm_io_h5_attr_read(file, "resumed", H5T_NATIVE_INT, &resumed);
+  char *old = mpm_io_h5_attr_text(file, "resume_log");
+  const char *cmd = o->command_line ? o->command_line : "";
+  size_t len = (old ? strlen(old) : 0) + strlen(now) + strlen(host) + strlen(cmd) + 64;
+  char *log = malloc(len);
+  herr_t rc = log ? 0 : -1;
+  if (log)
+    snprintf(log, len, "%s%s host=%s threads=%d: %s\n", old ? old : "", now, host, o->threads,
+             cmd);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "resume_log", log);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_int(file, "resumed", resumed + 1);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "status", "running");
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "end_time", "");
+  free(old);
+  free(log);
+  return rc;
+}
+
+/* diagnostics.csv cut after its header and nframes rows, open for appending. */
+static int reopen_csv(mpm_io_output *out, long nframes, mpm_err *err)
+{
+  out->csv = fopen(out->csv_path, "r+");
+  if (!out->csv)
+    return mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", out->csv_path, strerror(errno));
+  long rows = -1;                              /* the header is row -1 */
+  int ch;
+  while (rows < nframes && (ch = getc(out->csv)) != EOF)
+    rows += ch == '\n';
+  long end = ftell(out->csv);
+  if (rows < nframes)
+    return mpm_err_set(err, MPM_EIO, "'%s' has %ld rows, the run %ld frames", out->csv_path,
+                       rows < 0 ? 0 : rows, nframes);
+  if (end < 0 || fflush(out->csv) != 0 || ftruncate(fileno(out->csv), end) != 0 ||
+      fseek(out->csv, 0, SEEK_END) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot cut '%s': %s", out->csv_path, strerror(errno));
+  return MPM_OK;
+}
+
+/* run.xdmf written again for frames 0 .. nframes-1 of run.h5. */
+static int rebuild_xdmf(mpm_io_output *out, long nframes, const mpm_io_h5_quiet *q, mpm_err *err)
+{
+  int rc = open_xdmf(out, err);
+  for (long k = 0; rc == MPM_OK && k < nframes; k++) {
+    char name[32];
+    unsigned long long n = 0;
+    double t = 0.0;
+    snprintf(name, sizeof name, "%06ld", k);
+    hid_t g = H5Gopen2(out->frames, name, H5P_DEFAULT);
+    if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, &t) < 0 ||
+        mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0)
+      rc = mpm_io_h5_fail(err, q, "cannot read the frames of", out->h5_path);
+    mpm_io_h5_close(g);
+    snprintf(name, sizeof name, "vertex_%06ld", k);
+    if (rc == MPM_OK && H5Lexists(out->xdmf_group, name, H5P_DEFAULT) > 0) {
+      out->vertex_frame = (int)k;
+      out->vertex_n = (size_t)n;
+    }
+    out->nframes = (int)k;
+    if (rc == MPM_OK)
+      rc = write_xdmf_frame(out, t, (size_t)n, err);
+  }
+  out->nframes = (int)nframes;
+  return rc;
+}
+
+static int output_reopen(mpm_io_output *out, const mpm_io_origin *o, long nframes,
+                         const mpm_io_h5_quiet *q, mpm_err *err)
+{
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (fapl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110) >= 0)
+    out->file = H5Fopen(out->h5_path, H5F_ACC_RDWR, fapl);
+  mpm_io_h5_close(fapl);
+  if (out->file < 0)
+    return mpm_io_h5_fail(err, q, "cannot open", out->h5_path);
+  out->frames = H5Gopen2(out->file, "frames", H5P_DEFAULT);
+  out->xdmf_group = H5Gopen2(out->file, "xdmf", H5P_DEFAULT);
+  H5G_info_t info;
+  if (out->frames < 0 || out->xdmf_group < 0 || H5Gget_info(out->frames, &info) < 0)
+    return mpm_io_h5_fail(err, q, "no frames in", out->h5_path);
+  if ((long long)info.nlinks < nframes)
+    return mpm_err_set(err, MPM_EIO, "'%s' has %llu frames, the checkpoint counts %ld",
+                       out->h5_path, (unsigned long long)info.nlinks, nframes);
+  if (drop_frames(out, nframes) < 0 || record_resume(out->file, o) < 0 ||
+      H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
+    return mpm_io_h5_fail(err, q, "cannot update", out->h5_path);
+  int rc = reopen_csv(out, nframes, err);
+  return rc == MPM_OK ? rebuild_xdmf(out, nframes, q, err) : rc;
+}
+
+int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                         long nframes, mpm_err *err)
+{
+  mpm_io_h5_quiet q;
+  if (!out || !origin || !dir || nframes < 0)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_reopen: invalid arguments");
+  *out = output_alloc(dir);
+  if (!*out)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
+  mpm_io_h5_init();
+  mpm_io_h5_quiet_begin(&q);
+  int rc = output_reopen(*out, origin, nframes, &q, err);
+  mpm_io_h5_quiet_end(&q);
+  if (rc != MPM_OK) {
+    output_free(*out);
+    *out = NULL;
+  }
+  return rc;
+}
+
+int mpm_io_output_end(mpm_io_output *out, const char *status, mpm_err *err)
+{
+  mpm_io_h5_quiet q;
+  char now[32];
+  if (!out)
+    return MPM_OK;
+  utc_now(now, sizeof now);
+  mpm_io_h5_quiet_begin(&q);
+  int bad = mpm_io_h5_attr_string(out->file, "end_time", now) < 0 ||
+            mpm_io_h5_attr_string(out->file, "status", status) < 0 ||
+            H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0;
+  int rc = bad ? mpm_io_h5_fail(err, &q, "cannot write the end of the run to", out->h5_path)
+               : MPM_OK;
   mpm_io_h5_quiet_end(&q);
   return rc;
 }
@@ -417,7 +568,7 @@ static int write_fields(mpm_io_output *out, hid_t g, const mpm_points *pts,
   for (size_t k = 0; k < NFIELDS; k++) {
     const field_spec *f = &output_fields[k];
     int isint = f->kind == FIELD_INT;
-    herr_t rc = write_array(g, f->name, isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
+    herr_t rc = mpm_io_h5_write_array(g, f->name, isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
                             isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, pts->n,
                             field_values(out, f, pts), f->unit, f->description);
     if (rc < 0)
@@ -441,7 +592,7 @@ static int write_vertices(mpm_io_output *out, size_t n, const mpm_io_h5_quiet *q
   for (size_t i = 0; i < n; i++)
     v[i] = (int)i;
   snprintf(name, sizeof name, "vertex_%06d", out->nframes);
-  rc = write_array(out->xdmf_group, name, H5T_STD_I32LE, H5T_NATIVE_INT, n, v, NULL,
+  rc = mpm_io_h5_write_array(out->xdmf_group, name, H5T_STD_I32LE, H5T_NATIVE_INT, n, v, NULL,
                    "Polyvertex connectivity of run.xdmf");
   free(v);
   if (rc < 0)
@@ -496,8 +647,8 @@ static int write_frame_h5(mpm_io_output *out, const mpm_points *pts, double t,
       H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) >= 0)
     g = H5Gcreate2(out->frames, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
   mpm_io_h5_close(gcpl);
-  if (g < 0 || attr_double(g, "time", t) < 0 ||
-      attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
+  if (g < 0 || mpm_io_h5_attr_double(g, "time", t) < 0 ||
+      mpm_io_h5_attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot create frame group in", out->h5_path);
   if (rc == MPM_OK)
     rc = write_fields(out, g, pts, q, err);

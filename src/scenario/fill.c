@@ -14,19 +14,34 @@
 #include <math.h>
 #include <stdlib.h>
 
+/* x of the sides of polygon f crossed by the horizontal line at y, in xc
+ * (room for f->nvert); returns their number. */
+static int crossings(const mpm_fill_config *f, double y, double *xc)
+{
+  int k = 0;
+  for (int a = 0, b = f->nvert - 1; a < f->nvert; b = a++) {
+    double ya = f->py[a], yb = f->py[b];
+    if ((ya > y) != (yb > y))
+      xc[k++] = f->px[a] + (y - ya) * (f->px[b] - f->px[a]) / (yb - ya);
+  }
+  return k;
+}
+
 /* Even-odd rule: a ray to +x crosses the polygon boundary an odd number of times. */
 static int inside_polygon(const mpm_fill_config *f, double x, double y)
 {
-  int in = 0;
-  for (int a = 0, b = f->nvert - 1; a < f->nvert; b = a++) {
-    double ya = f->py[a], yb = f->py[b];
-    if ((ya > y) != (yb > y)) {
-      double xc = f->px[a] + (y - ya) * (f->px[b] - f->px[a]) / (yb - ya);
-      if (x < xc)
-        in = !in;
-    }
-  }
+  double xc[MPM_MAX_POLY];
+  int in = 0, k = crossings(f, y, xc);
+  for (int c = 0; c < k; c++)
+    if (x < xc[c])
+      in = !in;
   return in;
+}
+
+/* Centre of sub-cell i (of n per unit) along x; the same for y with y0, dy. */
+static double sub_centre(double x0, double d, int n, long i)
+{
+  return x0 + ((double)i + 0.5) * (d / n);
 }
 
 int mpm_scenario_inside(const mpm_fill_config *f, double x, double y)
@@ -84,6 +99,9 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
     return mpm_err_set(err, MPM_EINPUT, "fill: density = %g must be > 0 kg/m^3", f->density);
   double hx = m->dx / n, hy = m->dy / n;
   double vol = hx * hy;                                    /* V_p = dx dy / n^2 */
+  if (mpm_points_reserve(pts, pts->n + mpm_scenario_count(f, m)) != MPM_OK)
+    return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points",
+                       pts->n + mpm_scenario_count(f, m));
   int state = (par->rho_c > 0.0 && f->density < par->rho_c) ? MPM_STATE_DISCONNECTED
                                                              : MPM_STATE_DENSE;
   size_t first = pts->n, count = 0;
@@ -93,9 +111,9 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
   if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points", pts->n + count);
   for (int j = 0; j < m->ny * n; j++) {
-    double y = m->y0 + (j + 0.5) * hy;
+    double y = sub_centre(m->y0, m->dy, n, j);
     for (int i = 0; i < m->nx * n; i++) {
-      double x = m->x0 + (i + 0.5) * hx;
+      double x = sub_centre(m->x0, m->dx, n, i);
       if (!mpm_scenario_inside(f, x, y))
         continue;
       size_t p;
@@ -122,4 +140,96 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
       pts->mass[p] *= exp(f->pressure / par->K);            /* rho = rho_fill exp(p/K) */
     }
   return MPM_OK;
+}
+
+/* ---- counting without filling ---------------------------------------------- */
+
+/* Sub-cell centres of one row: i in [0, ni) at x0 + (i + 1/2) d / n. */
+typedef struct row {
+  double x0, d, y;
+  int n;
+  long ni;
+  const mpm_fill_config *f;
+} row;
+
+/* The first i in [lo, hi) where inside(x_i) differs from `from` (hi if none),
+ * for a predicate that changes at most once on [lo, hi). */
+static long first_change(const row *r, long lo, long hi, int from)
+{
+  while (lo < hi) {
+    long mid = lo + (hi - lo) / 2;
+    if (mpm_scenario_inside(r->f, sub_centre(r->x0, r->d, r->n, mid), r->y) == from)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/* The first i with x_i >= x (ni if none): positions grow with i. */
+static long first_at_or_after(const row *r, double x)
+{
+  long lo = 0, hi = r->ni;
+  while (lo < hi) {
+    long mid = lo + (hi - lo) / 2;
+    if (sub_centre(r->x0, r->d, r->n, mid) < x)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+static int cmp_long(const void *a, const void *b)
+{
+  long x = *(const long *)a, y = *(const long *)b;
+  return (x > y) - (x < y);
+}
+
+/* Points of one row inside f. A rectangle or a disc holds one run of
+ * centres (the test is monotone on either side of the centre: |x - cx|
+ * grows with |i - ic| in floating point too). A polygon's even-odd count
+ * changes only where x passes a crossing xc ("x < xc" as in the fill), so the
+ * centres before crossing k are a prefix [0, p_k) and the row is inside
+ * where an odd number of prefixes hold it. */
+static long row_count(const row *r)
+{
+  const mpm_fill_config *f = r->f;
+  if (f->shape == MPM_FILL_POLYGON) {
+    double xc[MPM_MAX_POLY];
+    long p[MPM_MAX_POLY], count = 0, prev = 0;
+    int k = crossings(f, r->y, xc);
+    for (int c = 0; c < k; c++)
+      p[c] = first_at_or_after(r, xc[c]);   /* x_i < xc exactly for i < p */
+    qsort(p, (size_t)k, sizeof *p, cmp_long);
+    for (int c = 0; c < k; c++) {           /* on [p_{c-1}, p_c): k - c prefixes hold */
+      if ((k - c) % 2)
+        count += p[c] - prev;
+      prev = p[c];
+    }
+    return count;
+  }
+  double centre = f->shape == MPM_FILL_DISC ? f->cx : 0.5 * (f->xmin + f->xmax);
+  long ic = first_at_or_after(r, centre);
+  long left = ic > 0 && mpm_scenario_inside(f, sub_centre(r->x0, r->d, r->n, ic - 1), r->y)
+                  ? first_change(r, 0, ic, 0)    /* outside ... inside up to ic */
+                  : ic;
+  long right = ic < r->ni && mpm_scenario_inside(f, sub_centre(r->x0, r->d, r->n, ic), r->y)
+                   ? first_change(r, ic, r->ni, 1)  /* inside from ic ... outside */
+                   : ic;
+  return right - left;
+}
+
+size_t mpm_scenario_count(const mpm_fill_config *f, const mpm_mesh *m)
+{
+  const int n = f->ppu;
+  if (n < 1)
+    return 0;
+  row r = {.x0 = m->x0, .d = m->dx, .n = n, .ni = (long)m->nx * n, .f = f};
+  size_t total = 0;
+  for (long j = 0; j < (long)m->ny * n; j++) {
+    r.y = sub_centre(m->y0, m->dy, n, j);
+    total += (size_t)row_count(&r);
+  }
+  return total;
 }

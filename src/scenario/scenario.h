@@ -7,6 +7,8 @@
 #ifndef MPM_SCENARIO_SCENARIO_H
 #define MPM_SCENARIO_SCENARIO_H
 
+#include <stddef.h>
+
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
@@ -17,6 +19,11 @@
  * by a lithostatic pre-stress (negative downwards). */
 int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config *f,
                       const mpm_material_params *par, double gy, mpm_err *err);
+
+/* The number of points mpm_scenario_fill appends for f on m, exactly, and
+ * without making them (a few bisections per row of sub-cells): for the size
+ * of a run before it is built. */
+size_t mpm_scenario_count(const mpm_fill_config *f, const mpm_mesh *m);
 
 /* 1 if (x, y) lies in the region. */
 int mpm_scenario_inside(const mpm_fill_config *f, double x, double y);

@@ -14,6 +14,8 @@ static int fate(const mpm_sim *s, double x, double y)
 {
   const mpm_mesh *m = &s->mesh;
   const mpm_config *c = &s->cfg;
+  if (!isfinite(x) || !isfinite(y))
+    return -1;                                   /* nowhere: said by mpm_sim_check_state */
   if (y < c->remove.below)
     return 1;
   const int out_l = !m->periodic_x && x < m->x0, out_r = !m->periodic_x && x > m->x0 + m->lx;
@@ -42,8 +44,8 @@ static void compact_values(double *a, const unsigned char *keep, size_t n)
 }
 
 /* 1 if some point may leave: below remove.below, or outside the mesh along
- * a non-periodic direction (the common case, none, in one pass that
- * vectorises). */
+ * a non-periodic direction, or at a non-finite position (the common case,
+ * none, in one pass that vectorises; a NaN fails every comparison). */
 static int any_may_leave(const mpm_sim *s)
 {
   const mpm_mesh *m = &s->mesh;
@@ -56,7 +58,7 @@ static int any_may_leave(const mpm_sim *s)
   const double *x = P->x, *y = P->y;
   int any = 0;
   for (size_t p = 0; p < P->n; p++)
-    any |= (x[p] < xlo) | (x[p] > xhi) | (y[p] < ylo) | (y[p] > yhi);
+    any |= !(x[p] >= xlo) | !(x[p] <= xhi) | !(y[p] >= ylo) | !(y[p] <= yhi);
   return any;
 }
 
@@ -68,6 +70,8 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
   size_t first = P->n;
   for (size_t p = 0; p < P->n; p++) {
     const int f = fate(s, P->x[p], P->y[p]);
+    if (f < 0 && mpm_sim_check_state(s, t, err) != MPM_OK)
+      return err ? err->code : MPM_ENONFINITE;   /* a blow-up, not a point gone astray */
     if (f < 0)
       return mpm_err_set(err, MPM_EOUTSIDE,
                          "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s, not through "

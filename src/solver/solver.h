@@ -14,6 +14,7 @@
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
+#include "core/state.h"
 #include "diag/diag.h"
 #include "material/density.h"
 #include "material/material.h"
@@ -74,6 +75,11 @@ typedef struct mpm_sim {
   double mlight;                  /* nodes lighter than this take the body force only */
   double mass_removed;            /* mass of the points removed so far [kg/m] */
   long nremoved;                  /* their number */
+
+  /* The run driver's schedule (run.c), here so that a checkpoint holds it. */
+  long frames;                    /* frames emitted so far */
+  long frame_next;                /* the next frame is due at frame_next * frame_dt */
+  long check_next;                /* the next checkpoint at check_next * checkpoint_dt */
 } mpm_sim;
 
 /* The point store is reordered by unit row at every step that is a multiple
@@ -89,6 +95,32 @@ void mpm_sim_free(mpm_sim *s);  /* accepts NULL */
  * (time.dt, or cfl min(dx, dy) / (c_p + |v|max) at the densest, fastest fill;
  * material.n_sub, or ceil(dt / material.dt_sub)), without building a run. */
 void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub);
+
+/* The largest stable time step of cfg: time.cfl = 1 in the rule above. */
+double mpm_sim_stable_dt(const mpm_config *cfg);
+
+/* Constitutive substeps per step of length dt: material.n_sub, or
+ * ceil(dt / material.dt_sub), not capped (mpm_sim_time_plan caps it at 1e6;
+ * a run that needs more is refused before it is built). */
+double mpm_sim_substeps(const mpm_config *cfg, double dt);
+
+/* The size of a run, from its input alone (plan.c). Counts that may be
+ * astronomical for a bad input are doubles. */
+typedef struct mpm_sim_size {
+  size_t points;                     /* material points of all fills (exact) */
+  size_t fill_points[MPM_MAX_FILLS]; /* ... of each fill */
+  long nodes;                        /* mesh nodes */
+  double dt;                         /* the time step [s] */
+  double dt_stable;                  /* the largest stable one, mpm_sim_stable_dt [s] */
+  double steps;                      /* ceil(t_end / dt) */
+  double n_sub;                      /* constitutive substeps per step (not capped) */
+  double frames;                     /* frames written, at most */
+  double memory;                     /* memory the run holds at its peak [bytes], estimate */
+  double output;                     /* bytes written: run.h5, run.xdmf, diagnostics.csv,
+                                        checkpoint.h5 (with its temporary copy), estimate */
+} mpm_sim_size;
+
+void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
 
 /* Gravity vector at time t (linear ramp over t_ramp). */
 void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy);
@@ -111,13 +143,49 @@ typedef void (*mpm_progress_fn)(void *ctx, const mpm_sim *s, double steps_per_s)
  * (for a nonlocal model before their units are frozen). */
 int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err);
 
+/* The state of every point at time t, checked (health.c): the first
+ * non-finite (or non-positive volume) field, stresses first, else the
+ * fastest point moving more than a mesh unit per step, is MPM_ENONFINITE
+ * naming the point id, the field, its value, the time and the likely cause
+ * (the time step against the stable one, the NGF diffusion limit, or a
+ * material parameter). MPM_OK when nothing is wrong. */
+int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err);
+
+/* The cheap test run after every step: every velocity finite and below one
+ * mesh unit per step; otherwise mpm_sim_check_state's report. */
+int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err);
+
 /* Mass in the region of cfg.region [kg/m]. */
 double mpm_sim_region_mass(const mpm_sim *s);
 
-/* Step until cfg.time.t_end or until a stop condition of cfg.stop holds,
- * emitting frames; s->stop says which ended the run (set before the last
- * frame is emitted, so the frame callback can record it). */
-int mpm_sim_run(mpm_sim *s, mpm_frame_fn frame, mpm_progress_fn progress, void *ctx,
-                mpm_err *err);
+/* What the run driver calls besides the step; every member may be NULL. */
+typedef struct mpm_sim_hooks {
+  void *ctx;                      /* passed to each */
+  mpm_frame_fn frame;             /* frames: at t = 0 of a new run, every frame_dt, at the
+                                   * end, and at a stop on request when the step wrote none */
+  mpm_progress_fn progress;
+  mpm_frame_fn checkpoint;        /* every output.checkpoint_dt of simulated time, every
+                                   * output.checkpoint_wall seconds, and at a stop on
+                                   * request, after the step's frame (never at the end) */
+  int (*stop_requested)(void *ctx);  /* asked after every step: nonzero stops the run
+                                      * (MPM_STOP_REQUEST) with a checkpoint */
+} mpm_sim_hooks;
+
+/* Step until cfg.time.t_end, until a stop condition of cfg.stop holds or
+ * until a stop is requested, emitting frames and checkpoints; s->stop says
+ * which ended the run (set before the last frame is emitted, so the frame
+ * hook can record it). A simulation restored from a checkpoint continues
+ * with the schedule it had (s->frames > 0: no new frame at its start).
+ * hooks may be NULL. */
+int mpm_sim_run(mpm_sim *s, const mpm_sim_hooks *hooks, mpm_err *err);
+
+/* The state beyond the input (core/state.h), for a checkpoint: st->pts
+ * points into s; the frame series of st are left alone. */
+void mpm_sim_state_get(const mpm_sim *s, mpm_run_state *st);
+
+/* Put a checkpoint's state back into a simulation just built from the same
+ * input. MPM_EINPUT when they do not match (time step, substeps, initial
+ * mass, more points than the input makes). */
+int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err);
 
 #endif

@@ -48,7 +48,7 @@ static int nodal_alloc(mpm_sim *s)
 }
 
 /* dt = cfl min(dx, dy) / (c_p + |v|max) at the densest, fastest fill. */
-static double stable_dt(const mpm_config *cfg, const mpm_material_params *par)
+static double stable_dt(const mpm_config *cfg, const mpm_material_params *par, double cfl)
 {
   double rho = 0.0, vmax = 0.0;
   for (int f = 0; f < cfg->nfill; f++) {
@@ -58,19 +58,31 @@ static double stable_dt(const mpm_config *cfg, const mpm_material_params *par)
     if (v > vmax) vmax = v;
   }
   double h = fmin(cfg->mesh.dx, cfg->mesh.dy);
-  return cfg->time.cfl * h / (mpm_material_wave_speed(par, rho) + vmax);
+  return cfl * h / (mpm_material_wave_speed(par, rho) + vmax);
+}
+
+double mpm_sim_stable_dt(const mpm_config *cfg)
+{
+  mpm_material_params par;
+  mpm_material_params_from_config(&par, cfg);
+  return stable_dt(cfg, &par, 1.0);
+}
+
+double mpm_sim_substeps(const mpm_config *cfg, double dt)
+{
+  if (!(cfg->material.dt_sub > 0.0))
+    return cfg->material.n_sub > 0 ? cfg->material.n_sub : 1;
+  double n = ceil(dt / cfg->material.dt_sub * (1.0 - 1e-12));  /* dt/n_sub <= dt_sub */
+  return n < 1.0 ? 1.0 : n;
 }
 
 void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
 {
   mpm_material_params par;
   mpm_material_params_from_config(&par, cfg);
-  *dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(cfg, &par);
-  *n_sub = cfg->material.n_sub > 0 ? cfg->material.n_sub : 1;
-  if (cfg->material.dt_sub > 0.0) {
-    double n = ceil(*dt / cfg->material.dt_sub * (1.0 - 1e-12));  /* dt/n_sub <= dt_sub */
-    *n_sub = n < 1.0 ? 1 : n > 1e6 ? 1000000 : (int)n;
-  }
+  *dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(cfg, &par, cfg->time.cfl);
+  double n = mpm_sim_substeps(cfg, *dt);
+  *n_sub = n > 1e6 ? 1000000 : (int)n;          /* more is refused before a run is built */
 }
 
 /* Per-point L storage for the phases that move every point before any
@@ -543,11 +555,11 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   } else {
     bad = point_phase(s, mat);
   }
-  if (bad >= 0)
-    return mpm_err_set(err, MPM_ENONFINITE,
-                       "point %d: non-finite stress at (%.6g, %.6g) m, t = %.6g s",
-                       s->pts->id[bad], s->pts->x[bad], s->pts->y[bad], s->t + s->dt);
+  if (bad >= 0)                              /* a non-finite stress: what, where, why */
+    return mpm_sim_check_state(s, s->t + s->dt, err);
   s->t += s->dt;
   s->step++;
+  if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)
+    return rc;
   return mpm_sim_remove_points(s, s->t, err);
 }

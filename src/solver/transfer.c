@@ -261,10 +261,12 @@ static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double
  * a_i = f_i/m_i + (v_i^bc - v_i^n)/dt, where v_i^n = (mv)_i/m_i as mapped
  * and v_i^bc the same after the wall acted: f_i/m_i on free components (the
  * jump is exactly 0 there) and -v_i^n/dt on constrained ones. With
- * a_i = f_i/m_i = 0 there instead, a point stopped by a wall would keep its
- * velocity for ever (FLIP only adds increments): its position follows the
- * grid and stays put, but it reports kinetic energy it does not have, and a
- * kinetic-energy stop test never fires.
+ * a_i = f_i/m_i = 0 there instead (boundary.wall_acceleration = "zero",
+ * [DK15] read literally), a point stopped by a wall would keep its velocity
+ * for ever (FLIP only adds increments): its position follows the grid and
+ * stays put, but it reports kinetic energy it does not have, and a
+ * kinetic-energy stop test never fires; in steady flow along a wall the jump
+ * kicks the points beside it every step instead (docs/model.md).
  * With delta shape functions a node lighter than mlight (1e-3 of the mean
  * point mass: the points near it lie within about a thousandth of a unit of
  * its far edge) takes the body force only. Its internal force
@@ -291,7 +293,7 @@ static inline void grid_node(mpm_sim *s, int i, double bx, double by, double idt
   if (s->bc.fix[i]) {
     mpm_bc_apply_node(&s->bc, i, &mvx, &mvy);
     mpm_bc_apply_node(&s->bc, i, &fx, &fy);
-    jx = (mvx / m - vx) * idt;                            /* the wall's velocity jump / dt */
+    jx = (mvx / m - vx) * idt;                            /* the wall's velocity jump / dt, or 0 */
     jy = (mvy / m - vy) * idt;
   }
   mvx += s->dt * fx;                                      /* (mv)_i += dt f_i */
@@ -325,7 +327,7 @@ void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
   const int kind = mpm_sim_in_kind(s);
   const mpm_mesh_bands *b = s->bands;
   const int nn = s->mesh.nnodes;
-  const double idt = 1.0 / s->dt;
+  const double idt = s->cfg.bc.wall_acceleration == MPM_WALL_ZERO ? 0.0 : 1.0 / s->dt;
 #pragma omp parallel
   {
 #pragma omp for schedule(static)

@@ -1,0 +1,380 @@
+/* checkpoint.c: DIR/checkpoint.h5, the state a run continues from
+ * (core/state.h) and its resolved input.
+ *
+ *   root attributes  format, written_by; t, dt, step, n_sub, mass0,
+ *                    mass_removed, nremoved, seeded, outlet_open, frames,
+ *                    frame_next, check_next, npoints, next_id
+ *   /input           the resolved input text (NUL-terminated characters)
+ *   /points/NAME     one 1-D dataset per stored point field (MPM_POINT_FIELDS,
+ *                    by its output name), full precision
+ *   /series/t, /series/mass  time and region mass of every frame so far
+ *
+ * The file is assembled in memory (HDF5's core driver, no backing store),
+ * then written with plain writes to checkpoint.h5.tmp in the same directory,
+ * synced, and renamed over checkpoint.h5; the directory is synced too. A
+ * full disk or any failed write is then an ordinary error from write(2)
+ * (the temporary file removed, the previous checkpoint intact), never a
+ * half-written HDF5 file. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <fcntl.h>
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/h5err.h"
+#include "io/io.h"
+
+#define FORMAT "granmpm checkpoint 1"
+
+/* Every stored point field: output name, int or double, where in the store. */
+typedef struct stored_field {
+  const char *name;
+  int isint;
+  size_t offset;
+} stored_field;
+
+#define REAL_(f, nm, d, u) {nm, 0, offsetof(mpm_points, f)},
+#define INT_(f, nm, d, u) {nm, 1, offsetof(mpm_points, f)},
+static const stored_field stored[] = {MPM_POINT_FIELDS(REAL_, INT_, MPM_POINT_SKIP_)};
+#undef REAL_
+#undef INT_
+#define NSTORED (sizeof stored / sizeof stored[0])
+
+static void *field_array(const mpm_points *pts, const stored_field *f)
+{
+  return *(void *const *)(const void *)((const char *)pts + f->offset);
+}
+
+/* The scalar members of mpm_run_state, by attribute name; kind 0 double,
+ * 1 long, 2 int. */
+#define D_(m) {#m, 0, offsetof(mpm_run_state, m)}
+#define L_(m) {#m, 1, offsetof(mpm_run_state, m)}
+#define I_(m) {#m, 2, offsetof(mpm_run_state, m)}
+static const struct { const char *name; int kind; size_t offset; } scalars[] = {
+  D_(t), D_(dt), L_(step), I_(n_sub), D_(mass0), D_(mass_removed), L_(nremoved), I_(seeded),
+  I_(outlet_open), L_(frames), L_(frame_next), L_(check_next),
+};
+#undef D_
+#undef L_
+#undef I_
+#define NSCALARS (sizeof scalars / sizeof scalars[0])
+
+static hid_t scalar_type(int kind)
+{
+  return kind == 0 ? H5T_NATIVE_DOUBLE : kind == 1 ? H5T_NATIVE_LONG : H5T_NATIVE_INT;
+}
+
+/* ---- writing --------------------------------------------------------------- */
+
+static herr_t write_state(hid_t file, const mpm_run_state *st, const char *input,
+                          const char *written_by)
+{
+  const mpm_points *P = st->pts;
+  herr_t rc = mpm_io_h5_attr_string(file, "format", FORMAT);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string(file, "written_by", written_by);
+  if (rc >= 0)
+    rc = mpm_io_h5_write_array(file, "input", H5T_NATIVE_CHAR, H5T_NATIVE_CHAR,
+                               strlen(input) + 1, input, NULL, "the resolved input");
+  for (size_t k = 0; rc >= 0 && k < NSCALARS; k++)
+    rc = mpm_io_h5_attr_scalar(file, scalars[k].name, scalar_type(scalars[k].kind),
+                               (const char *)st + scalars[k].offset);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_long(file, "npoints", (long)P->n);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_int(file, "next_id", P->next_id);
+  hid_t g = rc < 0 ? H5I_INVALID_HID
+                   : H5Gcreate2(file, "points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  for (size_t k = 0; g >= 0 && rc >= 0 && k < NSTORED; k++)
+    rc = mpm_io_h5_write_array(g, stored[k].name, stored[k].isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
+                               stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, P->n,
+                               field_array(P, &stored[k]), NULL, NULL);
+  rc = g < 0 ? -1 : rc;
+  mpm_io_h5_close(g);
+  g = rc < 0 ? H5I_INVALID_HID : H5Gcreate2(file, "series", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g >= 0 && rc >= 0)
+    rc = mpm_io_h5_write_array(g, "t", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, st->nseries,
+                               st->series_t, "s", "time of each frame");
+  if (g >= 0 && rc >= 0)
+    rc = mpm_io_h5_write_array(g, "mass", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, st->nseries,
+                               st->series_m, "kg/m", "mass in the region at each frame");
+  rc = g < 0 ? -1 : rc;
+  mpm_io_h5_close(g);
+  return rc;
+}
+
+/* The checkpoint as an HDF5 file image in memory (*image, *len; free it). */
+static int image_of(const mpm_run_state *st, const char *input, const char *written_by,
+                    const char *name, void **image, size_t *len, mpm_err *err)
+{
+  mpm_io_h5_quiet q;
+  mpm_io_h5_quiet_begin(&q);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  hid_t file = H5I_INVALID_HID;
+  /* the earliest format that holds the data: the image of a file with a
+   * checksummed superblock (format 1.8 and later) fails its checksum when
+   * read back (HDF5 1.10.8), so the input text is a dataset rather than an
+   * attribute (attributes over 64 KiB need the 1.8 format) */
+  if (fapl >= 0 && H5Pset_fapl_core(fapl, (size_t)1 << 20, 0) >= 0 &&
+      H5Pset_libver_bounds(fapl, H5F_LIBVER_EARLIEST, H5F_LIBVER_V18) >= 0)
+    file = H5Fcreate(name, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  mpm_io_h5_close(fapl);
+  int rc = MPM_OK;
+  ssize_t n = -1;
+  *image = NULL;
+  if (file < 0 || write_state(file, st, input, written_by) < 0 ||
+      H5Fflush(file, H5F_SCOPE_GLOBAL) < 0 || (n = H5Fget_file_image(file, NULL, 0)) <= 0)
+    rc = mpm_io_h5_fail(err, &q, "cannot assemble checkpoint", name);
+  else if (!(*image = malloc((size_t)n)))
+    rc = mpm_err_set(err, MPM_ENOMEM, "no memory for a checkpoint of %zd bytes", n);
+  else if (H5Fget_file_image(file, *image, (size_t)n) != n)
+    rc = mpm_io_h5_fail(err, &q, "cannot assemble checkpoint", name);
+  if (mpm_io_h5_close(file) < 0 && rc == MPM_OK)
+    rc = mpm_io_h5_fail(err, &q, "cannot assemble checkpoint", name);
+  mpm_io_h5_quiet_end(&q);
+  if (rc != MPM_OK) {
+    free(*image);
+    *image = NULL;
+  }
+  *len = n > 0 ? (size_t)n : 0;
+  return rc;
+}
+
+/* len bytes to a new file path, synced. */
+static int write_file(const char *path, const void *buf, size_t len, mpm_err *err)
+{
+  int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0)
+    return mpm_err_set(err, MPM_EIO, "cannot create '%s': %s", path, strerror(errno));
+  const char *p = buf;
+  int e = 0;
+  while (len > 0 && !e) {
+    ssize_t w = write(fd, p, len);
+    if (w < 0 && errno == EINTR)
+      continue;
+    if (w <= 0)
+      e = w < 0 ? errno : ENOSPC;
+    else {
+      p += w;
+      len -= (size_t)w;
+    }
+  }
+  if (!e && fsync(fd) != 0)
+    e = errno;
+  if (close(fd) != 0 && !e)
+    e = errno;
+  return e ? mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(e)) : MPM_OK;
+}
+
+/* The directory's entries made durable (the rename); a file system that
+ * cannot sync a directory is not an error. */
+static void sync_dir(const char *dir)
+{
+  int fd = open(dir, O_RDONLY);
+  if (fd >= 0) {
+    fsync(fd);
+    close(fd);
+  }
+}
+
+int mpm_io_checkpoint_write(const char *dir, const mpm_run_state *st, const char *input_text,
+                            const char *written_by, mpm_err *err)
+{
+  if (!dir || !st || !st->pts)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_checkpoint_write: invalid arguments");
+  char *path = mpm_io_path_join(dir, "checkpoint.h5"), *tmp = mpm_io_path_join(dir, "checkpoint.h5.tmp");
+  void *image = NULL;
+  size_t len = 0;
+  int rc = path && tmp ? MPM_OK : mpm_err_set(err, MPM_ENOMEM, "out of memory for a checkpoint");
+  mpm_io_h5_init();
+  if (rc == MPM_OK)
+    rc = image_of(st, input_text, written_by, tmp, &image, &len, err);
+  if (rc == MPM_OK)
+    rc = write_file(tmp, image, len, err);
+  if (rc == MPM_OK && rename(tmp, path) != 0)
+    rc = mpm_err_set(err, MPM_EIO, "cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
+  if (rc == MPM_OK)
+    sync_dir(dir);
+  else if (tmp)
+    unlink(tmp);
+  free(image);
+  free(path);
+  free(tmp);
+  return rc;
+}
+
+int mpm_io_checkpoint_remove(const char *dir, mpm_err *err)
+{
+  char *path = mpm_io_path_join(dir, "checkpoint.h5");
+  if (!path)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  int rc = unlink(path) == 0 || errno == ENOENT
+               ? MPM_OK
+               : mpm_err_set(err, MPM_EIO, "cannot remove '%s': %s", path, strerror(errno));
+  free(path);
+  return rc;
+}
+
+/* ---- reading --------------------------------------------------------------- */
+
+/* n values of the 1-D dataset name of g into a new array of size bytes each. */
+static void *read_values(hid_t g, const char *name, hid_t type, size_t size, size_t n)
+{
+  if (mpm_io_h5_array_length(g, name) != (long long)n)
+    return NULL;
+  void *v = malloc(n ? n * size : 1);
+  hid_t d = v ? H5Dopen2(g, name, H5P_DEFAULT) : H5I_INVALID_HID;
+  if (d < 0 || (n > 0 && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0)) {
+    free(v);
+    v = NULL;
+  }
+  mpm_io_h5_close(d);
+  return v;
+}
+
+static int read_points(hid_t file, mpm_run_state *st, const char *path, mpm_err *err)
+{
+  long n = -1;
+  int next_id = 0;
+  hid_t g = H5Gopen2(file, "points", H5P_DEFAULT);
+  if (g < 0 || mpm_io_h5_attr_read(file, "npoints", H5T_NATIVE_LONG, &n) < 0 || n < 0 ||
+      mpm_io_h5_attr_read(file, "next_id", H5T_NATIVE_INT, &next_id) < 0) {
+    mpm_io_h5_close(g);
+    return mpm_err_set(err, MPM_EIO, "'%s': no points or no point count", path);
+  }
+  for (size_t k = 0; k < NSTORED; k++)       /* counts first: no allocation from a bad one */
+    if (mpm_io_h5_array_length(g, stored[k].name) != n) {
+      mpm_io_h5_close(g);
+      return mpm_err_set(err, MPM_EIO, "'%s': field '%s' does not hold npoints = %ld values",
+                         path, stored[k].name, n);
+    }
+  st->pts = mpm_points_alloc((size_t)n);
+  int rc = st->pts ? MPM_OK : mpm_err_set(err, MPM_ENOMEM, "'%s': no memory for %ld points", path, n);
+  for (size_t k = 0; rc == MPM_OK && k < NSTORED; k++) {
+    hid_t d = H5Dopen2(g, stored[k].name, H5P_DEFAULT);
+    if (d < 0 || (n > 0 && H5Dread(d, stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
+                                   H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                   field_array(st->pts, &stored[k])) < 0))
+      rc = mpm_err_set(err, MPM_EIO, "'%s': cannot read field '%s'", path, stored[k].name);
+    mpm_io_h5_close(d);
+  }
+  mpm_io_h5_close(g);
+  if (rc == MPM_OK) {
+    st->pts->n = (size_t)n;
+    st->pts->next_id = next_id;
+  }
+  return rc;
+}
+
+static int read_series(hid_t file, mpm_run_state *st, const char *path, mpm_err *err)
+{
+  hid_t g = H5Gopen2(file, "series", H5P_DEFAULT);
+  long long n = g < 0 ? -1 : mpm_io_h5_array_length(g, "t");
+  if (n >= 0) {
+    st->nseries = (size_t)n;
+    st->series_t = read_values(g, "t", H5T_NATIVE_DOUBLE, sizeof(double), (size_t)n);
+    st->series_m = read_values(g, "mass", H5T_NATIVE_DOUBLE, sizeof(double), (size_t)n);
+  }
+  mpm_io_h5_close(g);
+  if (n < 0 || !st->series_t || !st->series_m)
+    return mpm_err_set(err, MPM_EIO, "'%s': cannot read the frame series", path);
+  return MPM_OK;
+}
+
+static int read_checkpoint(hid_t file, mpm_io_checkpoint *ck, const char *path, mpm_err *err)
+{
+  char *format = mpm_io_h5_attr_text(file, "format");
+  int ok = format && strcmp(format, FORMAT) == 0;
+  free(format);
+  if (!ok)
+    return mpm_err_set(err, MPM_EIO, "'%s' is not a granmpm checkpoint (format '%s' expected)",
+                       path, FORMAT);
+  char *by = mpm_io_h5_attr_text(file, "written_by");
+  snprintf(ck->written_by, sizeof ck->written_by, "%s", by ? by : "unknown");
+  free(by);
+  for (size_t k = 0; k < NSCALARS; k++)
+    if (mpm_io_h5_attr_read(file, scalars[k].name, scalar_type(scalars[k].kind),
+                            (char *)&ck->state + scalars[k].offset) < 0)
+      return mpm_err_set(err, MPM_EIO, "'%s': no attribute '%s'", path, scalars[k].name);
+  long long n = mpm_io_h5_array_length(file, "input");
+  ck->input = n > 0 ? read_values(file, "input", H5T_NATIVE_CHAR, 1, (size_t)n) : NULL;
+  if (!ck->input || ck->input[n - 1] != '\0')
+    return mpm_err_set(err, MPM_EIO, "'%s': no resolved input", path);
+  int rc = read_points(file, &ck->state, path, err);
+  return rc == MPM_OK ? read_series(file, &ck->state, path, err) : rc;
+}
+
+/* What to read of an open checkpoint: all of it into ck, or its time and
+ * step only. */
+typedef struct reading {
+  mpm_io_checkpoint *ck;
+  double *t;
+  long *step;
+} reading;
+
+static int read_open(hid_t file, const reading *r, const char *path, const mpm_io_h5_quiet *q,
+                     mpm_err *err)
+{
+  if (r->ck)
+    return read_checkpoint(file, r->ck, path, err);
+  if (mpm_io_h5_attr_read(file, "t", H5T_NATIVE_DOUBLE, r->t) != 0 ||
+      mpm_io_h5_attr_read(file, "step", H5T_NATIVE_LONG, r->step) != 0)
+    return mpm_io_h5_fail(err, q, "cannot read", path);
+  return MPM_OK;
+}
+
+/* Open DIR/checkpoint.h5 and read it as r says. */
+static int read_dir(const char *dir, const reading *r, mpm_err *err)
+{
+  char *path = mpm_io_path_join(dir, "checkpoint.h5");
+  struct stat sb;
+  if (!path)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  if (stat(path, &sb) != 0) {
+    int rc = mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", path, strerror(errno));
+    free(path);
+    return rc;
+  }
+  mpm_io_h5_quiet q;
+  mpm_io_h5_quiet_begin(&q);
+  hid_t file = mpm_io_h5_open_read(path);
+  int rc = file < 0 ? mpm_io_h5_fail(err, &q, "cannot open", path)
+                    : read_open(file, r, path, &q, err);
+  mpm_io_h5_close(file);
+  mpm_io_h5_quiet_end(&q);
+  free(path);
+  return rc;
+}
+
+int mpm_io_checkpoint_read(const char *dir, mpm_io_checkpoint *ck, mpm_err *err)
+{
+  memset(ck, 0, sizeof *ck);
+  const reading r = {.ck = ck};
+  int rc = read_dir(dir, &r, err);
+  if (rc != MPM_OK)
+    mpm_io_checkpoint_clear(ck);
+  return rc;
+}
+
+int mpm_io_checkpoint_when(const char *dir, double *t, long *step, mpm_err *err)
+{
+  const reading r = {.t = t, .step = step};
+  return read_dir(dir, &r, err);
+}
+
+void mpm_io_checkpoint_clear(mpm_io_checkpoint *ck)
+{
+  if (!ck)
+    return;
+  mpm_points_free(ck->state.pts);
+  free(ck->state.series_t);
+  free(ck->state.series_m);
+  free(ck->input);
+  memset(ck, 0, sizeof *ck);
+}

@@ -1,0 +1,94 @@
+/* health.c: a run whose state stops being a state is reported as what it
+ * is, before it shows up as something else (a point "leaving the mesh" at
+ * (nan, nan), far away): the point, the field and its value, the time, and
+ * the likely cause.
+ *
+ * Two tests: after every step the point speeds (cheap: a non-finite
+ * velocity or one that carries a point more than a mesh unit per step,
+ * |v| dt > min(dx, dy), where MPM no longer holds: the stencil, and so the
+ * mapping, assume a point stays near its unit); on any failure, and when a
+ * speed trips, every field of every point, stresses first (the usual
+ * origin), then volume, fluidity, velocity, position. */
+#include "solver/solver.h"
+
+#include <math.h>
+#include <stdio.h>
+
+/* The likely cause of a blow-up, for the message. */
+static void likely_cause(const mpm_sim *s, char *buf, size_t len)
+{
+  const double st = mpm_sim_stable_dt(&s->cfg);
+  mpm_err e = {0};
+  const mpm_nonlocal_diffusion *d =
+      s->nl && mpm_nonlocal_diffusion_name(s->cfg.material.diffusion)
+          ? mpm_nonlocal_diffusion_table[s->cfg.material.diffusion]
+          : NULL;
+  if (s->dt > st * (1.0 + 1e-9))
+    snprintf(buf, len, "the time step: dt = %.3g s is %.3g times the stable step %.3g s "
+             "(key 'time.dt', allowed only with time.dt_unstable_ok)", s->dt, s->dt / st, st);
+  else if (d && d->stability_limited &&
+           mpm_material_ngf_check_diffusion(&s->par, s->dt, s->n_sub, s->mesh.dx, s->mesh.dy,
+                                            &e) != MPM_OK)
+    snprintf(buf, len, "the diffusion of g: %.200s (key 'material.n_sub')", e.msg);
+  else
+    snprintf(buf, len, "a material parameter or a boundary condition (key 'material.*'; the "
+             "step dt = %.3g s is within the stable %.3g s)", s->dt, st);
+}
+
+/* A field of the point store, for the diagnosis. */
+typedef struct field {
+  const char *name, *unit, *what;
+  const double *v;
+} field;
+
+int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
+{
+  const mpm_points *P = s->pts;
+  const field fields[] = {
+    {"stress sxx", "Pa", "stress", P->sxx}, {"stress syy", "Pa", "stress", P->syy},
+    {"stress szz", "Pa", "stress", P->szz}, {"stress sxy", "Pa", "stress", P->sxy},
+    {"volume", "m^2", "volume", P->vol},    {"fluidity g", "1/s", "fluidity", P->g},
+    {"velocity vx", "m/s", "velocity", P->vx}, {"velocity vy", "m/s", "velocity", P->vy},
+    {"position x", "m", "position", P->x},  {"position y", "m", "position", P->y},
+  };
+  char cause[MPM_ERR_MSG / 2];
+  for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++)
+    for (size_t p = 0; p < P->n; p++) {
+      if (isfinite(fields[k].v[p]) && (fields[k].v != P->vol || fields[k].v[p] > 0.0))
+        continue;
+      likely_cause(s, cause, sizeof cause);
+      return mpm_err_set(err, MPM_ENONFINITE,
+                         "point %d: %s = %g %s at (%.6g, %.6g) m, t = %.6g s: the %s is %s; "
+                         "likely cause: %s", P->id[p], fields[k].name, fields[k].v[p],
+                         fields[k].unit, P->x[p], P->y[p], t, fields[k].what,
+                         isfinite(fields[k].v[p]) ? "not positive" : "not finite", cause);
+    }
+  const double h = fmin(s->mesh.dx, s->mesh.dy), lim = h / s->dt;
+  size_t fast = P->n;
+  double vmax = 0.0;
+  for (size_t p = 0; p < P->n; p++) {
+    const double v = hypot(P->vx[p], P->vy[p]);
+    if (v > lim && v > vmax) {
+      vmax = v;
+      fast = p;
+    }
+  }
+  if (fast == P->n)
+    return MPM_OK;
+  likely_cause(s, cause, sizeof cause);
+  return mpm_err_set(err, MPM_ENONFINITE,
+                     "point %d: speed %.3g m/s at (%.6g, %.6g) m, t = %.6g s: a runaway, more "
+                     "than a mesh unit per step (min(dx, dy) / dt = %.3g m/s; P-wave and fill "
+                     "speed of the input %.3g m/s); likely cause: %s", P->id[fast], vmax,
+                     P->x[fast], P->y[fast], t, lim, h / mpm_sim_stable_dt(&s->cfg), cause);
+}
+
+int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err)
+{
+  const mpm_points *P = s->pts;
+  const double h = fmin(s->mesh.dx, s->mesh.dy), lim2 = (h / s->dt) * (h / s->dt);
+  int bad = 0;
+  for (size_t p = 0; p < P->n; p++)
+    bad |= !(P->vx[p] * P->vx[p] + P->vy[p] * P->vy[p] <= lim2);  /* NaN fails too */
+  return bad ? mpm_sim_check_state(s, t, err) : MPM_OK;
+}

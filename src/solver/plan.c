@@ -1,0 +1,106 @@
+/* plan.c: the size of a run from its resolved input, before anything is
+ * built: points (counted exactly, scenario/), nodes, steps, substeps, frames,
+ * and estimates of the memory the run holds at its peak and of the bytes it
+ * writes. The byte counts follow the allocations of step.c, the shape,
+ * nonlocal and density workspaces and io/output.c; the constants not
+ * derived from them (the libraries' own memory, HDF5's metadata cache and
+ * per-frame objects, the XDMF text of a frame) were measured, and the
+ * Cholesky factor of the implicit diffusion is taken as N log N. Compared
+ * with the peak resident memory and the bytes written of runs from 4 to
+ * 409600 points, the estimates were 1.0 - 1.5 times the measured values
+ * (docs/input-reference.md, "The size of a run"). */
+#include "solver/solver.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "scenario/scenario.h"
+
+/* Bytes per point of the point store: every stored field. */
+#define ONE_(f, nm, d, u) +sizeof(((mpm_points *)0)->f[0])
+static const size_t point_store_bytes = 0 MPM_POINT_REAL_FIELDS(ONE_) MPM_POINT_INT_FIELDS(ONE_);
+/* Bytes per point of a frame in run.h5: every output field (the derived ones
+ * in double precision) and the XDMF connectivity when the point count changes. */
+#define OUT_REAL_(f, nm, d, u) +8
+#define OUT_INT_(f, nm, d, u) +4
+static const size_t frame_point_bytes =
+    4 MPM_POINT_FIELDS(OUT_REAL_, OUT_INT_, OUT_REAL_);
+#undef ONE_
+#undef OUT_REAL_
+#undef OUT_INT_
+
+/* Measured on the 2-core Xeon this is developed on (HDF5 1.10.8, Debian 12):
+ * a run of 4 points holds 15 MB, and HDF5's metadata cache adds about 160
+ * kB per frame written up to 45 MB (19 MB with 20 frames, 60 MB with 475 or
+ * 1896); a frame's HDF5 objects take 8.2 kB of run.h5 besides its data,
+ * its XDMF grid 4.4 kB and its diagnostics row 0.14 kB. */
+#define BASE_BYTES (16.0 * (1 << 20))
+#define H5_CACHE_PER_FRAME (160.0 * 1024)
+#define H5_CACHE_MAX (48.0 * (1 << 20))
+enum {
+  FRAME_META_BYTES = 9 << 10,  /* HDF5 objects of one frame (19 datasets with attributes,
+                                  the XY view) */
+  FRAME_TEXT_BYTES = 5 << 10,  /* a frame's XDMF grid and diagnostics row */
+  HEADER_BYTES = 64 << 10      /* run.h5 header, mesh lines excepted */
+};
+
+/* Bytes of the workspaces per point, per node and per unit for cfg. */
+static double workspace_bytes(const mpm_config *cfg, double points, double nodes, double units)
+{
+  const mpm_material_type *mt = mpm_material_lookup(cfg->material.model);
+  const int nonlocal = mt && mt->nonlocal;
+  const int density = cfg->material.state_density != MPM_DENSITY_POINT;
+  const int extent = cfg->material.g_average == MPM_NONLOCAL_EXTENT;
+  double per_point = (double)point_store_bytes                 /* the store */
+                     + sizeof(int) + MPM_STENCIL_W * (sizeof(int) + 3 * sizeof(double))
+                     + sizeof(double) + 1.0;                   /* output work, removal flags */
+  if (nonlocal || density)
+    per_point += 4 * sizeof(double);                           /* L_p kept over the substeps */
+  if (density)
+    per_point += sizeof(double);
+  if (nonlocal)
+    per_point += sizeof(int) + 1 + sizeof(double)              /* unit, dense, p_n */
+                 + (extent ? MPM_NONLOCAL_PARTS * (sizeof(int) + sizeof(double)) : 0);
+  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT)
+    per_point += sizeof(long);
+  double per_node = 9 * sizeof(double) + sizeof(int) + 2 + 2 * sizeof(double);  /* + bc */
+  double per_unit = 0.0;
+  if (nonlocal)
+    per_unit += 6 * sizeof(double);
+  if (density)
+    per_unit += 4 * sizeof(double);
+  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT)
+    per_unit += 9 * sizeof(double);
+  if (nonlocal && cfg->material.diffusion == MPM_DIFFUSION_IMPLICIT)  /* the matrix, its */
+    per_unit += 200.0 + 16.0 * log2(units + 2.0);  /* Cholesky factor (nested-dissection
+                                                       fill: ~ N log N) and the vectors */
+  return points * per_point + nodes * per_node + units * per_unit;
+}
+
+void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
+{
+  memset(sz, 0, sizeof *sz);
+  mpm_mesh m;
+  if (mpm_mesh_from_config(&m, cfg, NULL) != MPM_OK)
+    return;
+  for (int f = 0; f < cfg->nfill; f++) {
+    sz->fill_points[f] = mpm_scenario_count(&cfg->fill[f], &m);
+    sz->points += sz->fill_points[f];
+  }
+  sz->nodes = (long)(cfg->mesh.nx + 1) * (cfg->mesh.ny + 1);
+  sz->dt_stable = mpm_sim_stable_dt(cfg);
+  int n_sub;
+  mpm_sim_time_plan(cfg, &sz->dt, &n_sub);
+  sz->n_sub = mpm_sim_substeps(cfg, sz->dt);
+  sz->steps = ceil(cfg->time.t_end / sz->dt * (1.0 - 1e-12));
+  /* one frame at t = 0, at most one per step on the schedule, one at the end */
+  sz->frames = 2.0 + fmin(sz->steps, floor(cfg->time.t_end / cfg->time.frame_dt));
+  const double n = (double)sz->points, units = (double)cfg->mesh.nx * cfg->mesh.ny;
+  sz->memory = BASE_BYTES + fmin(sz->frames * H5_CACHE_PER_FRAME, H5_CACHE_MAX) +
+               workspace_bytes(cfg, n, (double)sz->nodes, units) +
+               n * (double)point_store_bytes;        /* a checkpoint assembled in memory */
+  const double frame = n * (double)frame_point_bytes + FRAME_META_BYTES + FRAME_TEXT_BYTES;
+  const double checkpoint = 2.0 * (n * (double)point_store_bytes + HEADER_BYTES);  /* + its
+                                                                                       temporary */
+  sz->output = HEADER_BYTES + 8.0 * (cfg->mesh.nx + cfg->mesh.ny) + sz->frames * frame + checkpoint;
+}
