@@ -122,7 +122,7 @@ check_bad set-type "granmpm: --set 'mesh.nx=abc': key 'mesh.nx': expected an int
   "$good" --set mesh.nx=abc
 check_bad set-range "granmpm: --set 'fill.ppu=9': key 'fill.ppu': value 9 out of range (allowed: 1 ... 8)" \
   "$good" --set fill.ppu=9
-check_bad set-key "granmpm: --set 'time.tend=1': unknown key 'time.tend' (allowed keys in 'time': dt, cfl, t_end, frame_dt, flip, dt_unstable_ok)" \
+check_bad set-key "granmpm: --set 'time.tend=1': unknown key 'time.tend' (allowed keys in 'time': dt, cfl, t_end, frame_dt, flip, transfer, dt_unstable_ok)" \
   "$good" --set time.tend=1
 check_bad set-form "granmpm: --set 'mesh.nx': expected section.key=value" "$good" --set mesh.nx
 check_bad set-cross "granmpm: --set 'time.t_end=0.001': key 'time.t_end': frame_dt = 0.01 > t_end = 0.001 (allowed: frame_dt <= t_end)" \

@@ -233,6 +233,207 @@ START_TEST(t_bbar_unit_dilatation)
 }
 END_TEST
 
+/* The B-bar dilatation for every shape and topology: from zero stress the
+ * grid velocities of the first step do not depend on the dilatation rule,
+ * so each point's own rate tr L_p is what the point rule gives it,
+ * log(V_1 / V_0) / dt. With "unit" every point of a unit changes volume at
+ * the volume-weighted mean of those rates over the unit (volumes of the
+ * start), and the dense points of a unit (units of the new positions) leave
+ * the step with one in-plane mean stress. */
+static void bbar_run(const char *topo, const char *shape, int bbar, double *rate, int *unit,
+                     double *sm, int *dense, size_t *n)
+{
+  mpm_config c;
+  free_block_config(&c, 4, 0.1, 0.3);
+  strcpy(c.mesh.topology, topo);
+  strcpy(c.mesh.shape, shape);
+  c.mesh.dilatation = bbar ? MPM_DILATATION_UNIT : MPM_DILATATION_POINT;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  *n = s->pts->n;
+  ck_assert_uint_eq(*n, 16);
+  double v0[16];
+  for (size_t p = 0; p < *n; p++) {         /* as t_bbar_unit_dilatation */
+    s->pts->x[p] += (p % 3 == 0) ? 0.011 : 0.0;
+    s->pts->y[p] -= (p % 4 == 1) ? 0.007 : 0.0;
+    s->pts->vol[p] *= 1.0 + 0.5 * (double)(p % 2);
+    const double x = s->pts->x[p], y = s->pts->y[p];
+    s->pts->vx[p] = 3.0 * (x - 0.2) * (y - 0.2) / 0.01 + 0.5 * (x - 0.2) * (x - 0.2) / 0.01;
+    s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
+    v0[p] = s->pts->vol[p];
+    int i, j;
+    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &i, &j), MPM_OK);
+    unit[p] = i + 4 * j;
+  }
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  for (size_t p = 0; p < *n; p++) {          /* the store keeps its order: ids 0..15 */
+    ck_assert_int_eq(s->pts->id[p], (int)p);
+    rate[p] = log(s->pts->vol[p] / v0[p]) / s->dt;
+    sm[p] = 0.5 * (s->pts->sxx[p] + s->pts->syy[p]);
+    dense[p] = s->pts->state[p] == MPM_STATE_DENSE;
+    int i, j;
+    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+    dense[p] = dense[p] ? 1 + i + 4 * j : 0;   /* 0, or 1 + the unit of x_1 */
+  }
+  mpm_sim_free(s);
+}
+
+START_TEST(t_bbar_every_shape)
+{
+  static const char *const kinds[][2] = {{"q4", "delta"}, {"t3", "delta"}, {"q4", "ugimp"},
+                                         {"t3", "ugimp"}};
+  for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
+    double own[16], rate[16], sm[16], sm0[16];
+    int unit[16], dense[16], dense0[16];
+    size_t n;
+    bbar_run(kinds[k][0], kinds[k][1], 0, own, unit, sm0, dense0, &n);
+    bbar_run(kinds[k][0], kinds[k][1], 1, rate, unit, sm, dense, &n);
+    double worst = 0.0, spread = 0.0, spread0 = 0.0, scale = 0.0;
+    for (size_t p = 0; p < n; p++) {
+      double sv = 0.0, svr = 0.0;
+      for (size_t q = 0; q < n; q++)
+        if (unit[q] == unit[p]) {
+          sv += 1.0 + 0.5 * (double)(q % 2);   /* V_0 up to a common factor */
+          svr += (1.0 + 0.5 * (double)(q % 2)) * own[q];
+        }
+      worst = fmax(worst, fabs(rate[p] - svr / sv));
+      scale = fmax(scale, fabs(svr / sv));
+      for (size_t q = 0; q < n; q++) {
+        if (dense[p] && dense[q] == dense[p])
+          spread = fmax(spread, fabs(sm[q] - sm[p]));
+        if (dense0[p] && dense0[q] == dense0[p])
+          spread0 = fmax(spread0, fabs(sm0[q] - sm0[p]));
+      }
+    }
+    ck_assert_double_gt(scale, 1.0);           /* rates of order 10 /s */
+    ck_assert_msg(worst <= 1e-9 * scale, "%s %s: rate off the unit mean by %g /s", kinds[k][0],
+                  kinds[k][1], worst);
+    ck_assert_msg(spread0 > 0.0, "%s %s: the point rule already gives one stress per unit",
+                  kinds[k][0], kinds[k][1]);
+    ck_assert_msg(spread <= 1e-12 * fmax(1.0, spread0), "%s %s: mean stresses differ by %g Pa in "
+                  "a unit", kinds[k][0], kinds[k][1], spread);
+  }
+}
+END_TEST
+
+/* APIC ([JSS+15]) carries an affine velocity field v = v0 + A x exactly:
+ * with C_p = A the nodes receive (mv)_i = sum S m_p (v_p + A (x_i - x_p))
+ * = m_i (v0 + A x_i) (every shape here reproduces linear functions), so a
+ * stress-free block without gravity leaves the step with v_p = v0 + A x_p
+ * (the positions of the start) and C_p = A, at every point, also at the
+ * block's edges. PIC (no affine part) loses the rotation at the edges.
+ * Total momentum is kept. */
+static double apic_step(const char *topo, const char *shape, int apic)
+{
+  static const double v0[2] = {0.3, -0.2}, A[2][2] = {{0.5, -2.0}, {1.5, -0.25}};
+  mpm_config c;
+  free_block_config(&c, 6, 0.1, 0.5);
+  strcpy(c.mesh.topology, topo);
+  strcpy(c.mesh.shape, shape);
+  c.time.transfer = apic ? MPM_TRANSFER_APIC : MPM_TRANSFER_FLIP;
+  c.time.flip = 0.0;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  mpm_points *P = s->pts;
+  const size_t n = P->n;
+  ck_assert_uint_le(n, 64);
+  double x[64], y[64], px = 0.0, py = 0.0, m = 0.0;
+  for (size_t p = 0; p < n; p++) {
+    x[p] = P->x[p];
+    y[p] = P->y[p];
+    P->vx[p] = v0[0] + A[0][0] * x[p] + A[0][1] * y[p];
+    P->vy[p] = v0[1] + A[1][0] * x[p] + A[1][1] * y[p];
+    P->cxx[p] = A[0][0];
+    P->cxy[p] = A[0][1];
+    P->cyx[p] = A[1][0];
+    P->cyy[p] = A[1][1];
+    px += P->mass[p] * P->vx[p];
+    py += P->mass[p] * P->vy[p];
+    m += P->mass[p];
+  }
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  double worst = 0.0, qx = 0.0, qy = 0.0;
+  for (size_t p = 0; p < n; p++) {
+    const int k = P->id[p];                  /* the store may be reordered */
+    worst = fmax(worst, fabs(P->vx[p] - (v0[0] + A[0][0] * x[k] + A[0][1] * y[k])));
+    worst = fmax(worst, fabs(P->vy[p] - (v0[1] + A[1][0] * x[k] + A[1][1] * y[k])));
+    if (apic) {
+      worst = fmax(worst, fmax(fabs(P->cxx[p] - A[0][0]), fabs(P->cxy[p] - A[0][1])));
+      worst = fmax(worst, fmax(fabs(P->cyx[p] - A[1][0]), fabs(P->cyy[p] - A[1][1])));
+    }
+    qx += P->mass[p] * P->vx[p];
+    qy += P->mass[p] * P->vy[p];
+  }
+  ck_assert_msg(fabs(qx - px) + fabs(qy - py) <= 1e-12 * m, "%s %s: momentum changed by (%g, %g)",
+                topo, shape, qx - px, qy - py);
+  mpm_sim_free(s);
+  return worst;
+}
+
+/* Across a periodic edge: a layer filling a periodic strip of 4 units
+ * (uGIMP's stencil spans 4 node columns) with a velocity periodic in x and
+ * C_p its gradient. Shifting everything by one unit along x (positions
+ * wrapped) must shift the result and change nothing else: the points that
+ * straddle the seam are others after the shift, so an offset x_i - x_p
+ * taken from the wrong image shows. */
+static void apic_periodic_step(const char *topo, const char *shape, int shift, double *vx,
+                               double *vy)
+{
+  mpm_config c;
+  free_block_config(&c, 4, 0.0, 0.3);
+  strcpy(c.mesh.topology, topo);
+  strcpy(c.mesh.shape, shape);
+  c.bc.left = c.bc.right = MPM_BC_PERIODIC;
+  c.fill[0].xmax = 0.4;
+  c.time.transfer = MPM_TRANSFER_APIC;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  mpm_points *P = s->pts;
+  const double k = 8.0 * atan(1.0) / 0.4;       /* 2 pi / period */
+  for (size_t p = 0; p < P->n; p++) {
+    const double x = P->x[p], y = P->y[p];   /* the field before the shift */
+    P->vx[p] = 0.3 + 0.2 * sin(k * x) + 0.5 * y;
+    P->vy[p] = -0.2 + 0.1 * cos(k * x);
+    P->cxx[p] = 0.2 * k * cos(k * x);
+    P->cxy[p] = 0.5;
+    P->cyx[p] = -0.1 * k * sin(k * x);
+    P->cyy[p] = 0.0;
+    P->x[p] = fmod(x + shift * 0.1, 0.4);
+  }
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  ck_assert_uint_eq(P->n, 48);
+  for (size_t p = 0; p < P->n; p++) {
+    vx[P->id[p]] = P->vx[p];
+    vy[P->id[p]] = P->vy[p];
+  }
+  mpm_sim_free(s);
+}
+
+START_TEST(t_apic_affine)
+{
+  static const char *const kinds[][2] = {{"q4", "delta"}, {"t3", "delta"}, {"q4", "ugimp"},
+                                         {"t3", "ugimp"}};
+  for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
+    const double e = apic_step(kinds[k][0], kinds[k][1], 1);
+    ck_assert_msg(e <= 1e-12, "%s %s: APIC off the affine field by %g", kinds[k][0],
+                  kinds[k][1], e);
+    ck_assert_double_ge(apic_step(kinds[k][0], kinds[k][1], 0), 1e-3);  /* PIC */
+    if (strcmp(kinds[k][0], "t3") == 0)      /* the diagonals do not shift with the points */
+      continue;
+    double ax[48], ay[48], bx[48], by[48];
+    apic_periodic_step(kinds[k][0], kinds[k][1], 0, ax, ay);
+    apic_periodic_step(kinds[k][0], kinds[k][1], 1, bx, by);
+    for (int p = 0; p < 48; p++) {
+      ck_assert_double_eq_tol(ax[p], bx[p], 1e-12);
+      ck_assert_double_eq_tol(ay[p], by[p], 1e-12);
+    }
+  }
+}
+END_TEST
+
 /* A block at rest with no gravity: the kinetic energy is 0 < stop.ke from
  * the start, so the run ends at the first step at or after t_min. */
 START_TEST(t_stop_at_rest)
@@ -647,6 +848,8 @@ int main(void)
   tcase_add_test(tc, t_wall_stops_flip_velocity);
   tcase_add_test(tc, t_pic_velocity_is_displacement_rate);
   tcase_add_test(tc, t_bbar_unit_dilatation);
+  tcase_add_test(tc, t_bbar_every_shape);
+  tcase_add_test(tc, t_apic_affine);
   tcase_add_test(tc, t_absorb_layer);
   tcase_add_test(tc, t_stop_at_rest);
   tcase_add_test(tc, t_stop_runs_to_end);

@@ -28,10 +28,14 @@ enum mpm_outlet_edge {
 
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
-/* Where the volumetric strain rate is sampled: at the point (standard MPM) or
- * per unit, the volume-weighted mean over its points, for every point in it
- * (B-bar, delta/q4). */
+/* Where the volumetric part of the scheme lives: at the point (standard
+ * MPM) or per unit (B-bar with one mean stress per unit; docs/model.md). */
 enum mpm_dilatation { MPM_DILATATION_POINT = 0, MPM_DILATATION_UNIT };
+
+/* How the point velocities are transferred: FLIP blended with PIC by
+ * time.flip, or affine (APIC: the PIC velocity and the affine matrix
+ * C_p = sum_i v_i (x) gradS_ip). */
+enum mpm_transfer { MPM_TRANSFER_FLIP = 0, MPM_TRANSFER_APIC };
 
 typedef struct mpm_fill_config {
   int shape;                   /* enum mpm_fill_shape */
@@ -69,6 +73,7 @@ typedef struct mpm_config {
     double flip;               /* FLIP share of the point velocity update (1: pure
                                   FLIP, [DK15]; 0: PIC) */
     int dt_unstable_ok;        /* 1: a dt above the stable step is deliberate */
+    int transfer;              /* enum mpm_transfer ("flip" | "apic") */
   } time;
 
   struct {

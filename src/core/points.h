@@ -47,9 +47,19 @@ enum mpm_point_state {
   REAL(r2x,     "r2x",    "extent half-vector r2, x", "m")                     \
   REAL(r2y,     "r2y",    "extent half-vector r2, y", "m")
 
+/* Stored fields that are state of the scheme, not results: kept in the
+ * store and in checkpoints, not written to frames. X(member, name,
+ * description, unit) as REAL above. */
+#define MPM_POINT_STATE_FIELDS(X)                                              \
+  X(cxx,        "cxx",    "affine velocity matrix C, xx (time.transfer = apic)", "1/s") \
+  X(cxy,        "cxy",    "affine velocity matrix C, xy", "1/s")                \
+  X(cyx,        "cyx",    "affine velocity matrix C, yx", "1/s")                \
+  X(cyy,        "cyy",    "affine velocity matrix C, yy", "1/s")
+
 /* The stored fields of one kind: X(member, name, description, unit). */
 #define MPM_POINT_SKIP_(f, nm, d, u)
-#define MPM_POINT_REAL_FIELDS(X) MPM_POINT_FIELDS(X, MPM_POINT_SKIP_, MPM_POINT_SKIP_)
+#define MPM_POINT_REAL_FIELDS(X) MPM_POINT_FIELDS(X, MPM_POINT_SKIP_, MPM_POINT_SKIP_) \
+  MPM_POINT_STATE_FIELDS(X)
 #define MPM_POINT_INT_FIELDS(X) MPM_POINT_FIELDS(MPM_POINT_SKIP_, X, MPM_POINT_SKIP_)
 
 typedef struct mpm_points {

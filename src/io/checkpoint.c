@@ -5,7 +5,8 @@
  *                    mass_removed, nremoved, seeded, outlet_open, frames,
  *                    frame_next, check_next, npoints, next_id
  *   /input           the resolved input text (NUL-terminated characters)
- *   /points/NAME     one 1-D dataset per stored point field (MPM_POINT_FIELDS,
+ *   /points/NAME     one 1-D dataset per stored point field (MPM_POINT_FIELDS
+ *                    and MPM_POINT_STATE_FIELDS,
  *                    by its output name), full precision
  *   /series/t, /series/mass  time and region mass of every frame so far
  *
@@ -41,7 +42,8 @@ typedef struct stored_field {
 
 #define REAL_(f, nm, d, u) {nm, 0, offsetof(mpm_points, f)},
 #define INT_(f, nm, d, u) {nm, 1, offsetof(mpm_points, f)},
-static const stored_field stored[] = {MPM_POINT_FIELDS(REAL_, INT_, MPM_POINT_SKIP_)};
+static const stored_field stored[] = {MPM_POINT_FIELDS(REAL_, INT_, MPM_POINT_SKIP_)
+                                      MPM_POINT_STATE_FIELDS(REAL_)};
 #undef REAL_
 #undef INT_
 #define NSTORED (sizeof stored / sizeof stored[0])

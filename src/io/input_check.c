@@ -69,15 +69,18 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
                               cfg->mesh.nx, cfg->mesh.ny, mpm_io_in_num(nodes).s,
                               mpm_io_in_num(MAX_NODES).s);
   }
-  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
-      (strcmp(cfg->mesh.shape, "delta") != 0 || strcmp(cfg->mesh.topology, "q4") != 0)) {
-    const int ks = key_index(S_MESH, "shape"), kt = key_index(S_MESH, "topology");
-    where w = blame(c, cfg, -1, key_index(S_MESH, "dilatation"),
-                    strcmp(cfg->mesh.shape, "delta") != 0 ? ks : kt);
-    return mpm_io_in_fail_key(c, &w,
-                              "dilatation = \"unit\" with shape = \"%s\", topology = \"%s\" "
-                              "(allowed: shape = \"delta\" and topology = \"q4\")",
-                              cfg->mesh.shape, cfg->mesh.topology);
+  /* APIC finds a stencil node's position from its stored index: a periodic
+   * axis must hold the stencil's nodes without two being one (2 with the
+   * element basis, 4 with uGIMP: mpm_sim_in_node_offset) */
+  const int px = cfg->bc.left == MPM_BC_PERIODIC, py = cfg->bc.bottom == MPM_BC_PERIODIC;
+  const int need = strcmp(cfg->mesh.shape, "delta") == 0 ? 2 : 4;
+  if (cfg->time.transfer == MPM_TRANSFER_APIC &&
+      ((px && cfg->mesh.nx < need) || (py && cfg->mesh.ny < need))) {
+    const int onx = px && cfg->mesh.nx < need;
+    where w = blame(c, cfg, -1, key_index(S_TIME, "transfer"), key_index(S_MESH, onx ? "nx" : "ny"));
+    return mpm_io_in_fail_key(c, &w, "transfer = \"apic\" with shape = \"%s\" on a periodic "
+                              "axis of %d units (allowed: at least %d)", cfg->mesh.shape,
+                              onx ? cfg->mesh.nx : cfg->mesh.ny, need);
   }
   double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
   double m = cfg->mesh.mirror_x;

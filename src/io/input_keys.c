@@ -51,6 +51,7 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 1e-9, 1e9, KF_REQUIRED, "s"),
     NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 1e-9, 1e9, 0, "s"),
     NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
+    NAMED(S_TIME, KT_ENUM, "transfer", C_(time.transfer), NK_TRANSFER, "flip"),
     NUM(S_TIME, KT_BOOL, "dt_unstable_ok", C_(time.dt_unstable_ok), 0, 0, 1, 0, "-"),
 
     NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
@@ -175,6 +176,10 @@ static const char *const dilatation_names[] = {
   [MPM_DILATATION_POINT] = "point", [MPM_DILATATION_UNIT] = "unit",
 };
 
+static const char *const transfer_names[] = {
+  [MPM_TRANSFER_FLIP] = "flip", [MPM_TRANSFER_APIC] = "apic",
+};
+
 /* Name <-> value of the config enums these tables cover. */
 #define NAME_AT(table, i) mpm_names_at(table, MPM_NAMES_COUNT(table), i)
 #define NAME_INDEX(table, s) mpm_names_index(table, MPM_NAMES_COUNT(table), s)
@@ -189,6 +194,7 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
   case NK_EDGE: return NAME_AT(edge_names, i);
   case NK_DILATATION: return NAME_AT(dilatation_names, i);
+  case NK_TRANSFER: return NAME_AT(transfer_names, i);
   case NK_BC: return mpm_bc_kind_name(i);
   case NK_NGF_FORM: return mpm_material_ngf_form_name(i);
   case NK_NGF_P_SAMPLE: return mpm_material_ngf_p_sample_name(i);
@@ -233,6 +239,7 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_G_MASS: return mpm_nonlocal_steady_mass_from_name(s);
   case NK_EDGE: return NAME_INDEX(edge_names, s);
   case NK_DILATATION: return NAME_INDEX(dilatation_names, s);
+  case NK_TRANSFER: return NAME_INDEX(transfer_names, s);
   default: return -1;
   }
 }

@@ -54,23 +54,24 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
   double per_point = (double)point_store_bytes                 /* the store */
                      + sizeof(int) + MPM_STENCIL_W * (sizeof(int) + 3 * sizeof(double))
                      + sizeof(double) + 1.0;                   /* output work, removal flags */
-  if (nonlocal || density)
+  const int bbar = cfg->mesh.dilatation == MPM_DILATATION_UNIT;
+  if (nonlocal || density || bbar)
     per_point += 4 * sizeof(double);                           /* L_p kept over the substeps */
   if (density)
     per_point += sizeof(double);
   if (nonlocal)
     per_point += sizeof(int) + 1 + sizeof(double)              /* unit, dense, p_n */
                  + (extent ? MPM_NONLOCAL_PARTS * (sizeof(int) + sizeof(double)) : 0);
-  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT)
-    per_point += sizeof(long);
+  if (bbar)
+    per_point += sizeof(int);                                  /* the unit of each point */
   double per_node = 9 * sizeof(double) + sizeof(int) + 2 + 2 * sizeof(double);  /* + bc */
   double per_unit = 0.0;
   if (nonlocal)
     per_unit += 6 * sizeof(double);
   if (density)
     per_unit += 4 * sizeof(double);
-  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT)
-    per_unit += 9 * sizeof(double);
+  if (bbar)
+    per_unit += 2 * sizeof(double);
   if (nonlocal && cfg->material.diffusion == MPM_DIFFUSION_IMPLICIT)  /* the matrix, its */
     per_unit += 200.0 + 16.0 * log2(units + 2.0);  /* Cholesky factor (nested-dissection
                                                        fill: ~ N log N) and the vectors */

@@ -61,9 +61,11 @@ typedef struct mpm_sim {
   mpm_material_density *dens;     /* unit sums; NULL for the point rule */
   double *rho;                    /* [rcap] density each point's update sees [kg/m^3] */
   size_t rcap;                    /* length of rho */
-  double *ug;                     /* mesh.dilatation = "unit": [9 nx ny] per unit, the
-                                   * points' volume and the volume-weighted mean of
-                                   * their dS_k/dx, dS_k/dy (k = 0..3); else NULL */
+  /* mesh.dilatation = "unit" (B-bar with the mean stress per unit, transfer.c);
+   * else NULL */
+  int *uof;                       /* [ucap] the unit of each point, -1 outside the mesh */
+  size_t ucap;
+  double *usum;                   /* [2 nx ny] per unit: sum V_p, sum V_p f_p */
 
   double t, dt;                   /* current time, time step [s] */
   long step;

@@ -15,7 +15,10 @@
  * with material.state_density = "element", "hybrid" ([D-thesis] §3.4) or "unit"
  * all points move first and the unit sums are taken from x_{n+1} before the
  * updates (density_phase, and likewise in nonlocal_phase). V_p always keeps its
- * local update (with mesh.dilatation = "unit", from the unit's B-bar divergence).
+ * local update. With mesh.dilatation = "unit" (B-bar, transfer.c) the in-plane
+ * mean stress enters point-to-grid as its unit's mean, all points move before
+ * tr L_p is replaced by its unit's mean (density_phase or nonlocal_phase), and
+ * after the update the dense points of a unit share its mean stress.
  * Threads: the stencil is parallel over points; point-to-grid and the grid
  * update over ranges of nodes (grid_phase); the rest over points
  * (point_phase), except the element sums of g and of mass, which run in
@@ -178,16 +181,13 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
   if (rc == MPM_OK)
     s->located = s->shape->at_point;
-  if (rc == MPM_OK && cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
-      !(s->located && s->mesh.topology == MPM_TOPO_Q4))
-    rc = mpm_err_set(err, MPM_EINPUT, "mesh.dilatation = \"unit\" needs delta weights on q4");
   if (rc == MPM_OK)
     rc = nonlocal_alloc(s, err);
   if (rc == MPM_OK)
     rc = density_alloc(s, err);
   if (rc == MPM_OK && cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
-      !(s->ug = malloc(9 * (size_t)s->mesh.nx * (size_t)s->mesh.ny * sizeof *s->ug)))
-    rc = mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit gradients");
+      !(s->usum = malloc(2 * (size_t)s->mesh.nx * (size_t)s->mesh.ny * sizeof *s->usum)))
+    rc = mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
   if (rc != MPM_OK) {
     mpm_sim_free(s);
     return rc;
@@ -213,7 +213,8 @@ void mpm_sim_free(mpm_sim *s)
   mpm_nonlocal_free(s->nl);
   mpm_material_density_free(s->dens);
   free(s->rho);
-  free(s->ug);
+  free(s->usum);
+  free(s->uof);
   free(s->lxx);
   free(s->lxy);
   free(s->lyx);
@@ -252,17 +253,25 @@ typedef struct chunk {
 } chunk;
 
 /* Steps 4-5 for points [a, b): L_p to lxx[p - a] ..., the grid velocity
- * that moved point p to ck->vgx[p - a], ck->vgy[p - a]. */
+ * that moved point p to ck->vgx[p - a], ck->vgy[p - a]; with APIC, L_p is
+ * also the point's affine matrix C_p for the next step. */
 static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *lxx,
                              double *lxy, double *lyx, double *lyy, chunk *ck)
 {
+  const int apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
   for (size_t p = a; p < b; p++) {
     mpm_sim_in_basis buf;
     const int *node;
     const double *S, *gx, *gy;
     double L[4], vg[2], ag[2];
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    mpm_sim_in_gather(s, p, c, node, S, gx, gy, vg, ag, L);
+    mpm_sim_in_gather(s, c, node, S, gx, gy, vg, ag, L);
+    if (apic) {                               /* C_p = sum v_i (x) gradS_ip */
+      s->pts->cxx[p] = L[0];
+      s->pts->cxy[p] = L[1];
+      s->pts->cyx[p] = L[2];
+      s->pts->cyy[p] = L[3];
+    }
     lxx[p - a] = L[0];
     lxy[p - a] = L[1];
     lyx[p - a] = L[2];
@@ -400,6 +409,8 @@ static int move_points(mpm_sim *s, mpm_err *err)
     move_range(s, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a, &ck);
     mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
   }
+  if (s->usum)                               /* B-bar: tr L_p and V_p per unit */
+    mpm_sim_in_unit_dilatation(s);
   return MPM_OK;
 }
 
@@ -492,10 +503,11 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   return bad;
 }
 
-/* Steps 4-7 for a local model with the element or hybrid density: the
- * density of a unit needs every point at x_{n+1}, so all points move first
- * (L_p stored, walls and periodic wrap applied), then the unit sums run in
- * point order and the points are updated. Returns as point_phase. */
+/* Steps 4-7 for a local model with the element, hybrid or unit density or
+ * the B-bar dilatation: the density of a unit needs every point at x_{n+1},
+ * and the unit's divergence every point's L_p, so all points move first (L_p
+ * stored, walls and periodic wrap applied), then the unit sums run in point
+ * order and the points are updated. Returns as point_phase. */
 static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm_err *err)
 {
   if ((*rc = move_points(s, err)) != MPM_OK)
@@ -539,8 +551,8 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   }
   double bx, by;
   mpm_sim_gravity(s, s->t, &bx, &by);
-  if (s->ug)
-    mpm_sim_in_unit_gradients(s);
+  if (s->usum && (rc = mpm_sim_in_unit_stress(s, err)) != MPM_OK)
+    return rc;
   mpm_sim_in_grid(s, bx, by);
   const mpm_material_type *mat = seeding(s);
   long bad;
@@ -548,7 +560,7 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
     bad = nonlocal_phase(s, &rc, err);
     if (rc != MPM_OK)
       return rc;
-  } else if (s->dens) {
+  } else if (s->dens || s->usum) {
     bad = density_phase(s, mat, &rc, err);
     if (rc != MPM_OK)
       return rc;
@@ -557,6 +569,8 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   }
   if (bad >= 0)                              /* a non-finite stress: what, where, why */
     return mpm_sim_check_state(s, s->t + s->dt, err);
+  if (s->usum)                               /* one mean stress per unit */
+    mpm_sim_in_unit_project(s);
   s->t += s->dt;
   s->step++;
   if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)

@@ -167,37 +167,107 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
 
 /* ---- B-bar ------------------------------------------------------------------ */
 
-/* B-bar weights of the step ([mesh] dilatation = "unit", delta weights on q4,
- * so a point's weights are the corners of its unit in mpm_mesh_basis order):
- * per unit u, ug[9u] = sum V_p over its points and ug[9u + 1 + k],
- * ug[9u + 5 + k] the volume-weighted mean of their dS_k/dx, dS_k/dy. The
- * points are the unit's quadrature: four points placed symmetrically give the
- * gradient at the unit centre, one point its own gradient (the point rule),
- * so a node the points barely reach gets no more force than without B-bar.
- * Sums in point order on one thread: thread-count free. */
-void mpm_sim_in_unit_gradients(mpm_sim *s)
+/* With mesh.dilatation = "unit" the units of the mesh carry the volumetric
+ * part of the scheme (docs/model.md, "Volumetric strain rate and mean stress
+ * per unit"): each point's in-plane mean stress s_m = (s_xx + s_yy)/2 acts
+ * in point-to-grid as its unit's volume-weighted mean, its tr L is replaced
+ * by its unit's volume-weighted mean, and after the update the dense
+ * points of a unit share their unit's mean s_m. The unit sums run in point
+ * order on one thread: thread-count free. */
+
+/* Room for the unit of every point. */
+static int reserve_units(mpm_sim *s, mpm_err *err)
+{
+  const size_t n = s->pts->n ? s->pts->n : 1;
+  if (n <= s->ucap)
+    return MPM_OK;
+  int *u = realloc(s->uof, n * sizeof *u);
+  if (!u)
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the units of %zu points", n);
+  s->uof = u;
+  s->ucap = n;
+  return MPM_OK;
+}
+
+/* s->uof[p]: the unit holding point p now, -1 outside the mesh. */
+static void find_units(mpm_sim *s)
+{
+  const mpm_points *P = s->pts;
+  const int nx = s->mesh.nx;
+  for (size_t p = 0; p < P->n; p++) {
+    int i, j;
+    s->uof[p] = mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) == MPM_OK ? i + nx * j : -1;
+  }
+}
+
+/* What a unit mean averages: the in-plane mean stress of all points or of
+ * the dense ones, or tr L_p. */
+enum { MEAN_SM, MEAN_SM_DENSE, MEAN_TRL };
+
+static inline double mean_value(const mpm_sim *s, size_t p, int what)
+{
+  const mpm_points *P = s->pts;
+  return what == MEAN_TRL ? s->lxx[p] + s->lyy[p] : 0.5 * (P->sxx[p] + P->syy[p]);
+}
+
+/* s->usum[2u + 1] = sum V_p f_p / sum V_p over the points of unit u
+ * (s->uof) that take part (the dense ones for MEAN_SM_DENSE), s->usum[2u]
+ * = sum V_p; both 0 for a unit without such points. */
+static void unit_means(mpm_sim *s, int what)
 {
   const mpm_points *P = s->pts;
   const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
-  memset(s->ug, 0, 9 * nu * sizeof *s->ug);
+  double *us = s->usum;
+  memset(us, 0, 2 * nu * sizeof *us);
   for (size_t p = 0; p < P->n; p++) {
-    mpm_sim_in_basis b;
-    const int *node;
-    const double *S, *gx, *gy;
-    const int c = mpm_sim_in_weights(s, p, MPM_SIM_IN_Q4, &b, &node, &S, &gx, &gy);
-    double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
-    const double V = P->vol[p];
-    u[0] += V;
-    for (int k = 0; k < c; k++) {
-      u[1 + k] += V * gx[k];
-      u[5 + k] += V * gy[k];
-    }
+    const int u = s->uof[p];
+    if (u < 0 || (what == MEAN_SM_DENSE && P->state[p] != MPM_STATE_DENSE))
+      continue;
+    us[2 * u] += P->vol[p];
+    us[2 * u + 1] += P->vol[p] * mean_value(s, p, what);
   }
-  for (size_t e = 0; e < nu; e++) {
-    double *u = s->ug + 9 * e;
-    if (u[0] > 0.0)
-      for (int k = 1; k < 9; k++)
-        u[k] /= u[0];
+  for (size_t e = 0; e < nu; e++)
+    if (us[2 * e] > 0.0)
+      us[2 * e + 1] /= us[2 * e];
+}
+
+int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
+{
+  int rc = reserve_units(s, err);
+  if (rc != MPM_OK)
+    return rc;
+  find_units(s);
+  unit_means(s, MEAN_SM);
+  return MPM_OK;
+}
+
+void mpm_sim_in_unit_dilatation(mpm_sim *s)
+{
+  mpm_points *P = s->pts;
+  unit_means(s, MEAN_TRL);
+  const double dt = s->dt;
+  for (size_t p = 0; p < P->n; p++) {
+    const int u = s->uof[p];
+    const double tr = s->lxx[p] + s->lyy[p];
+    const double div = u < 0 ? tr : s->usum[2 * u + 1];    /* the unit's divergence */
+    s->lxx[p] += 0.5 * (div - tr);
+    s->lyy[p] += 0.5 * (div - tr);
+    P->vol[p] *= exp(dt * div);                              /* V *= exp(dt tr L) */
+  }
+}
+
+void mpm_sim_in_unit_project(mpm_sim *s)
+{
+  mpm_points *P = s->pts;
+  find_units(s);                             /* the units of x_{n+1} */
+  unit_means(s, MEAN_SM_DENSE);
+  for (size_t p = 0; p < P->n; p++) {
+    const int u = s->uof[p];
+    if (u < 0 || P->state[p] != MPM_STATE_DENSE)
+      continue;
+    const double d = s->usum[2 * u + 1] - 0.5 * (P->sxx[p] + P->syy[p]);
+    P->sxx[p] += d;
+    P->syy[p] += d;
   }
 }
 
@@ -207,15 +277,24 @@ void mpm_sim_in_unit_gradients(mpm_sim *s)
  *   m_i += S m_p,  (mv)_i += S m_p v_p,  f_i += -V_p sigma_p . gradS_ip + S m_p b,
  * as one operation on four lanes per node: q_i += S a + dS/dx ax + dS/dy ay
  * with a = m_p (v_x, v_y, b_x, b_y), ax = -V_p (0, 0, s_xx, s_xy),
- * ay = -V_p (0, 0, s_xy, s_yy). With the B-bar dilatation the mean in-plane
- * stress acts on the unit's mean gradients instead of the point's own. */
+ * ay = -V_p (0, 0, s_xy, s_yy). With the B-bar dilatation the in-plane
+ * mean stress s_m of the point is its unit's mean. With APIC the momentum
+ * takes the affine part too, (mv)_i += S m_p C_p (x_i - x_p) ([JSS+15]:
+ * it adds no momentum, sum S (x_i - x_p) = 0 for every shape here). */
 static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*restrict nq)[4],
                              size_t p, int c, const int *node, const double *S,
-                             const double *gx, const double *gy, double bx, double by, int bbar)
+                             const double *gx, const double *gy, double bx, double by, int bbar,
+                             int apic)
 {
   const mpm_points *P = s->pts;
   const double m = P->mass[p], V = P->vol[p];
-  const double sxx = P->sxx[p], syy = P->syy[p], sxy = P->sxy[p];
+  double sxx = P->sxx[p], syy = P->syy[p];
+  const double sxy = P->sxy[p];
+  if (bbar && s->uof[p] >= 0) {             /* s_m -> the unit's mean */
+    const double d = s->usum[2 * s->uof[p] + 1] - 0.5 * (sxx + syy);
+    sxx += d;
+    syy += d;
+  }
   const double a[4] = {m * P->vx[p], m * P->vy[p], m * bx, m * by};
   const double ax[4] = {0.0, 0.0, -V * sxx, -V * sxy};
   const double ay[4] = {0.0, 0.0, -V * sxy, -V * syy};
@@ -227,12 +306,13 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
     for (int l = 0; l < 4; l++)
       q[l] += Sk * a[l] + gxk * ax[l] + gyk * ay[l];       /* (mv, f)_i */
   }
-  if (bbar) {                  /* mean stress s_m on the unit's B-bar gradient */
-    const double Vsm = V * 0.5 * (sxx + syy);
-    const double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
+  if (apic) {                                              /* + S m C (x_i - x_p) */
+    const double cxx = P->cxx[p], cxy = P->cxy[p], cyx = P->cyx[p], cyy = P->cyy[p];
     for (int k = 0; k < c; k++) {
-      nq[node[k]][2] -= Vsm * (u[1 + k] - gx[k]);
-      nq[node[k]][3] -= Vsm * (u[5 + k] - gy[k]);
+      double ex, ey;
+      mpm_sim_in_node_offset(&s->mesh, node[k], P->x[p], P->y[p], &ex, &ey);
+      nq[node[k]][0] += S[k] * m * (cxx * ex + cxy * ey);
+      nq[node[k]][1] += S[k] * m * (cyx * ex + cyy * ey);
     }
   }
 }
@@ -243,14 +323,15 @@ static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double
   const mpm_mesh_bands *b = s->bands;
   double *restrict nm = s->nm;
   double (*restrict nq)[4] = s->nq;
-  const int bbar = s->ug != NULL, end = b->start[k + 1];
+  const int bbar = s->usum != NULL, end = b->start[k + 1];
+  const int apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
   for (int q = b->start[k]; q < end; q++) {
     const size_t p = (size_t)b->idx[q];
     mpm_sim_in_basis buf;
     const int *node;
     const double *S, *gx, *gy;
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar);
+    p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar, apic);
   }
 }
 

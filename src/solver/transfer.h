@@ -69,12 +69,28 @@ static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int kind, mpm_s
   return st->count[p];
 }
 
-/* Step 4 for point p with weights (c, node, S, gx, gy), after the grid
+/* x_i - (x, y) for the node of storage id i, on a periodic axis its image
+ * nearest to (x, y). A stencil node lies within 1 + r units of its point (r
+ * the stencil's reach beyond the point's unit), so that is its own image
+ * while the axis has at least 2 + 2r units, which the input check demands
+ * for APIC (a node at exactly half the period away has S = 0). */
+static inline void mpm_sim_in_node_offset(const mpm_mesh *m, int i, double x, double y,
+                                          double *ex, double *ey)
+{
+  double dx = m->x0 + (i % m->snx) * m->dx - x, dy = m->y0 + (i / m->snx) * m->dy - y;
+  if (m->periodic_x)
+    dx -= m->lx * nearbyint(dx / m->lx);
+  if (m->periodic_y)
+    dy -= m->ly * nearbyint(dy / m->ly);
+  *ex = dx;
+  *ey = dy;
+}
+
+/* Step 4 for a point with weights (c, node, S, gx, gy), after the grid
  * update: vg = sum S v_i (the PIC velocity, the grid velocity that moves the
  * point), ag = sum S a_i, and L_p = sum v_i (x) gradS_ip (the in-plane
- * entries, L = {xx, xy, yx, yy}; with the B-bar dilatation its trace replaced
- * by the unit's divergence). */
-static inline void mpm_sim_in_gather(const mpm_sim *s, size_t p, int c, const int *node,
+ * entries, L = {xx, xy, yx, yy}). */
+static inline void mpm_sim_in_gather(const mpm_sim *s, int c, const int *node,
                                      const double *S, const double *gx, const double *gy,
                                      double vg[2], double ag[2], double L[4])
 {
@@ -90,20 +106,7 @@ static inline void mpm_sim_in_gather(const mpm_sim *s, size_t p, int c, const in
       ay[l] += w[l] * gyk;                      /* sum v dS/dy */
     }
   }
-  double lxx = ax[0], lxy = ay[0], lyx = ax[1], lyy = ay[1];
-  if (s->ug) {
-    /* B-bar: tr L is replaced by the unit's divergence, the volume-weighted
-     * mean of its points' tr L, i.e. its rate of area change (the in-plane
-     * mean stress does work on it in point-to-grid, so the pair conserves
-     * energy). */
-    const double *u = s->ug + 9 * ((size_t)s->loc_i[p] + (size_t)s->mesh.nx * s->loc_j[p]);
-    double div = 0.0;
-    for (int k = 0; k < c; k++)
-      div += nq[node[k]][0] * u[1 + k] + nq[node[k]][1] * u[5 + k];
-    const double corr = 0.5 * (div - lxx - lyy);
-    lxx += corr;
-    lyy += corr;
-  }
+  const double lxx = ax[0], lxy = ay[0], lyx = ax[1], lyy = ay[1];
   vg[0] = as[0];
   vg[1] = as[1];
   ag[0] = as[2];
@@ -117,7 +120,8 @@ static inline void mpm_sim_in_gather(const mpm_sim *s, size_t p, int c, const in
 /* Step 4 (the rest) and 5 for points [a, b) from what mpm_sim_in_gather gave
  * for point p at index p - a of vgx, vgy, agx, agy, lxx, lyy:
  * v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i when
- * time.flip < 1), x_p += dt sum S v_i, V_p *= exp(dt tr L_p). */
+ * time.flip < 1; with APIC the PIC velocity), x_p += dt sum S v_i, V_p *= exp(dt tr L_p) (with the
+ * B-bar dilatation later, by mpm_sim_in_unit_dilatation). */
 static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const double *vgx,
                                       const double *vgy, const double *agx, const double *agy,
                                       const double *lxx, const double *lyy)
@@ -125,7 +129,9 @@ static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const doub
   mpm_points *P = s->pts;
   double *restrict x = P->x, *restrict y = P->y, *restrict vx = P->vx, *restrict vy = P->vy;
   double *restrict vol = P->vol;
-  const double dt = s->dt, fl = s->cfg.time.flip;            /* FLIP share (1: [DK15]) */
+  const double dt = s->dt;
+  /* FLIP share (1: [DK15]); APIC takes the PIC velocity */
+  const double fl = s->cfg.time.transfer == MPM_TRANSFER_APIC ? 0.0 : s->cfg.time.flip;
 #pragma omp simd
   for (size_t p = a; p < b; p++) {
     const size_t k = p - a;
@@ -135,8 +141,9 @@ static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const doub
     x[p] += dt * vgx[k];
     y[p] += dt * vgy[k];
   }
-  for (size_t p = a; p < b; p++)
-    vol[p] *= exp(dt * (lxx[p - a] + lyy[p - a]));             /* V *= exp(dt tr L) */
+  if (!s->usum)
+    for (size_t p = a; p < b; p++)
+      vol[p] *= exp(dt * (lxx[p - a] + lyy[p - a]));           /* V *= exp(dt tr L) */
 }
 
 /* Step 7 for points [a, b), each moved by the grid velocity
@@ -188,9 +195,20 @@ int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err);
  * that the points of a band lie together in memory. */
 int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err);
 
-/* B-bar weights of the step (mesh.dilatation = "unit"): s->ug from the
- * located points. */
-void mpm_sim_in_unit_gradients(mpm_sim *s);
+/* B-bar (mesh.dilatation = "unit", transfer.c). Before point-to-grid: the
+ * unit of every point (s->uof) and each unit's volume-weighted mean of the
+ * in-plane mean stress s_m (s->usum), which point-to-grid applies. */
+int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err);
+
+/* After grid-to-point (every point's L_p stored, its volume not yet
+ * updated): tr L_p replaced by the volume-weighted mean over the point's
+ * unit of the step's start, and V_p *= exp(dt tr L_p). */
+void mpm_sim_in_unit_dilatation(mpm_sim *s);
+
+/* After the update: the in-plane mean stress of every dense point set to
+ * the volume-weighted mean over the dense points of its unit of x_{n+1}
+ * (the pressure of a mixed Q1/P0 element, one value per unit). */
+void mpm_sim_in_unit_project(mpm_sim *s);
 
 /* Steps 2-3: point-to-grid band by band, then the grid update with the
  * boundary conditions; body force (bx, by). */
