@@ -58,9 +58,9 @@ static void column_config(mpm_config *c, const char *topology, int ngf, int dens
   if (delta)
     strcpy(c->mesh.shape, "delta");
   c->material.state_density = density;
-  if (density == MPM_DENSITY_UNIT) {   /* with the B-bar dilatation, as the V6 inputs use it */
-    strcpy(c->mesh.shape, "delta");
+  if (density == MPM_DENSITY_UNIT) {   /* with the B-bar dilatation and APIC, as the example */
     c->mesh.dilatation = MPM_DILATATION_UNIT;
+    c->time.transfer = MPM_TRANSFER_APIC;
   }
   c->bc.left = MPM_BC_SYMMETRY;
   c->bc.bottom = MPM_BC_NOSLIP;
