@@ -153,7 +153,7 @@ st=$?
 # frames at 0, every 0.02 s and at the end: at most 2 + 30.
 count=$((count + 1))
 "$GRANMPM" check "$srcdir/inputs/example.conf" >"$tmp/out" 2>"$tmp/err"
-grep -qx "# size: 1600 points, 1586 nodes, 11368 steps of 5.27799e-05 s (stable: 0.00010556 s), 1 substeps per step, at most 32 frames" "$tmp/out" &&
+grep -qx "# size: 1600 points, 1586 nodes, 22736 steps of 5.27799e-05 s (stable: 0.00010556 s), 1 substeps per step, at most 62 frames" "$tmp/out" &&
   grep -q "^# estimated memory .* MB (.* available), output .* MB (.* free where it goes)\$" "$tmp/out" ||
   { fail "the size of the example"; grep '^# ' "$tmp/out"; }
 
