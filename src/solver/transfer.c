@@ -273,6 +273,25 @@ void mpm_sim_in_unit_project(mpm_sim *s)
 
 /* ---- steps 2-3 ---------------------------------------------------------------- */
 
+/* APIC's share of step 2 for point p: (mv)_i += S m_p C_p (x_i - x_p).
+ * Out of line, so that the FLIP loops stay as lean as they were. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void p2g_affine(const mpm_sim *s, double (*restrict nq)[4], size_t p, int c,
+                       const int *node, const double *S)
+{
+  const mpm_points *P = s->pts;
+  const double m = P->mass[p];
+  const double cxx = P->cxx[p], cxy = P->cxy[p], cyx = P->cyx[p], cyy = P->cyy[p];
+  for (int k = 0; k < c; k++) {
+    double ex, ey;
+    mpm_sim_in_node_offset(&s->mesh, node[k], P->x[p], P->y[p], &ex, &ey);
+    nq[node[k]][0] += S[k] * m * (cxx * ex + cxy * ey);
+    nq[node[k]][1] += S[k] * m * (cyx * ex + cyy * ey);
+  }
+}
+
 /* Step 2 for point p with weights (c, node, S, gx, gy):
  *   m_i += S m_p,  (mv)_i += S m_p v_p,  f_i += -V_p sigma_p . gradS_ip + S m_p b,
  * as one operation on four lanes per node: q_i += S a + dS/dx ax + dS/dy ay
@@ -306,25 +325,18 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
     for (int l = 0; l < 4; l++)
       q[l] += Sk * a[l] + gxk * ax[l] + gyk * ay[l];       /* (mv, f)_i */
   }
-  if (apic) {                                              /* + S m C (x_i - x_p) */
-    const double cxx = P->cxx[p], cxy = P->cxy[p], cyx = P->cyx[p], cyy = P->cyy[p];
-    for (int k = 0; k < c; k++) {
-      double ex, ey;
-      mpm_sim_in_node_offset(&s->mesh, node[k], P->x[p], P->y[p], &ex, &ey);
-      nq[node[k]][0] += S[k] * m * (cxx * ex + cxy * ey);
-      nq[node[k]][1] += S[k] * m * (cyx * ex + cyy * ey);
-    }
-  }
+  if (apic)
+    p2g_affine(s, nq, p, c, node, S);
 }
 
-/* Step 2 for the points of band k. */
-static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double by)
+/* Step 2 for the points of band k with the tests of the options. */
+static inline void p2g_points(const mpm_sim *s, int k, int kind, double bx, double by, int bbar,
+                              int apic)
 {
   const mpm_mesh_bands *b = s->bands;
   double *restrict nm = s->nm;
   double (*restrict nq)[4] = s->nq;
-  const int bbar = s->usum != NULL, end = b->start[k + 1];
-  const int apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
+  const int end = b->start[k + 1];
   for (int q = b->start[k]; q < end; q++) {
     const size_t p = (size_t)b->idx[q];
     mpm_sim_in_basis buf;
@@ -333,6 +345,17 @@ static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
     p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar, apic);
   }
+}
+
+/* Step 2 for the points of band k; the plain FLIP loop compiled without the
+ * B-bar and APIC tests. */
+static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double by)
+{
+  const int bbar = s->usum != NULL, apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
+  if (bbar || apic)
+    p2g_points(s, k, kind, bx, by, bbar, apic);
+  else
+    p2g_points(s, k, kind, bx, by, 0, 0);
 }
 
 /* Step 3 on node i: boundary conditions, (mv)_i += dt f_i, v_i = (mv)_i/m_i.
