@@ -11,6 +11,7 @@
 #include "io/input_internal.h"
 #include "material/material.h"
 #include "nonlocal/field.h"
+#include "shape/shape.h"
 
 #define MAX_NODES 1e8  /* (nx + 1)(ny + 1) */
 #define GEOM_TOL 1e-9  /* fills may overshoot the mesh by this many units */
@@ -70,10 +71,12 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
                               mpm_io_in_num(MAX_NODES).s);
   }
   /* APIC finds a stencil node's position from its stored index: a periodic
-   * axis must hold the stencil's nodes without two being one (2 with the
-   * element basis, 4 with uGIMP: mpm_sim_in_node_offset) */
+   * axis must hold the stencil's nodes without two being one (2 for weights
+   * that are the element basis at the point, 4 for extents up to half a
+   * unit: mpm_sim_in_node_offset) */
   const int px = cfg->bc.left == MPM_BC_PERIODIC, py = cfg->bc.bottom == MPM_BC_PERIODIC;
-  const int need = strcmp(cfg->mesh.shape, "delta") == 0 ? 2 : 4;
+  const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
+  const int need = shape && shape->at_point ? 2 : 4;
   if (cfg->time.transfer == MPM_TRANSFER_APIC &&
       ((px && cfg->mesh.nx < need) || (py && cfg->mesh.ny < need))) {
     const int onx = px && cfg->mesh.nx < need;
