@@ -15,6 +15,7 @@
 #include "core/config.h"
 #include "diag/diag.h"
 #include "solver/solver.h"
+#include "solver/transfer.h"
 #include "sim_config.h"
 
 #ifdef _OPENMP
@@ -160,6 +161,45 @@ END_TEST
  * are moved off their symmetric places and given unequal volumes, so the
  * unit mean differs from both the centre value and each point's own rate;
  * the point rule ("point") fails the same check. */
+/* The volume ratio of a step, exp(dt tr L) without a library call where
+ * |dt tr L| <= 2^-6: against a long-double exp it is as good as a correctly
+ * rounded result within the last add's rounding (0.5 ulp) plus a truncation
+ * below 1e-19 (tolerance 0.55 ulp), at the series' edge and beyond it too
+ * (libm there). */
+START_TEST(t_volume_ratio)
+{
+  unsigned long r = 12345;
+  double worst = 0.0;
+  for (int i = 0; i < 200000; i++) {
+    r = r * 6364136223846793005UL + 1442695040888963407UL;
+    const double u = (double)(r >> 11) * 0x1p-53;                /* [0, 1) */
+    const double x = (2.0 * u - 1.0) * ldexp(1.0, -(int)(i % 40) - 5);  /* |x| < 2^-5 */
+    const double f = mpm_sim_volume_ratio(x);
+    const long double t = expl((long double)x);
+    const double ulp = nextafter(f, 2.0) - f;
+    const double e = fabs((double)(((long double)f - t) / ulp));
+    worst = e > worst ? e : worst;
+  }
+  ck_assert_double_le(worst, 0.55);
+  ck_assert_double_eq(mpm_sim_volume_ratio(0.0), 1.0);
+  ck_assert_double_eq(mpm_sim_volume_ratio(-0.5), exp(-0.5));
+  /* the loop of a chunk: series and libm points mixed, V = 2 */
+  enum { N = 9 };
+  const double lxx[N] = {1e3, -2e3, 0.0, 4e3, 1e5, -3e5, 2e3, 5e3, -5e3};
+  const double lyy[N] = {0.0, 1e3, 0.0, 1e3, 1e5, 0.0, -2e3, 0.0, 0.0};
+  const double dt = 3e-6;                                   /* dt div up to 0.9 */
+  double vol[N];
+  for (int k = 0; k < N; k++)
+    vol[k] = 2.0;
+  mpm_sim_volume_update(vol, lxx, lyy, N, dt);
+  for (int k = 0; k < N; k++) {
+    const double x = dt * (lxx[k] + lyy[k]);
+    ck_assert_double_eq(vol[k], 2.0 * mpm_sim_volume_ratio(x));
+    ck_assert_double_eq_tol(vol[k], 2.0 * exp(x), 2.0 * exp(x) * 0x1p-52);
+  }
+}
+END_TEST
+
 START_TEST(t_bbar_unit_dilatation)
 {
   for (int bbar = 1; bbar >= 0; bbar--) {
@@ -847,6 +887,7 @@ int main(void)
   TCase *tc = tcase_create("solver");
   tcase_add_test(tc, t_wall_stops_flip_velocity);
   tcase_add_test(tc, t_pic_velocity_is_displacement_rate);
+  tcase_add_test(tc, t_volume_ratio);
   tcase_add_test(tc, t_bbar_unit_dilatation);
   tcase_add_test(tc, t_bbar_every_shape);
   tcase_add_test(tc, t_apic_affine);

@@ -252,7 +252,7 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
     const double div = u < 0 ? tr : s->usum[2 * u + 1];    /* the unit's divergence */
     s->lxx[p] += 0.5 * (div - tr);
     s->lyy[p] += 0.5 * (div - tr);
-    P->vol[p] *= exp(dt * div);                              /* V *= exp(dt tr L) */
+    P->vol[p] *= mpm_sim_volume_ratio(dt * div);             /* V *= exp(dt tr L) */
   }
 }
 
