@@ -175,13 +175,43 @@ static inline void mpm_mesh_basis_q4(double u, double v, double ix, double iy, d
   }
 }
 
+/* Values N of the basis of unit column i at local (u, v) on the four unit
+ * corners, in the order of mpm_mesh_unit_corners. Returns the mask of the
+ * corners of the element (bit a for corner a): all four for Q4; for T3 the
+ * three of the triangle holding (u, v) (ties on the diagonal go to the lower
+ * one), the fourth getting N = 0. The T3 values are selections, not
+ * branches, so that a loop over points or corners vectorises. */
+static inline unsigned mpm_mesh_shape_corners(const mpm_mesh *m, int i, double u, double v,
+                                              double N[4])
+{
+  if (m->topology == MPM_TOPO_Q4) {
+    N[0] = (1.0 - u) * (1.0 - v);
+    N[1] = u * (1.0 - v);
+    N[2] = u * v;
+    N[3] = (1.0 - u) * v;
+    return 0xfu;
+  }
+  if (mpm_mesh_column_is_slash(m, i)) {
+    const int lo = u >= v;       /* lower: corners 0 1 2, N = 1-u, u-v, v; upper: 0 2 3, 1-v, u, v-u */
+    N[0] = lo ? 1.0 - u : 1.0 - v;
+    N[1] = lo ? u - v : 0.0;
+    N[2] = lo ? v : u;
+    N[3] = lo ? 0.0 : v - u;
+    return lo ? 0x7u : 0xdu;
+  }
+  const int lo = u + v <= 1.0;   /* lower: corners 0 1 3, N = 1-u-v, u, v; upper: 1 2 3, 1-v, u+v-1, 1-u */
+  N[0] = lo ? 1.0 - u - v : 0.0;
+  N[1] = lo ? u : 1.0 - v;
+  N[2] = lo ? 0.0 : u + v - 1.0;
+  N[3] = lo ? v : 1.0 - u;
+  return lo ? 0xbu : 0xeu;
+}
+
 /* Basis of unit column i at local (u, v) on the four unit corners, in the
- * order of mpm_mesh_unit_corners: N and grad N = (dN/du / dx, dN/dv / dy).
- * Returns the mask of the corners of the element (bit a for corner a): all
- * four for Q4; for T3 the three of the triangle holding (u, v) (ties on the
- * diagonal go to the lower one), the fourth getting N = grad N = 0.
- * T3 slopes dN/du, dN/dv are -1, 0 or 1, so grad N is -1/dx, 0 or 1/dx
- * (likewise in y). */
+ * order of mpm_mesh_unit_corners: N (mpm_mesh_shape_corners) and
+ * grad N = (dN/du / dx, dN/dv / dy); returns the element's corner mask.
+ * Q4: mpm_mesh_basis_q4. T3 slopes dN/du, dN/dv are -1, 0 or 1, so grad N
+ * is -1/dx, 0 or 1/dx (likewise in y), one table row per triangle. */
 static inline unsigned mpm_mesh_basis_corners(const mpm_mesh *m, int i, double u, double v,
                                               double N[4], double dNx[4], double dNy[4])
 {
@@ -190,30 +220,17 @@ static inline unsigned mpm_mesh_basis_corners(const mpm_mesh *m, int i, double u
     mpm_mesh_basis_q4(u, v, ix, iy, N, dNx, dNy);
     return 0xfu;
   }
-  const int slash = mpm_mesh_column_is_slash(m, i);
-  if (slash && u >= v) {         /* corners 0 1 2: N = 1-u, u-v, v */
-    N[0] = 1.0 - u; N[1] = u - v; N[2] = v; N[3] = 0.0;
-    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0; dNx[3] = 0.0;
-    dNy[0] = 0.0; dNy[1] = -iy; dNy[2] = iy; dNy[3] = 0.0;
-    return 0x7u;
+  const unsigned mask = mpm_mesh_shape_corners(m, i, u, v, N);
+  /* dN/du and dN/dv of the four corners for the triangles 0 1 2 (mask 7),
+   * 0 2 3 (d), 0 1 3 (b), 1 2 3 (e) */
+  static const signed char du[4][4] = {{-1, 1, 0, 0}, {0, 0, 1, -1}, {-1, 1, 0, 0}, {0, 0, 1, -1}};
+  static const signed char dv[4][4] = {{0, -1, 1, 0}, {-1, 0, 0, 1}, {-1, 0, 0, 1}, {0, -1, 1, 0}};
+  const int t = mask == 0x7u ? 0 : mask == 0xdu ? 1 : mask == 0xbu ? 2 : 3;
+  for (int a = 0; a < 4; a++) {
+    dNx[a] = du[t][a] * ix;
+    dNy[a] = dv[t][a] * iy;
   }
-  if (slash) {                   /* corners 0 2 3: N = 1-v, u, v-u */
-    N[0] = 1.0 - v; N[1] = 0.0; N[2] = u; N[3] = v - u;
-    dNx[0] = 0.0; dNx[1] = 0.0; dNx[2] = ix; dNx[3] = -ix;
-    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = 0.0; dNy[3] = iy;
-    return 0xdu;
-  }
-  if (u + v <= 1.0) {            /* corners 0 1 3: N = 1-u-v, u, v */
-    N[0] = 1.0 - u - v; N[1] = u; N[2] = 0.0; N[3] = v;
-    dNx[0] = -ix; dNx[1] = ix; dNx[2] = 0.0; dNx[3] = 0.0;
-    dNy[0] = -iy; dNy[1] = 0.0; dNy[2] = 0.0; dNy[3] = iy;
-    return 0xbu;
-  }
-  /* corners 1 2 3: N = 1-v, u+v-1, 1-u */
-  N[0] = 0.0; N[1] = 1.0 - v; N[2] = u + v - 1.0; N[3] = 1.0 - u;
-  dNx[0] = 0.0; dNx[1] = 0.0; dNx[2] = ix; dNx[3] = -ix;
-  dNy[0] = 0.0; dNy[1] = -iy; dNy[2] = iy; dNy[3] = 0.0;
-  return 0xeu;
+  return mask;
 }
 
 /* The basis of a located point (unit (i, j), local (u, v)) as a node list:

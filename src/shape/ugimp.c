@@ -36,17 +36,29 @@ static void list_add(int id, double s, double gx, double gy, int *node, double *
   dSy[k] += gy;
 }
 
-/* Move (x, y) onto the domain along non-periodic directions. */
-static void clamp_corner(const mpm_mesh *m, double *x, double *y)
+/* The four corner coordinates s[c] along one axis (origin o, length len,
+ * unit size 1/ih, n units) located: unit k[c], local u[c]. A non-periodic
+ * axis first moves them onto [o, o + len] (a loop without branches, which
+ * vectorises); a periodic one wraps them. Returns -1 if one is not finite. */
+static inline int corners_axis(const double s[4], double o, double len, double ih, int n,
+                               int periodic, int k[4], double u[4])
 {
-  if (!m->periodic_x) {
-    double hi = m->x0 + m->lx;
-    *x = *x < m->x0 ? m->x0 : (*x > hi ? hi : *x);
+  if (periodic) {
+    for (int c = 0; c < 4; c++)
+      if (mpm_mesh_axis_locate(s[c], o, len, ih, n, 1, &k[c], &u[c]))
+        return -1;
+    return 0;
   }
-  if (!m->periodic_y) {
-    double hi = m->y0 + m->ly;
-    *y = *y < m->y0 ? m->y0 : (*y > hi ? hi : *y);
+  const double hi = o + len;
+  int bad = 0;
+#pragma omp simd reduction(| : bad)
+  for (int c = 0; c < 4; c++) {
+    double t = s[c] < o ? o : (s[c] > hi ? hi : s[c]);
+    bad |= t != t;                           /* NaN: reported, located at o */
+    t = t != t ? o : t;
+    mpm_mesh_axis_unit(t - o, ih, n, &k[c], &u[c]);
   }
+  return bad ? -1 : 0;
 }
 
 /* The logical nodes a point's corners touch form a block of node columns
@@ -98,12 +110,15 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   /* the corners located: unit (ci, cj) (storage), offset (di, dj) from the
    * centre's unit, local (cu, cv) */
   int ci[4], cj[4], di[4], dj[4];
-  double cu[4], cv[4];
+  double cx[4], cy[4], cu[4], cv[4];
   for (int c = 0; c < 4; c++) {
-    double cx = x + ox[c], cy = y + oy[c];
-    clamp_corner(m, &cx, &cy);
-    if (mpm_mesh_locate(m, cx, cy, &ci[c], &cj[c], &cu[c], &cv[c]))
-      return -1;                             /* non-finite extent */
+    cx[c] = x + ox[c];
+    cy[c] = y + oy[c];
+  }
+  if (corners_axis(cx, m->x0, m->lx, m->idx, m->nx, m->periodic_x, ci, cu) ||
+      corners_axis(cy, m->y0, m->ly, m->idy, m->ny, m->periodic_y, cj, cv))
+    return -1;                               /* non-finite extent */
+  for (int c = 0; c < 4; c++) {
     di[c] = unit_offset(ci[c] - iu, m->nx, m->periodic_x);
     dj[c] = unit_offset(cj[c] - ju, m->ny, m->periodic_y);
   }
@@ -116,30 +131,37 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   }
   const int bw = i1 - i0 + 2, bh = j1 - j0 + 2;   /* node columns and rows touched */
   const int wide = bw > BLOCK || bh > BLOCK;
-  /* S += N/4, gradS += w_c N on the nodes of each corner's element (a T3
-   * element's fourth unit corner has N = 0: it adds nothing and is not
-   * marked used) */
-  double bs[BLOCK * BLOCK] = {0.0}, bgx[BLOCK * BLOCK] = {0.0}, bgy[BLOCK * BLOCK] = {0.0};
+  /* S += N/4, gradS += w_c N on the nodes of each corner's element, as
+   * records (S, gx, gy, 0) of four lanes: one vector operation per node of
+   * a corner (a T3 element's fourth unit corner has N = 0: it adds nothing
+   * and is not marked used) */
+  double blk[BLOCK * BLOCK][4];
+  for (int b = 0; b < bh && !wide; b++)
+    for (int a = 0; a < bw; a++)
+      for (int l = 0; l < 4; l++)
+        blk[a + BLOCK * b][l] = 0.0;
   const int off[4] = {0, 1, BLOCK + 1, BLOCK};       /* slots of unit corners 0..3 */
   unsigned used = 0;
   int cnt = 0;
   for (int c = 0; c < 4; c++) {
-    double N[4], gx[4], gy[4];
-    const unsigned mask = mpm_mesh_basis_corners(m, ci[c], cu[c], cv[c], N, gx, gy);
+    double N[4];
+    const unsigned mask = mpm_mesh_shape_corners(m, ci[c], cu[c], cv[c], N);
+    const double G[4] = {0.25, wx[c], wy[c], 0.0};
     if (wide) {
       int id[4];
       mpm_mesh_unit_corners(m, ci[c], cj[c], id);
       for (int a = 0; a < 4; a++)
         if (mask >> a & 1u)
-          list_add(id[a], 0.25 * N[a], wx[c] * N[a], wy[c] * N[a], node, S, dSx, dSy, &cnt);
+          list_add(id[a], G[0] * N[a], G[1] * N[a], G[2] * N[a], node, S, dSx, dSy, &cnt);
       continue;
     }
     const int at = di[c] - i0 + BLOCK * (dj[c] - j0);  /* slot of unit corner 0 */
     used |= ((mask & 3u) | (mask & 4u) << 3 | (mask & 8u) << 1) << at;
     for (int a = 0; a < 4; a++) {
-      bs[at + off[a]] += 0.25 * N[a];
-      bgx[at + off[a]] += wx[c] * N[a];
-      bgy[at + off[a]] += wy[c] * N[a];
+      double *b = blk[at + off[a]];
+#pragma omp simd
+      for (int l = 0; l < 4; l++)
+        b[l] += G[l] * N[a];
     }
   }
   if (wide)
@@ -155,13 +177,13 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
         continue;
       const int id = js * m->snx + node_index(iu + i0 + a, m->nx, m->periodic_x);
       if (merge) {
-        list_add(id, bs[k], bgx[k], bgy[k], node, S, dSx, dSy, &cnt);
+        list_add(id, blk[k][0], blk[k][1], blk[k][2], node, S, dSx, dSy, &cnt);
         continue;
       }
       node[cnt] = id;
-      S[cnt] = bs[k];
-      dSx[cnt] = bgx[k];
-      dSy[cnt] = bgy[k];
+      S[cnt] = blk[k][0];
+      dSx[cnt] = blk[k][1];
+      dSy[cnt] = blk[k][2];
       cnt++;
     }
   }
