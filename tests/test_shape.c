@@ -186,6 +186,42 @@ START_TEST(t_invariants_ugimp_wide)
 }
 END_TEST
 
+/* CPDI1 extents are parallelograms the deformation made: sheared,
+ * stretched to 1.5 units or squeezed to 0.1, either orientation. */
+START_TEST(t_invariants_cpdi)
+{
+  invariants_on(&mpm_shape_cpdi, 0.1, 1.5, 14, 14, 0xFEEDULL);
+}
+END_TEST
+
+/* The convection of an extent, r_k <- (I + dt L) r_k, step by step.
+ * A rigid spin L = [[0, -w], [w, 0]]: I + dt L is sqrt(1 + (w dt)^2) times
+ * the rotation by atan(w dt), so after n steps r_k has turned by
+ * n atan(w dt) and grown by (1 + (w dt)^2)^(n/2), exactly (round-off
+ * 1e-13 over 1000 steps). A uniaxial stretch rate L = diag(e, 0) leaves r
+ * along y alone and scales x by (1 + e dt)^n. */
+START_TEST(t_cpdi_convect)
+{
+  const double w = 3.0, dt = 1e-3, e = -2.0;
+  const int n = 1000;
+  double a[4] = {0.4, 0.1, -0.05, 0.3}, b[4] = {0.4, 0.1, -0.05, 0.3};
+  for (int k = 0; k < n; k++) {
+    mpm_shape_extent_convect(&a[0], &a[1], &a[2], &a[3], 0.0, -w, w, 0.0, dt);
+    mpm_shape_extent_convect(&b[0], &b[1], &b[2], &b[3], e, 0.0, 0.0, 0.0, dt);
+  }
+  const double th = n * atan(w * dt), g = pow(1.0 + w * dt * w * dt, 0.5 * n);
+  const double c = cos(th), sn = sin(th), sx = pow(1.0 + e * dt, n);
+  const double r0[4] = {0.4, 0.1, -0.05, 0.3};
+  for (int k = 0; k < 2; k++) {
+    const double x = r0[2 * k], y = r0[2 * k + 1];
+    ck_assert_double_eq_tol(a[2 * k], g * (c * x - sn * y), 1e-13);
+    ck_assert_double_eq_tol(a[2 * k + 1], g * (sn * x + c * y), 1e-13);
+    ck_assert_double_eq_tol(b[2 * k], sx * x, 1e-13);
+    ck_assert_double_eq(b[2 * k + 1], y);
+  }
+}
+END_TEST
+
 /* Inside one element, where N is linear (T3) or bilinear with an axis-aligned
  * extent (Q4), the corner averages equal the values at the centre: uGIMP
  * weights must equal the delta weights there. */
@@ -349,6 +385,9 @@ START_TEST(t_registry)
 {
   ck_assert_ptr_eq(mpm_shape_lookup("delta"), &mpm_shape_delta);
   ck_assert_ptr_eq(mpm_shape_lookup("ugimp"), &mpm_shape_ugimp);
+  ck_assert_ptr_eq(mpm_shape_lookup("cpdi"), &mpm_shape_cpdi);
+  ck_assert_int_eq(mpm_shape_ugimp.convect, 0);
+  ck_assert_int_eq(mpm_shape_cpdi.convect, 1);
   ck_assert_ptr_null(mpm_shape_lookup("bspline"));
   ck_assert_ptr_null(mpm_shape_lookup(""));
   ck_assert_ptr_null(mpm_shape_lookup("delta "));
@@ -360,7 +399,7 @@ START_TEST(t_registry)
     ck_assert_ptr_nonnull((*t)->eval);
     ck_assert_ptr_eq(mpm_shape_lookup((*t)->name), *t);  /* names unique */
   }
-  ck_assert_int_eq(n, 2);
+  ck_assert_int_eq(n, 3);
 }
 END_TEST
 
@@ -482,6 +521,8 @@ int main(void)
   tcase_add_test(tc, t_invariants_delta);
   tcase_add_test(tc, t_invariants_ugimp);
   tcase_add_test(tc, t_invariants_ugimp_wide);
+  tcase_add_test(tc, t_invariants_cpdi);
+  tcase_add_test(tc, t_cpdi_convect);
   tcase_add_test(tc, t_ugimp_inside_one_element);
   tcase_add_test(tc, t_ugimp_hand_values);
   tcase_add_test(tc, t_ugimp_clamped);

@@ -322,7 +322,7 @@ static void bbar_run(const char *topo, const char *shape, int bbar, double *rate
 START_TEST(t_bbar_every_shape)
 {
   static const char *const kinds[][2] = {{"q4", "delta"}, {"t3", "delta"}, {"q4", "ugimp"},
-                                         {"t3", "ugimp"}};
+                                         {"t3", "ugimp"}, {"q4", "cpdi"}, {"t3", "cpdi"}};
   for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
     double own[16], rate[16], sm[16], sm0[16];
     int unit[16], dense[16], dense0[16];
@@ -470,6 +470,54 @@ START_TEST(t_apic_affine)
       ck_assert_double_eq_tol(ax[p], bx[p], 1e-12);
       ck_assert_double_eq_tol(ay[p], by[p], 1e-12);
     }
+  }
+}
+END_TEST
+
+/* CPDI1 in the affine field of apic_step: L_p = A at every point after the
+ * step, so each extent half-vector becomes (I + dt A) r_k (round-off);
+ * under uGIMP the extents stay as filled, bit for bit. */
+START_TEST(t_cpdi_extents_follow)
+{
+  static const double A[2][2] = {{0.5, -2.0}, {1.5, -0.25}};
+  for (int cpdi = 0; cpdi < 2; cpdi++) {
+    mpm_config c;
+    free_block_config(&c, 6, 0.1, 0.5);
+    strcpy(c.mesh.shape, cpdi ? "cpdi" : "ugimp");
+    c.time.transfer = MPM_TRANSFER_APIC;
+    mpm_sim *s = NULL;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+    mpm_points *P = s->pts;
+    const double r0[4] = {P->r1x[0], P->r1y[0], P->r2x[0], P->r2y[0]};
+    ck_assert_double_gt(r0[0], 0.0);
+    for (size_t p = 0; p < P->n; p++) {
+      P->vx[p] = A[0][0] * P->x[p] + A[0][1] * P->y[p];
+      P->vy[p] = A[1][0] * P->x[p] + A[1][1] * P->y[p];
+      P->cxx[p] = A[0][0];
+      P->cxy[p] = A[0][1];
+      P->cyx[p] = A[1][0];
+      P->cyy[p] = A[1][1];
+    }
+    const double dt = s->dt;
+    ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+    double want[4];
+    for (int k = 0; k < 2; k++) {
+      const double x = r0[2 * k], y = r0[2 * k + 1];
+      want[2 * k] = cpdi ? x + dt * (A[0][0] * x + A[0][1] * y) : x;
+      want[2 * k + 1] = cpdi ? y + dt * (A[1][0] * x + A[1][1] * y) : y;
+    }
+    for (size_t p = 0; p < P->n; p++) {
+      const double got[4] = {P->r1x[p], P->r1y[p], P->r2x[p], P->r2y[p]};
+      for (int k = 0; k < 4; k++) {
+        if (!cpdi)
+          ck_assert_double_eq(got[k], r0[k]);
+        ck_assert_double_eq_tol(got[k], want[k], 1e-12 * r0[0]);
+      }
+    }
+    if (cpdi)                                /* the extent did move */
+      ck_assert_double_gt(fabs(P->r1y[0] - r0[1]), 1e-3 * dt * r0[0]);
+    mpm_sim_free(s);
   }
 }
 END_TEST
@@ -891,6 +939,7 @@ int main(void)
   tcase_add_test(tc, t_bbar_unit_dilatation);
   tcase_add_test(tc, t_bbar_every_shape);
   tcase_add_test(tc, t_apic_affine);
+  tcase_add_test(tc, t_cpdi_extents_follow);
   tcase_add_test(tc, t_absorb_layer);
   tcase_add_test(tc, t_stop_at_rest);
   tcase_add_test(tc, t_stop_runs_to_end);

@@ -24,4 +24,5 @@ const mpm_shape_type mpm_shape_delta = {
   .eval = delta_eval,
   .span = delta_span,
   .at_point = 1,
+  .convect = 0,
 };

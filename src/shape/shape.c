@@ -16,6 +16,7 @@
 const mpm_shape_type *const mpm_shape_table[] = {
   &mpm_shape_delta,
   &mpm_shape_ugimp,
+  &mpm_shape_cpdi,
   NULL
 };
 

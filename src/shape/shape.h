@@ -36,10 +36,30 @@ typedef struct mpm_shape_type {
    * the step then evaluates them from the located point (mpm_mesh_basis_at)
    * where it needs them instead of storing a stencil. */
   int at_point;
+  /* 1 if the extent follows the deformation (CPDI1): every step moves the
+   * half-vectors with the point's velocity gradient
+   * (mpm_shape_extent_convect); 0: the extent stays as filled. */
+  int convect;
 } mpm_shape_type;
+
+/* CPDI1: the extent half-vectors r = (r1x, r1y, r2x, r2y) carried over dt by
+ * the velocity gradient L = (dvx/dx, dvx/dy, dvy/dx, dvy/dy) of the point,
+ * r_k <- (I + dt L) r_k, as the deformation gradient F_{n+1} = (I + dt L) F_n
+ * carries the filled extent r_k = F r_k0 (MODEL.md section 3). */
+static inline void mpm_shape_extent_convect(double *r1x, double *r1y, double *r2x, double *r2y,
+                                            double lxx, double lxy, double lyx, double lyy,
+                                            double dt)
+{
+  const double ax = *r1x, ay = *r1y, bx = *r2x, by = *r2y;
+  *r1x = ax + dt * (lxx * ax + lxy * ay);
+  *r1y = ay + dt * (lyx * ax + lyy * ay);
+  *r2x = bx + dt * (lxx * bx + lxy * by);
+  *r2y = by + dt * (lyx * bx + lyy * by);
+}
 
 extern const mpm_shape_type mpm_shape_delta;  /* S = N(x_p) */
 extern const mpm_shape_type mpm_shape_ugimp;  /* CPDI corner rule, fixed extent */
+extern const mpm_shape_type mpm_shape_cpdi;   /* CPDI corner rule, convected extent (CPDI1) */
 extern const mpm_shape_type *const mpm_shape_table[];
 
 /* Variant by name, NULL if unknown. */

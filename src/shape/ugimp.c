@@ -1,5 +1,7 @@
-/* ugimp.c: uGIMP through the CPDI corner rule with a fixed extent
- * (MODEL.md section 3, [DK-silo] App. B).
+/* ugimp.c: the CPDI corner rule (MODEL.md section 3, [DK-silo] App. B):
+ * uGIMP, with the extent fixed as filled, and CPDI1, the same rule with the
+ * extent convected by the deformation (the step moves r1, r2 with the
+ * point's velocity gradient: mpm_shape_extent_convect).
  *
  * Corners x1 = xp - r1 - r2, x2 = xp + r1 - r2, x3 = xp + r1 + r2,
  * x4 = xp - r1 + r2;
@@ -218,4 +220,14 @@ const mpm_shape_type mpm_shape_ugimp = {
   .eval = ugimp_eval,
   .span = ugimp_span,
   .at_point = 0,
+  .convect = 0,
+};
+
+const mpm_shape_type mpm_shape_cpdi = {
+  .name = "cpdi",
+  .description = "CPDI1, the corner rule with the extent (r1, r2) convected by the deformation",
+  .eval = ugimp_eval,
+  .span = ugimp_span,
+  .at_point = 0,
+  .convect = 1,
 };

@@ -281,7 +281,7 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *l
     ck->agx[p - a] = ag[0];
     ck->agy[p - a] = ag[1];
   }
-  mpm_sim_in_advance(s, a, b, ck->vgx, ck->vgy, ck->agx, ck->agy, lxx, lyy);
+  mpm_sim_in_advance(s, a, b, ck->vgx, ck->vgy, ck->agx, ck->agy, lxx, lxy, lyx, lyy);
 }
 
 /* Steps 4-5 for points [a, b) with the weights of the step; see g2p_range. */

@@ -161,10 +161,12 @@ static inline void mpm_sim_in_gather(const mpm_sim *s, int c, const int *node,
  * for point p at index p - a of vgx, vgy, agx, agy, lxx, lyy:
  * v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i when
  * time.flip < 1; with APIC the PIC velocity), x_p += dt sum S v_i, V_p *= exp(dt tr L_p) (with the
- * B-bar dilatation later, by mpm_sim_in_unit_dilatation). */
+ * B-bar dilatation later, by mpm_sim_in_unit_dilatation); under CPDI1 the
+ * extent moves with L_p (before any B-bar change of L_p). */
 static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const double *vgx,
                                       const double *vgy, const double *agx, const double *agy,
-                                      const double *lxx, const double *lyy)
+                                      const double *lxx, const double *lxy, const double *lyx,
+                                      const double *lyy)
 {
   mpm_points *P = s->pts;
   double *restrict x = P->x, *restrict y = P->y, *restrict vx = P->vx, *restrict vy = P->vy;
@@ -183,6 +185,12 @@ static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const doub
   }
   if (!s->usum)
     mpm_sim_volume_update(vol + a, lxx, lyy, b - a, dt);     /* V *= exp(dt tr L) */
+  if (s->shape->convect)                                     /* CPDI1: r_k <- (I + dt L) r_k */
+    for (size_t p = a; p < b; p++) {
+      const size_t k = p - a;
+      mpm_shape_extent_convect(&P->r1x[p], &P->r1y[p], &P->r2x[p], &P->r2y[p], lxx[k], lxy[k],
+                               lyx[k], lyy[k], dt);
+    }
 }
 
 /* Step 7 for points [a, b), each moved by the grid velocity
