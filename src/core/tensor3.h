@@ -4,7 +4,9 @@
  * tensors (stress, rate of deformation) use mpm_sym3; general ones (velocity
  * gradient L, spin W, deformation gradient F) use mpm_mat3 with
  * m[i][j] = d v_i / d x_j for L. Invariants follow MODEL.md section 1:
- * p = -tr(s)/3, s0 = s + p I, tau = sqrt(s0:s0 / 2). */
+ * p = -tr(s)/3, s0 = s + p I, tau = sqrt(s0:s0 / 2). The general products,
+ * transpose, determinant and inverse serve the deformation gradients of the
+ * hyperelastic update (MODEL.md section 7). */
 #ifndef MPM_CORE_TENSOR3_H
 #define MPM_CORE_TENSOR3_H
 
@@ -104,6 +106,69 @@ static inline mpm_sym3 mpm_sym3_spin(const mpm_mat3 *W, mpm_sym3 s)
                     a * (s.yy - s.xx) + b * s.zx - c * s.yz,     /* P_xy + P_yx */
                     b * (s.zz - s.yy) + c * s.xy - a * s.zx,     /* P_yz + P_zy */
                     c * (s.xx - s.zz) + a * s.yz - b * s.xy};    /* P_zx + P_xz */
+}
+
+/* ---- general 3x3 matrices (deformation gradients, rotations) ---- */
+
+static inline mpm_mat3 mpm_mat3_identity(void)
+{
+  return (mpm_mat3){{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
+}
+
+/* a b */
+static inline mpm_mat3 mpm_mat3_mul(const mpm_mat3 *a, const mpm_mat3 *b)
+{
+  mpm_mat3 c;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      c.m[i][j] = a->m[i][0] * b->m[0][j] + a->m[i][1] * b->m[1][j] + a->m[i][2] * b->m[2][j];
+  return c;
+}
+
+/* a^T */
+static inline mpm_mat3 mpm_mat3_transpose(const mpm_mat3 *a)
+{
+  mpm_mat3 t;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      t.m[i][j] = a->m[j][i];
+  return t;
+}
+
+/* det a, expanded along the first row */
+static inline double mpm_mat3_det(const mpm_mat3 *a)
+{
+  const double (*m)[3] = a->m;
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+       - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+       + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+/* a^-1 = adj(a) / det a (non-finite entries if a is singular) */
+static inline mpm_mat3 mpm_mat3_inverse(const mpm_mat3 *a)
+{
+  const double (*m)[3] = a->m;
+  const double r = 1.0 / mpm_mat3_det(a);
+  return (mpm_mat3){{{r * (m[1][1] * m[2][2] - m[1][2] * m[2][1]),
+                      r * (m[0][2] * m[2][1] - m[0][1] * m[2][2]),
+                      r * (m[0][1] * m[1][2] - m[0][2] * m[1][1])},
+                     {r * (m[1][2] * m[2][0] - m[1][0] * m[2][2]),
+                      r * (m[0][0] * m[2][2] - m[0][2] * m[2][0]),
+                      r * (m[0][2] * m[1][0] - m[0][0] * m[1][2])},
+                     {r * (m[1][0] * m[2][1] - m[1][1] * m[2][0]),
+                      r * (m[0][1] * m[2][0] - m[0][0] * m[2][1]),
+                      r * (m[0][0] * m[1][1] - m[0][1] * m[1][0])}}};
+}
+
+/* a s a^T for a general a and symmetric s (rotating a stress: Q s Q^T) */
+static inline mpm_sym3 mpm_sym3_congruence(const mpm_mat3 *a, mpm_sym3 s)
+{
+  mpm_mat3 S = mpm_sym3_full(s), P = mpm_mat3_mul(a, &S);       /* P = a s */
+  double c[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = i; j < 3; j++)                                   /* (a s a^T)_ij = P_ik a_jk */
+      c[i][j] = P.m[i][0] * a->m[j][0] + P.m[i][1] * a->m[j][1] + P.m[i][2] * a->m[j][2];
+  return (mpm_sym3){c[0][0], c[1][1], c[2][2], c[0][1], c[1][2], c[0][2]};
 }
 
 /* Isotropic elasticity C:D = 2G D0 + K tr(D) I. */

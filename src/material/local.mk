@@ -1,7 +1,8 @@
 noinst_LTLIBRARIES += libmpm_material.la
 libmpm_material_la_SOURCES = src/material/material.c src/material/material.h \
 	src/material/elastic.c src/material/mu_i.c src/material/ngf.c \
-	src/material/density.c src/material/density.h
+	src/material/density.c src/material/density.h \
+	src/material/hyper.c src/material/hyper.h
 
 check_PROGRAMS += tests/test_mu_i tests/test_ngf
 TESTS += tests/test_mu_i tests/test_ngf
@@ -11,6 +12,12 @@ tests_test_mu_i_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm
 tests_test_ngf_SOURCES = tests/test_ngf.c
 tests_test_ngf_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_ngf_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm
+
+check_PROGRAMS += tests/test_hyper
+TESTS += tests/test_hyper
+tests_test_hyper_SOURCES = tests/test_hyper.c
+tests_test_hyper_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_hyper_LDADD = libmpm_material.la libmpm_core.la $(CHECK_LIBS) -lm
 
 check_PROGRAMS += tests/test_material
 TESTS += tests/test_material

@@ -282,6 +282,10 @@ int mpm_material_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, dou
 double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
                                  double gstar, double mug_n, double isp);
 
+/* g* = max(0, g_n + (dt/t0) A^2 d^2 lap): the explicitly diffused fluidity of
+ * MODEL.md section 5 step 3, the g* of mpm_material_ngf_fluidity. */
+double mpm_material_ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap);
+
 /* Seeding from a local run: g = gdot_p / mu, mu = tau / p (0 if p <= 0 or tau = 0). */
 double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp);
 

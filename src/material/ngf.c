@@ -177,6 +177,11 @@ static inline double ngf_gstar(const mpm_material_params *par, double dt, double
   return gs < 0.0 ? 0.0 : gs;
 }
 
+double mpm_material_ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap)
+{
+  return ngf_gstar(par, dt, g_n, lap);
+}
+
 /* The return for fluidity x >= 0 of a dense point with trial stress s_tr,
  * p = p_tr > 0: tau = tau_tr p / (G dt x + p) (eq. 5.5: tau_{n+1} =
  * tau_tr - G dt gdot_p with gdot_p = x mu_{n+1}), sigma = (tau/tau_tr)
