@@ -331,9 +331,8 @@ mpm_material_hyper_point mpm_material_hyper_step(const mpm_material_params *par,
     const double gs = mpm_material_ngf_gstar(par, dt, g_n, pt.lap);                /* g* */
     g = mpm_material_ngf_fluidity(par, dt, t.p, t.tau, gs, mug_n, pt.isp);        /* g_{n+1} */
   }
-  const double Gdg = par->G * dt * g;                              /* G dt g */
-  const double r = t.p / (t.p + Gdg);                              /* tau / tau_tr */
-  const double w = Gdg / (t.p + Gdg);                              /* 1 - r, no cancellation */
+  const double r = mpm_material_ngf_return_ratio(par, dt, t.p, g); /* tau / tau_tr */
+  const double w = r * (par->G * dt * g) / t.p;                    /* 1 - r, no cancellation */
   pt.sigma = hyper_cauchy(&t, r);                                  /* Me = -p I + r dev Me_tr */
   pt.g = g;
   pt.gdp = g * r * t.tau / t.p;                                    /* g tau / p */

@@ -282,6 +282,15 @@ int mpm_material_ngf_dense(const mpm_material_params *par, mpm_sym3 sigma_n, dou
 double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, double p, double tau_tr,
                                  double gstar, double mug_n, double isp);
 
+/* tau / tau_tr = p / (p + G dt g) of the return of a dense point of
+ * fluidity g (MODEL.md section 5, eq. 5.5: tau = tau_tr - G dt gdot_p with
+ * gdot_p = g mu); 1 when dt = 0. */
+static inline double mpm_material_ngf_return_ratio(const mpm_material_params *par, double dt,
+                                                   double p, double g)
+{
+  return dt > 0.0 ? p / (par->G * dt * g + p) : 1.0;
+}
+
 /* g* = max(0, g_n + (dt/t0) A^2 d^2 lap): the explicitly diffused fluidity of
  * MODEL.md section 5 step 3, the g* of mpm_material_ngf_fluidity. */
 double mpm_material_ngf_gstar(const mpm_material_params *par, double dt, double g_n, double lap);

@@ -191,7 +191,7 @@ static inline mpm_mpoint ngf_return(const mpm_material_params *par, double dt, m
 {
   mpm_sym3 s0_tr = mpm_sym3_dev(s_tr);
   double tau_tr = sqrt(0.5 * mpm_sym3_ddot(s0_tr, s0_tr));         /* tau_tr */
-  double r = dt > 0.0 ? p / (par->G * dt * x + p) : 1.0;          /* tau / tau_tr */
+  double r = mpm_material_ngf_return_ratio(par, dt, p, x);         /* tau / tau_tr */
   pt.sigma = mpm_sym3_add_iso(mpm_sym3_scale(s0_tr, r), -p);      /* (tau/tau_tr) s0_tr - p I */
   pt.g = x;
   pt.gdp = x * r * tau_tr / p;                                     /* gdot_p = x mu(x) */
