@@ -83,12 +83,18 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
                      P->x[fast], P->y[fast], t, lim, h / mpm_sim_stable_dt(&s->cfg), cause);
 }
 
-int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err)
+int mpm_sim_too_fast(const mpm_sim *s, size_t a, size_t b)
 {
   const mpm_points *P = s->pts;
   const double h = fmin(s->mesh.dx, s->mesh.dy), lim2 = (h / s->dt) * (h / s->dt);
   int bad = 0;
-  for (size_t p = 0; p < P->n; p++)
+  for (size_t p = a; p < b; p++)
     bad |= !(P->vx[p] * P->vx[p] + P->vy[p] * P->vy[p] <= lim2);  /* NaN fails too */
+  return bad;
+}
+
+int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err)
+{
+  const int bad = (s->scan & MPM_SIM_SCAN_FAST) && mpm_sim_too_fast(s, 0, s->pts->n);
   return bad ? mpm_sim_check_state(s, t, err) : MPM_OK;
 }

@@ -43,10 +43,7 @@ static void compact_values(double *a, const unsigned char *keep, size_t n)
       a[q++] = a[p];
 }
 
-/* 1 if some point may leave: below remove.below, or outside the mesh along
- * a non-periodic direction, or at a non-finite position (the common case,
- * none, in one pass that vectorises; a NaN fails every comparison). */
-static int any_may_leave(const mpm_sim *s)
+int mpm_sim_may_leave(const mpm_sim *s, size_t a, size_t b)
 {
   const mpm_mesh *m = &s->mesh;
   const mpm_points *P = s->pts;
@@ -57,7 +54,7 @@ static int any_may_leave(const mpm_sim *s)
   ylo = s->cfg.remove.below > ylo ? s->cfg.remove.below : ylo;
   const double *x = P->x, *y = P->y;
   int any = 0;
-  for (size_t p = 0; p < P->n; p++)
+  for (size_t p = a; p < b; p++)
     any |= !(x[p] >= xlo) | !(x[p] <= xhi) | !(y[p] >= ylo) | !(y[p] <= yhi);
   return any;
 }
@@ -65,7 +62,7 @@ static int any_may_leave(const mpm_sim *s)
 int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
 {
   mpm_points *P = s->pts;
-  if (!any_may_leave(s))
+  if (!(s->scan & MPM_SIM_SCAN_LEAVE) || !mpm_sim_may_leave(s, 0, P->n))
     return MPM_OK;
   size_t first = P->n;
   for (size_t p = 0; p < P->n; p++) {

@@ -76,6 +76,10 @@ typedef struct mpm_sim {
   double mtiny;                   /* nodes lighter than this are skipped */
   double mlight;                  /* nodes lighter than this take the body force only */
   double mass_removed;            /* mass of the points removed so far [kg/m] */
+  unsigned scan;                  /* what the point loops of the step saw once the points
+                                     had moved (MPM_SIM_SCAN_*): a clear bit lets the
+                                     step skip a scan over all points; MPM_SIM_SCAN_ALL
+                                     outside a step */
   long nremoved;                  /* their number */
 
   /* The run driver's schedule (run.c), here so that a checkpoint holds it. */
@@ -156,6 +160,19 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err);
 /* The cheap test run after every step: every velocity finite and below one
  * mesh unit per step; otherwise mpm_sim_check_state's report. */
 int mpm_sim_check_speeds(const mpm_sim *s, double t, mpm_err *err);
+
+/* The bits of mpm_sim.scan: some point may leave (mpm_sim_may_leave), some
+ * point is too fast (mpm_sim_too_fast). */
+enum { MPM_SIM_SCAN_LEAVE = 1u, MPM_SIM_SCAN_FAST = 2u, MPM_SIM_SCAN_ALL = 3u };
+
+/* 1 if a point of [a, b) may leave: below remove.below, outside the mesh
+ * along a non-periodic direction, or at a non-finite position (one pass
+ * that vectorises; a NaN fails every comparison). */
+int mpm_sim_may_leave(const mpm_sim *s, size_t a, size_t b);
+
+/* 1 if a point of [a, b) moves more than a mesh unit per step, or at a
+ * non-finite velocity. */
+int mpm_sim_too_fast(const mpm_sim *s, size_t a, size_t b);
 
 /* Mass in the region of cfg.region [kg/m]. */
 double mpm_sim_region_mass(const mpm_sim *s);

@@ -153,6 +153,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   if (!s)
     return mpm_err_set(err, MPM_ENOMEM, "simulation: out of memory");
   s->cfg = *cfg;
+  s->scan = MPM_SIM_SCAN_ALL;
   int rc = mpm_mesh_from_config(&s->mesh, cfg, err);
   if (rc == MPM_OK) {
     int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
@@ -337,6 +338,14 @@ static const double *state_rho(const mpm_sim *s, size_t a, size_t b, double *buf
   return buf;
 }
 
+/* What the end of the step will ask of points [a, b), asked while they are
+ * at hand (mpm_sim.scan): whether one may leave, whether one is too fast. */
+static inline unsigned moved_scan(const mpm_sim *s, size_t a, size_t b)
+{
+  return (mpm_sim_may_leave(s, a, b) ? MPM_SIM_SCAN_LEAVE : 0u) |
+         (mpm_sim_too_fast(s, a, b) ? MPM_SIM_SCAN_FAST : 0u);
+}
+
 /* Steps 4-7 chunk by chunk for a local model (once the grid is known the
  * points are independent): grid-to-point, the update in n_sub substeps,
  * bookkeeping. Returns the largest index of a point whose stress became
@@ -346,7 +355,8 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
   const size_t n = s->pts->n, nc = (n + CHUNK - 1) / CHUNK;
   const double h = s->dt / s->n_sub;
   long bad = -1;
-#pragma omp parallel for schedule(static) reduction(max : bad)
+  unsigned scan = 0;
+#pragma omp parallel for schedule(static) reduction(max : bad) reduction(| : scan)
   for (size_t c = 0; c < nc; c++) {
     chunk ck;
     const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
@@ -355,7 +365,9 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
                            state_rho(s, a, b, ck.rho), NULL, NULL, h, s->n_sub);
     bad = bc > bad ? bc : bad;
     mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
+    scan |= moved_scan(s, a, b);
   }
+  s->scan = scan;
   return bad;
 }
 
@@ -402,13 +414,16 @@ static int move_points(mpm_sim *s, mpm_err *err)
   int rc = reserve_L(s, err);
   if (rc != MPM_OK)
     return rc;
-#pragma omp parallel for schedule(static)
+  unsigned scan = 0;
+#pragma omp parallel for schedule(static) reduction(| : scan)
   for (size_t c = 0; c < nc; c++) {
     chunk ck;
     const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
     move_range(s, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a, &ck);
     mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
+    scan |= moved_scan(s, a, b);
   }
+  s->scan = scan;
   if (s->usum)                               /* B-bar: tr L_p and V_p per unit */
     mpm_sim_in_unit_dilatation(s);
   return MPM_OK;
@@ -535,7 +550,8 @@ static const mpm_material_type *seeding(mpm_sim *s)
   return s->mat;
 }
 
-int mpm_sim_step(mpm_sim *s, mpm_err *err)
+/* One step (see mpm_sim_step). */
+static int step(mpm_sim *s, mpm_err *err)
 {
   int rc = mpm_sim_in_weights_all(s, err);
   if (rc != MPM_OK)
@@ -576,4 +592,11 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err)
   if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)
     return rc;
   return mpm_sim_remove_points(s, s->t, err);
+}
+
+int mpm_sim_step(mpm_sim *s, mpm_err *err)
+{
+  const int rc = step(s, err);
+  s->scan = MPM_SIM_SCAN_ALL;                /* outside a step nothing is known */
+  return rc;
 }
