@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_shape.la
 libmpm_shape_la_SOURCES = src/shape/shape.c src/shape/shape.h \
-	src/shape/delta.c src/shape/ugimp.c
+	src/shape/delta.c src/shape/ugimp.c src/shape/corners.h
 
 check_PROGRAMS += tests/test_shape
 TESTS += tests/test_shape
