@@ -9,3 +9,8 @@ tests_test_shape_SOURCES = tests/test_shape.c
 tests_test_shape_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_shape_LDADD = libmpm_shape.la libmpm_mesh.la libmpm_core.la $(CHECK_LIBS) -lm
 
+check_PROGRAMS += tests/test_shape3
+TESTS += tests/test_shape3
+tests_test_shape3_SOURCES = tests/test_shape3.c
+tests_test_shape3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_shape3_LDADD = libmpm_shape.la libmpm_mesh.la libmpm_core.la $(CHECK_LIBS) -lm
