@@ -12,11 +12,12 @@
 #include <string.h>
 
 #include "core/names.h"
+#include "mesh/mesh_internal.h"
 
 /* ---------------------------------------------------------------- setup */
 
 /* Units along one axis: n >= 1, periodic flag 0/1, n >= 2 when periodic. */
-static int check_units(int n, int periodic, char axis, mpm_err *err)
+int mpm_mesh_in_check_units(int n, int periodic, char axis, mpm_err *err)
 {
   if (periodic != 0 && periodic != 1)
     return mpm_err_set(err, MPM_EINPUT,
@@ -34,7 +35,7 @@ static int check_units(int n, int periodic, char axis, mpm_err *err)
 }
 
 /* Origin finite, unit size finite and > 0, domain end finite. */
-static int check_lengths(int n, double o, double h, char axis, mpm_err *err)
+int mpm_mesh_in_check_lengths(int n, double o, double h, char axis, mpm_err *err)
 {
   if (!isfinite(o))
     return mpm_err_set(err, MPM_EINPUT,
@@ -74,10 +75,10 @@ static int check_topology(const mpm_mesh *m, mpm_err *err)
 int mpm_mesh_setup(mpm_mesh *m, mpm_err *err)
 {
   int rc;
-  if ((rc = check_units(m->nx, m->periodic_x, 'x', err)) != MPM_OK ||
-      (rc = check_units(m->ny, m->periodic_y, 'y', err)) != MPM_OK ||
-      (rc = check_lengths(m->nx, m->x0, m->dx, 'x', err)) != MPM_OK ||
-      (rc = check_lengths(m->ny, m->y0, m->dy, 'y', err)) != MPM_OK ||
+  if ((rc = mpm_mesh_in_check_units(m->nx, m->periodic_x, 'x', err)) != MPM_OK ||
+      (rc = mpm_mesh_in_check_units(m->ny, m->periodic_y, 'y', err)) != MPM_OK ||
+      (rc = mpm_mesh_in_check_lengths(m->nx, m->x0, m->dx, 'x', err)) != MPM_OK ||
+      (rc = mpm_mesh_in_check_lengths(m->ny, m->y0, m->dy, 'y', err)) != MPM_OK ||
       (rc = check_topology(m, err)) != MPM_OK)
     return rc;
   int snx = m->periodic_x ? m->nx : m->nx + 1;
@@ -147,19 +148,10 @@ int mpm_mesh_from_config(mpm_mesh *m, const mpm_config *cfg, mpm_err *err)
 
 /* ---------------------------------------------------------------- nodes */
 
-/* Logical index k along an axis of n units -> stored index (k mod n if periodic). */
-static int axis_store(int k, int n, int periodic)
-{
-  if (!periodic)
-    return k;
-  k %= n;
-  return k < 0 ? k + n : k;
-}
-
 int mpm_mesh_node(const mpm_mesh *m, int i, int j)
 {
-  int is = axis_store(i, m->nx, m->periodic_x);
-  int js = axis_store(j, m->ny, m->periodic_y);
+  int is = mpm_mesh_in_axis_store(i, m->nx, m->periodic_x);
+  int js = mpm_mesh_in_axis_store(j, m->ny, m->periodic_y);
   return js * m->snx + is;  /* id = j_s snx + i_s */
 }
 

@@ -5,7 +5,9 @@
  * diagonal chosen per unit: "/" bottom-left to top-right, "\" the other, or
  * "mirror": "/" left of x = mirror_x and "\" right of it, [DK-silo] 7.1).
  * Periodic directions alias node i = nx with i = 0 (likewise j): aliased nodes
- * share one storage index, so every nodal array has mesh.nnodes entries. */
+ * share one storage index, so every nodal array has mesh.nnodes entries.
+ * The per-axis pieces (mpm_mesh_axis_*) do not depend on the dimension; the
+ * 3D mesh of boxes (box.h) is built on them. */
 #ifndef MPM_MESH_MESH_H
 #define MPM_MESH_MESH_H
 
@@ -108,6 +110,27 @@ static inline int mpm_mesh_axis_locate(double x, double o, double len, double ih
   }
   mpm_mesh_axis_unit(s, ih, n, k, u);
   return 0;
+}
+
+/* Offset d between two units along an axis of n units (a corner's unit less
+ * its point's); on a periodic axis the one of d, d - n, d + n nearest 0 (a
+ * corner wrapped round). */
+static inline int mpm_mesh_axis_offset(int d, int n, int periodic)
+{
+  if (periodic && 2 * d > n)
+    return d - n;
+  if (periodic && 2 * d < -n)
+    return d + n;
+  return d;
+}
+
+/* Storage index along an axis of n units of logical node k, for k within
+ * one period of [0, n) (the general case: any k, mpm_mesh_node). */
+static inline int mpm_mesh_axis_node(int k, int n, int periodic)
+{
+  if (!periodic)
+    return k;
+  return k < 0 ? k + n : k >= n ? k - n : k;
 }
 
 /* Unit (i, j) of (x, y) (after wrapping) and the local coordinates (u, v) in

@@ -42,19 +42,42 @@ typedef struct mpm_shape_type {
   int convect;
 } mpm_shape_type;
 
-/* CPDI1: the extent half-vectors r = (r1x, r1y, r2x, r2y) carried over dt by
- * the velocity gradient L = (dvx/dx, dvx/dy, dvy/dx, dvy/dy) of the point,
- * r_k <- (I + dt L) r_k, as the deformation gradient F_{n+1} = (I + dt L) F_n
- * carries the filled extent r_k = F r_k0 (MODEL.md section 3). */
+/* CPDI1 in D = 2 or 3 dimensions: the extent half-vectors r_k
+ * (r[D k + d] = component d of r_{k+1}) carried over dt by the velocity
+ * gradient L of the point (L[D a + b] = dv_a/dx_b),
+ *   r_k <- (I + dt L) r_k = r_k + dt (L r_k),
+ * as the deformation gradient F_{n+1} = (I + dt L) F_n carries the filled
+ * extent r_k = F r_k0 (MODEL.md section 3). (L r_k)_a sums over b in b order
+ * from its first term. */
+static inline void mpm_shape_extent_convect_dim(int D, double *r, const double *L, double dt)
+{
+  for (int k = 0; k < D; k++) {
+    double a[3];
+    for (int d = 0; d < D; d++)
+      a[d] = r[D * k + d];
+    for (int d = 0; d < D; d++) {
+      double t = L[D * d] * a[0];
+      for (int b = 1; b < D; b++)
+        t += L[D * d + b] * a[b];
+      r[D * k + d] = a[d] + dt * t;
+    }
+  }
+}
+
+/* The same in 2D on the fields of a plane-strain point, r1 = (r1x, r1y),
+ * r2 = (r2x, r2y), L = (dvx/dx, dvx/dy, dvy/dx, dvy/dy) = (lxx, lxy, lyx, lyy):
+ * r1x <- r1x + dt (lxx r1x + lxy r1y), and so on. */
 static inline void mpm_shape_extent_convect(double *r1x, double *r1y, double *r2x, double *r2y,
                                             double lxx, double lxy, double lyx, double lyy,
                                             double dt)
 {
-  const double ax = *r1x, ay = *r1y, bx = *r2x, by = *r2y;
-  *r1x = ax + dt * (lxx * ax + lxy * ay);
-  *r1y = ay + dt * (lyx * ax + lyy * ay);
-  *r2x = bx + dt * (lxx * bx + lxy * by);
-  *r2y = by + dt * (lyx * bx + lyy * by);
+  double r[4] = {*r1x, *r1y, *r2x, *r2y};
+  const double L[4] = {lxx, lxy, lyx, lyy};
+  mpm_shape_extent_convect_dim(2, r, L, dt);
+  *r1x = r[0];
+  *r1y = r[1];
+  *r2x = r[2];
+  *r2y = r[3];
 }
 
 extern const mpm_shape_type mpm_shape_delta;  /* S = N(x_p) */

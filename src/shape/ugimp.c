@@ -9,6 +9,8 @@
  *   gradS_ip = (1/A_p) { [N_i(x1) - N_i(x3)] (r1y - r2y, r2x - r1x)
  *                      + [N_i(x2) - N_i(x4)] (r1y + r2y, -r1x - r2x) },
  *   A_p = 4 (r1x r2y - r1y r2x), signed.
+ * The corner offsets and weights come from the rule written once for 2D and
+ * 3D (corners.h, D = 2: the same floating-point sums as the formula above).
  * Corners beyond a non-periodic edge are clamped onto it (then the first-order
  * invariants hold only approximately there); periodic directions wrap through
  * the mesh basis. An extent of zero area falls back to the delta weights, the
@@ -20,48 +22,7 @@
 
 #include <math.h>
 
-/* Add weight (s, gx, gy) of storage node id to the list of *cnt nodes of one
- * point (appended the first time). */
-static void list_add(int id, double s, double gx, double gy, int *node, double *S, double *dSx,
-                     double *dSy, int *cnt)
-{
-  int k = 0;
-  while (k < *cnt && node[k] != id)
-    k++;
-  if (k == *cnt) {
-    node[k] = id;
-    S[k] = dSx[k] = dSy[k] = 0.0;
-    (*cnt)++;
-  }
-  S[k] += s;
-  dSx[k] += gx;
-  dSy[k] += gy;
-}
-
-/* The four corner coordinates s[c] along one axis (origin o, length len,
- * unit size 1/ih, n units) located: unit k[c], local u[c]. A non-periodic
- * axis first moves them onto [o, o + len] (a loop without branches, which
- * vectorises); a periodic one wraps them. Returns -1 if one is not finite. */
-static inline int corners_axis(const double s[4], double o, double len, double ih, int n,
-                               int periodic, int k[4], double u[4])
-{
-  if (periodic) {
-    for (int c = 0; c < 4; c++)
-      if (mpm_mesh_axis_locate(s[c], o, len, ih, n, 1, &k[c], &u[c]))
-        return -1;
-    return 0;
-  }
-  const double hi = o + len;
-  int bad = 0;
-#pragma omp simd reduction(| : bad)
-  for (int c = 0; c < 4; c++) {
-    double t = s[c] < o ? o : (s[c] > hi ? hi : s[c]);
-    bad |= t != t;                           /* NaN: reported, located at o */
-    t = t != t ? o : t;
-    mpm_mesh_axis_unit(t - o, ih, n, &k[c], &u[c]);
-  }
-  return bad ? -1 : 0;
-}
+#include "shape/corners.h"
 
 /* The logical nodes a point's corners touch form a block of node columns
  * and rows next to the unit of its centre: at most 3 x 3 for extents up to
@@ -70,25 +31,6 @@ static inline int corners_axis(const double s[4], double o, double len, double i
  * add node by node to the list instead. */
 enum { BLOCK = 4 };
 
-/* Unit offset d from the centre's along an axis of n units; on a periodic
- * axis the one of d, d - n, d + n nearest 0 (a corner wrapped round). */
-static inline int unit_offset(int d, int n, int periodic)
-{
-  if (periodic && 2 * d > n)
-    return d - n;
-  if (periodic && 2 * d < -n)
-    return d + n;
-  return d;
-}
-
-/* Storage index along an axis of n units of logical node k, near [0, n]. */
-static inline int node_index(int k, int n, int periodic)
-{
-  if (!periodic)
-    return k;
-  return k < 0 ? k + n : k >= n ? k - n : k;
-}
-
 static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
                       int *node, double *S, double *dSx, double *dSy)
 {
@@ -96,33 +38,26 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   double uu, vu;
   if (mpm_mesh_locate(m, x, y, &iu, &ju, &uu, &vu))
     return -1;                               /* the centre decides */
-  const double r1x = r[0], r1y = r[1], r2x = r[2], r2y = r[3];
-  const double A = 4.0 * (r1x * r2y - r1y * r2x);  /* A_p, signed */
-  if (A == 0.0)
+  /* corner offsets x_c - x_p, c = 1..4, and gradient weights w_c (corners.h):
+   * +a, +b, -a, -b with a = (r1y - r2y, r2x - r1x)/A,
+   * b = (r1y + r2y, -r1x - r2x)/A, A = A_p = 4 (r1x r2y - r1y r2x), signed */
+  double co[8], wg[8];
+  if (mpm_shape_in_corner_rule(2, r, co, wg) == 0.0)
     return mpm_mesh_basis_at(m, iu, ju, uu, vu, node, S, dSx, dSy);
-  const double iA = 1.0 / A;
-  /* corner offsets x_c - x_p, c = 1..4 */
-  const double ox[4] = {-r1x - r2x, r1x - r2x, r1x + r2x, -r1x + r2x};
-  const double oy[4] = {-r1y - r2y, r1y - r2y, r1y + r2y, -r1y + r2y};
-  /* gradient weight of N(x_c): +a, +b, -a, -b with
-   * a = (r1y - r2y, r2x - r1x)/A, b = (r1y + r2y, -r1x - r2x)/A */
-  const double ax = (r1y - r2y) * iA, ay = (r2x - r1x) * iA;
-  const double bx = (r1y + r2y) * iA, by = -(r1x + r2x) * iA;
-  const double wx[4] = {ax, bx, -ax, -bx}, wy[4] = {ay, by, -ay, -by};
   /* the corners located: unit (ci, cj) (storage), offset (di, dj) from the
    * centre's unit, local (cu, cv) */
   int ci[4], cj[4], di[4], dj[4];
   double cx[4], cy[4], cu[4], cv[4];
   for (int c = 0; c < 4; c++) {
-    cx[c] = x + ox[c];
-    cy[c] = y + oy[c];
+    cx[c] = x + co[2 * c];
+    cy[c] = y + co[2 * c + 1];
   }
-  if (corners_axis(cx, m->x0, m->lx, m->idx, m->nx, m->periodic_x, ci, cu) ||
-      corners_axis(cy, m->y0, m->ly, m->idy, m->ny, m->periodic_y, cj, cv))
+  if (mpm_shape_in_corners_axis(4, cx, m->x0, m->lx, m->idx, m->nx, m->periodic_x, ci, cu) ||
+      mpm_shape_in_corners_axis(4, cy, m->y0, m->ly, m->idy, m->ny, m->periodic_y, cj, cv))
     return -1;                               /* non-finite extent */
   for (int c = 0; c < 4; c++) {
-    di[c] = unit_offset(ci[c] - iu, m->nx, m->periodic_x);
-    dj[c] = unit_offset(cj[c] - ju, m->ny, m->periodic_y);
+    di[c] = mpm_mesh_axis_offset(ci[c] - iu, m->nx, m->periodic_x);
+    dj[c] = mpm_mesh_axis_offset(cj[c] - ju, m->ny, m->periodic_y);
   }
   int i0 = di[0], i1 = di[0], j0 = dj[0], j1 = dj[0];
   for (int c = 1; c < 4; c++) {
@@ -145,16 +80,19 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   const int off[4] = {0, 1, BLOCK + 1, BLOCK};       /* slots of unit corners 0..3 */
   unsigned used = 0;
   int cnt = 0;
+  double *const col[3] = {S, dSx, dSy};
   for (int c = 0; c < 4; c++) {
     double N[4];
     const unsigned mask = mpm_mesh_shape_corners(m, ci[c], cu[c], cv[c], N);
-    const double G[4] = {0.25, wx[c], wy[c], 0.0};
+    const double G[4] = {0.25, wg[2 * c], wg[2 * c + 1], 0.0};
     if (wide) {
       int id[4];
       mpm_mesh_unit_corners(m, ci[c], cj[c], id);
       for (int a = 0; a < 4; a++)
-        if (mask >> a & 1u)
-          list_add(id[a], G[0] * N[a], G[1] * N[a], G[2] * N[a], node, S, dSx, dSy, &cnt);
+        if (mask >> a & 1u) {
+          const double v[3] = {G[0] * N[a], G[1] * N[a], G[2] * N[a]};
+          mpm_shape_in_list_add(id[a], 3, v, node, col, &cnt);
+        }
       continue;
     }
     const int at = di[c] - i0 + BLOCK * (dj[c] - j0);  /* slot of unit corner 0 */
@@ -172,14 +110,14 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
    * can be one stored node: merged */
   const int merge = (m->periodic_x && m->nx < bw) || (m->periodic_y && m->ny < bh);
   for (int b = 0; b < bh; b++) {
-    const int js = node_index(ju + j0 + b, m->ny, m->periodic_y);
+    const int js = mpm_mesh_axis_node(ju + j0 + b, m->ny, m->periodic_y);
     for (int a = 0; a < bw; a++) {
       const int k = a + BLOCK * b;
       if (!(used >> k & 1u))
         continue;
-      const int id = js * m->snx + node_index(iu + i0 + a, m->nx, m->periodic_x);
+      const int id = js * m->snx + mpm_mesh_axis_node(iu + i0 + a, m->nx, m->periodic_x);
       if (merge) {
-        list_add(id, blk[k][0], blk[k][1], blk[k][2], node, S, dSx, dSy, &cnt);
+        mpm_shape_in_list_add(id, 3, blk[k], node, col, &cnt);
         continue;
       }
       node[cnt] = id;

@@ -1,0 +1,119 @@
+/* corners.h: the CPDI corner rule's pieces shared by the 2D (ugimp.c) and
+ * the 3D (ugimp3.c) shapes, written once for D = 2 or 3 dimensions (MODEL.md
+ * section 3). Not part of the library's interface (names mpm_shape_in_*).
+ *
+ * A point's extent is the parallelepiped of half-vectors r_1 .. r_D, the
+ * columns of R (R_dk = r[D k + d]). Its 2^D corners are
+ *   x_c = x_p + sum_k s_ck r_k,  s_c in {-1, +1}^D,
+ * numbered as the unit corners of the mesh: in 2D (-,-), (+,-), (+,+),
+ * (-,+) (x1 .. x4 of MODEL.md); in 3D those four with s_3 = -1, then the
+ * same four with s_3 = +1. With N_i(x_c) the element basis at the corners,
+ *   S_ip     = 2^-D sum_c N_i(x_c),
+ *   gradS_ip = sum_c w_c N_i(x_c),  w_c = 2^-D R^-T s_c,
+ * exact for every linear N: sum_c w_c (x_c - x_p)^T
+ * = 2^-D R^-T (sum_c s_c s_c^T) R^T = I, as sum_c s_c s_c^T = 2^D I.
+ * R^-T = C / det R with C the cofactors of R. In 2D, for corner 1
+ * (s = (-1, -1)): w_1 = (1/A)(r1y - r2y, r2x - r1x), A = 4 det R, the rule
+ * of MODEL.md; corner 2 gives (1/A)(r1y + r2y, -r1x - r2x), corners 3 and 4
+ * the negatives. */
+#ifndef MPM_SHAPE_CORNERS_H
+#define MPM_SHAPE_CORNERS_H
+
+#include "mesh/mesh.h"
+
+/* s_ck as 0 (-1) or 1 (+1): along the first axis the Q4 order
+ * 0, 1, 1, 0 (c ^ c/2), along the others bit k of c. */
+static inline double mpm_shape_in_corner_sign(int c, int k)
+{
+  const int bit = k == 0 ? (c ^ c >> 1) & 1 : c >> k & 1;
+  return bit ? 1.0 : -1.0;
+}
+
+/* Corner geometry of the extent r (D x D, r[D k + d] = component d of
+ * r_{k+1}) in D = 2 or 3 dimensions: the offsets off[D c + d] of x_c - x_p
+ * and the gradient weights w[D c + d] of w_c, c = 0 .. 2^D - 1. Returns
+ * A = 2^D det R (signed; the parallelepiped's volume): when it is 0, w is
+ * not finite and the caller takes the delta limit. Each offset and weight
+ * is one sum over k in k order, so that D = 2 is the 2D formula term for
+ * term (values equal to the last bit; a 0 may differ in sign only, which a
+ * sum into 0.0 does not see). */
+static inline double mpm_shape_in_corner_rule(int D, const double *r, double *off, double *w)
+{
+  double C[3][3];  /* cofactors: R^-T = C / det R */
+  if (D == 2) {
+    C[0][0] = r[3];
+    C[0][1] = -r[1];
+    C[1][0] = -r[2];
+    C[1][1] = r[0];
+  } else {
+    for (int d = 0; d < 3; d++)
+      for (int k = 0; k < 3; k++) {
+        const int d1 = (d + 1) % 3, d2 = (d + 2) % 3, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+        C[d][k] = r[3 * k1 + d1] * r[3 * k2 + d2] - r[3 * k2 + d1] * r[3 * k1 + d2];
+      }
+  }
+  double det = r[0] * C[0][0];             /* det R = sum_d R_d1 C_d1 */
+  for (int d = 1; d < D; d++)
+    det += r[d] * C[d][0];
+  const double A = (double)(1 << D) * det;
+  const double iA = 1.0 / A;
+  for (int c = 0; c < 1 << D; c++)
+    for (int d = 0; d < D; d++) {
+      double o = mpm_shape_in_corner_sign(c, 0) * r[d];        /* sum_k s_ck R_dk */
+      double g = mpm_shape_in_corner_sign(c, 0) * C[d][0];     /* sum_k s_ck C_dk */
+      for (int k = 1; k < D; k++) {
+        o += mpm_shape_in_corner_sign(c, k) * r[D * k + d];
+        g += mpm_shape_in_corner_sign(c, k) * C[d][k];
+      }
+      off[D * c + d] = o;
+      w[D * c + d] = g * iA;                                  /* 2^-D (C s_c)_d / det R */
+    }
+  return A;
+}
+
+/* The nc corner coordinates s[c] along one axis (origin o, length len,
+ * unit size 1/ih, n units) located: unit k[c], local u[c]. A non-periodic
+ * axis first moves them onto [o, o + len] (clamped onto the face: a loop
+ * without branches, which vectorises); a periodic one wraps them. Returns
+ * -1 if one is not finite. */
+static inline int mpm_shape_in_corners_axis(int nc, const double *s, double o, double len,
+                                            double ih, int n, int periodic, int *k, double *u)
+{
+  if (periodic) {
+    for (int c = 0; c < nc; c++)
+      if (mpm_mesh_axis_locate(s[c], o, len, ih, n, 1, &k[c], &u[c]))
+        return -1;
+    return 0;
+  }
+  const double hi = o + len;
+  int bad = 0;
+#pragma omp simd reduction(| : bad)
+  for (int c = 0; c < nc; c++) {
+    double t = s[c] < o ? o : (s[c] > hi ? hi : s[c]);
+    bad |= t != t;                           /* NaN: reported, located at o */
+    t = t != t ? o : t;
+    mpm_mesh_axis_unit(t - o, ih, n, &k[c], &u[c]);
+  }
+  return bad ? -1 : 0;
+}
+
+/* Add the nv values v to the sums col[0..nv-1] of storage node id in the
+ * list of *cnt nodes of one point (appended, its sums from 0, the first
+ * time): nodes stay in the order they are first met. */
+static inline void mpm_shape_in_list_add(int id, int nv, const double *v, int *node,
+                                         double *const *col, int *cnt)
+{
+  int k = 0;
+  while (k < *cnt && node[k] != id)
+    k++;
+  if (k == *cnt) {
+    node[k] = id;
+    for (int l = 0; l < nv; l++)
+      col[l][k] = 0.0;
+    (*cnt)++;
+  }
+  for (int l = 0; l < nv; l++)
+    col[l][k] += v[l];
+}
+
+#endif
