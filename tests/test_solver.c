@@ -776,11 +776,29 @@ START_TEST(t_health_messages)
                        "the stress is not finite; likely cause: a material parameter"),
                 "%s", err.msg);
   s->pts->sxx[0] = 0.0;
+  const double r2y = s->pts->r2y[0];
+  s->pts->r2y[0] = INFINITY;                       /* a blown-up extent comes first */
+  s->pts->sxx[0] = NAN;
+  ck_assert_int_eq(mpm_sim_check_state(s, 0.5, &err), MPM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "point 0: extent r2y = inf m") &&
+                strstr(err.msg, "the extent is not finite"), "%s", err.msg);
+  s->pts->r2y[0] = r2y;
+  s->pts->sxx[0] = 0.0;
   s->pts->x[0] = NAN;
   ck_assert_int_eq(mpm_sim_remove_points(s, 0.25, &err), MPM_ENONFINITE);
   ck_assert_msg(strstr(err.msg, "point 0: position x = nan m") && !strstr(err.msg, "left the mesh"),
                 "%s", err.msg);
   mpm_sim_free(s);
+  /* CPDI1: a step whose stencil meets an infinite extent names it, not "left
+   * the mesh" */
+  strcpy(c.mesh.shape, "cpdi");
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  s->pts->r1x[0] = INFINITY;
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "point 0: extent r1x = inf m") && !strstr(err.msg, "left the mesh"),
+                "%s", err.msg);
+  mpm_sim_free(s);
+  strcpy(c.mesh.shape, "delta");
   c.time.dt = 1.2e-2;                              /* 3.59 times the stable 3.34e-3 s */
   c.time.dt_unstable_ok = 1;
   ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);

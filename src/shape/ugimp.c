@@ -42,8 +42,11 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
    * +a, +b, -a, -b with a = (r1y - r2y, r2x - r1x)/A,
    * b = (r1y + r2y, -r1x - r2x)/A, A = A_p = 4 (r1x r2y - r1y r2x), signed */
   double co[8], wg[8];
-  if (mpm_shape_in_corner_rule(2, r, co, wg) == 0.0)
+  const double A = mpm_shape_in_corner_rule(2, r, co, wg);
+  if (A == 0.0)
     return mpm_mesh_basis_at(m, iu, ju, uu, vu, node, S, dSx, dSy);
+  if (!isfinite(A))
+    return -1;                               /* a non-finite extent */
   /* the corners located: unit (ci, cj) (storage), offset (di, dj) from the
    * centre's unit, local (cu, cv) */
   int ci[4], cj[4], di[4], dj[4];

@@ -7,7 +7,8 @@
  * velocity or one that carries a point more than a mesh unit per step,
  * |v| dt > min(dx, dy), where MPM no longer holds: the stencil, and so the
  * mapping, assume a point stays near its unit); on any failure, and when a
- * speed trips, every field of every point, stresses first (the usual
+ * speed trips, every field of every point: the extents (convected under
+ * CPDI1, where a blown-up extent is the origin), the stresses (the usual
  * origin), then volume, fluidity, velocity, position. */
 #include "solver/solver.h"
 
@@ -45,6 +46,10 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
 {
   const mpm_points *P = s->pts;
   const field fields[] = {
+    /* extents first: fixed (uGIMP) they stay finite; convected (CPDI1) a
+     * blown-up extent makes the weights, and then the stress, non-finite */
+    {"extent r1x", "m", "extent", P->r1x},  {"extent r1y", "m", "extent", P->r1y},
+    {"extent r2x", "m", "extent", P->r2x},  {"extent r2y", "m", "extent", P->r2y},
     {"stress sxx", "Pa", "stress", P->sxx}, {"stress syy", "Pa", "stress", P->syy},
     {"stress szz", "Pa", "stress", P->szz}, {"stress sxy", "Pa", "stress", P->sxy},
     {"volume", "m^2", "volume", P->vol},    {"fluidity g", "1/s", "fluidity", P->g},

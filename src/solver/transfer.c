@@ -118,8 +118,12 @@ int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
     row = s->loc_j;
     reach = 0;
   } else {
-    if ((rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, P, s->t, err)) != MPM_OK)
+    if ((rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, P, s->t, err)) != MPM_OK) {
+      /* a point "outside" at a non-finite position or extent: say that */
+      if (rc == MPM_EOUTSIDE && mpm_sim_check_state(s, s->t, err) != MPM_OK)
+        return MPM_ENONFINITE;
       return rc;
+    }
     row = s->st->row;
     reach = s->st->reach;
   }
