@@ -109,26 +109,27 @@ static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
   }
   if (wide)
     return cnt;
-  /* the used nodes in row order; on a periodic axis of few units two of them
-   * can be one stored node: merged */
+  /* the used nodes in row order (the set bits of `used`, k = a + BLOCK b,
+   * from the lowest); on a periodic axis of few units two of them can be
+   * one stored node: merged */
   const int merge = (m->periodic_x && m->nx < bw) || (m->periodic_y && m->ny < bh);
-  for (int b = 0; b < bh; b++) {
-    const int js = mpm_mesh_axis_node(ju + j0 + b, m->ny, m->periodic_y);
-    for (int a = 0; a < bw; a++) {
-      const int k = a + BLOCK * b;
-      if (!(used >> k & 1u))
-        continue;
-      const int id = js * m->snx + mpm_mesh_axis_node(iu + i0 + a, m->nx, m->periodic_x);
-      if (merge) {
-        mpm_shape_in_list_add(id, 3, blk[k], node, col, &cnt);
-        continue;
-      }
-      node[cnt] = id;
-      S[cnt] = blk[k][0];
-      dSx[cnt] = blk[k][1];
-      dSy[cnt] = blk[k][2];
-      cnt++;
+  int is[BLOCK], js[BLOCK];                  /* storage column, row offset of the block */
+  for (int a = 0; a < bw; a++)
+    is[a] = mpm_mesh_axis_node(iu + i0 + a, m->nx, m->periodic_x);
+  for (int b = 0; b < bh; b++)
+    js[b] = mpm_mesh_axis_node(ju + j0 + b, m->ny, m->periodic_y) * m->snx;
+  for (unsigned u = used; u; u &= u - 1) {
+    const int k = mpm_shape_in_lowest_bit(u);
+    const int id = js[k / BLOCK] + is[k % BLOCK];
+    if (merge) {
+      mpm_shape_in_list_add(id, 3, blk[k], node, col, &cnt);
+      continue;
     }
+    node[cnt] = id;
+    S[cnt] = blk[k][0];
+    dSx[cnt] = blk[k][1];
+    dSy[cnt] = blk[k][2];
+    cnt++;
   }
   return cnt;
 }
