@@ -31,9 +31,10 @@
  * add node by node to the list instead. */
 enum { BLOCK = 4 };
 
-static int ugimp_eval(const mpm_mesh *m, double x, double y, const double r[4],
+static int ugimp_eval(const mpm_mesh *mesh, double x, double y, const double r[4],
                       int *node, double *S, double *dSx, double *dSy)
 {
+  const mpm_mesh mc = *mesh, *m = &mc;       /* a copy: no store below can change it */
   int iu, ju;
   double uu, vu;
   if (mpm_mesh_locate(m, x, y, &iu, &ju, &uu, &vu))
