@@ -522,6 +522,35 @@ START_TEST(t_cpdi_extents_follow)
 }
 END_TEST
 
+/* APIC on a periodic strip of 4 units: a CPDI1 extent grown to 1.2 units
+ * puts nodes beyond half the period from its point, where the nearest image
+ * is the wrong one; the step stops and names it. At 0.9 units it runs. */
+START_TEST(t_cpdi_apic_periodic_reach)
+{
+  for (int grown = 0; grown < 2; grown++) {
+    mpm_config c;
+    free_block_config(&c, 4, 0.0, 0.3);
+    strcpy(c.mesh.shape, "cpdi");
+    c.bc.left = c.bc.right = MPM_BC_PERIODIC;
+    c.fill[0].xmax = 0.4;
+    c.time.transfer = MPM_TRANSFER_APIC;
+    mpm_sim *s = NULL;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+    s->pts->r1x[3] = (grown ? 1.2 : 0.9) * c.mesh.dx - fabs(s->pts->r2x[3]);
+    const int rc = mpm_sim_step(s, &err);
+    if (grown) {
+      ck_assert_int_eq(rc, MPM_EINPUT);
+      ck_assert_msg(strstr(err.msg, "extent reaches 1.2 units along the periodic x axis of 4 "
+                                    "units") && strstr(err.msg, "point 3"), "%s", err.msg);
+    } else {
+      ck_assert_int_eq(rc, MPM_OK);
+    }
+    mpm_sim_free(s);
+  }
+}
+END_TEST
+
 /* A block at rest with no gravity: the kinetic energy is 0 < stop.ke from
  * the start, so the run ends at the first step at or after t_min. */
 START_TEST(t_stop_at_rest)
@@ -958,6 +987,7 @@ int main(void)
   tcase_add_test(tc, t_bbar_every_shape);
   tcase_add_test(tc, t_apic_affine);
   tcase_add_test(tc, t_cpdi_extents_follow);
+  tcase_add_test(tc, t_cpdi_apic_periodic_reach);
   tcase_add_test(tc, t_absorb_layer);
   tcase_add_test(tc, t_stop_at_rest);
   tcase_add_test(tc, t_stop_runs_to_end);

@@ -97,6 +97,35 @@ static long locate_all(mpm_sim *s)
   return first;
 }
 
+/* APIC takes a stencil node's nearest periodic image (mpm_sim_in_node_offset):
+ * right while every node lies within half a period of its point. A node lies
+ * within h + 1 unit of its point, h = |r1| + |r2| along the axis (the
+ * corners' reach), which the input check bounds for extents as filled; a
+ * convected (CPDI1) extent can outgrow it: then the run stops, naming the
+ * point. */
+static int apic_extents_fit(const mpm_sim *s, mpm_err *err)
+{
+  const mpm_points *P = s->pts;
+  const mpm_mesh *m = &s->mesh;
+  for (int axis = 0; axis < 2; axis++) {
+    const int periodic = axis ? m->periodic_y : m->periodic_x;
+    if (!periodic)
+      continue;
+    const double *a = axis ? P->r1y : P->r1x, *b = axis ? P->r2y : P->r2x;
+    const double h = axis ? m->dy : m->dx, len = axis ? m->ly : m->lx;
+    for (size_t p = 0; p < P->n; p++)
+      if (!(2.0 * (fabs(a[p]) + fabs(b[p]) + h) < len))
+        return mpm_err_set(err, MPM_EINPUT,
+                           "point %d: its extent reaches %.3g units along the periodic %c axis "
+                           "of %d units at t = %.6g s (allowed with time.transfer = \"apic\": "
+                           "less than half the axis minus one unit); a convected (cpdi) "
+                           "extent grew: use shape \"ugimp\" or more units", P->id[p],
+                           (fabs(a[p]) + fabs(b[p])) / h, axis ? 'y' : 'x',
+                           axis ? m->ny : m->nx, s->t);
+  }
+  return MPM_OK;
+}
+
 int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
@@ -124,6 +153,9 @@ int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
         return MPM_ENONFINITE;
       return rc;
     }
+    if (s->cfg.time.transfer == MPM_TRANSFER_APIC && s->shape->convect &&
+        (rc = apic_extents_fit(s, err)) != MPM_OK)
+      return rc;
     row = s->st->row;
     reach = s->st->reach;
   }
