@@ -1,5 +1,6 @@
 noinst_LTLIBRARIES += libmpm_nonlocal.la
 libmpm_nonlocal_la_SOURCES = src/nonlocal/nonlocal.h src/nonlocal/fluidity.c \
+	src/nonlocal/grid.h src/nonlocal/grid.c \
 	src/nonlocal/implicit.h src/nonlocal/implicit.c src/nonlocal/field.h src/nonlocal/field.c \
 	src/nonlocal/steady.h src/nonlocal/steady.c
 
@@ -30,3 +31,4 @@ tests_test_steady_SOURCES = tests/test_steady.c
 tests_test_steady_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_steady_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_shape.la libmpm_material.la \
 	libmpm_mesh.la libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
+
