@@ -11,7 +11,9 @@
  *   lap_e = (g_E - 2 g_e + g_W)/dx^2 + (g_N - 2 g_e + g_S)/dy^2
  * Ghosts: Neumann g_ghost = g_e (empty neighbour, free edge, frictionless or
  * symmetry wall), Dirichlet g_ghost = -g_e (no-slip wall: g = 0 on the face,
- * midway between the centres), periodic wrap. */
+ * midway between the centres), periodic wrap. The stencil and the side rule
+ * are those of the unit grid (grid.c), written once for 2 and 3 dimensions;
+ * here the edges of the mesh set its rules. */
 #include "nonlocal/nonlocal.h"
 
 #include <math.h>
@@ -48,30 +50,33 @@ const char *mpm_nonlocal_rule_name(int rule)
 
 void mpm_nonlocal_open_faces(mpm_nonlocal *ws, int edge, int lo, int hi)
 {
-  ws->open_edge = edge;
-  ws->open_lo = lo;
-  ws->open_hi = hi;
-  ws->ghost_stamp++;
+  const int along = edge <= 1 ? 1 : 0;                 /* rows on the left and right */
+  int l[3] = {0, 0, 0}, h[3] = {0, 0, 0};
+  l[along] = lo;
+  h[along] = hi;
+  mpm_nonlocal_grid_open_faces(&ws->grid, edge, l, h);
 }
 
 void mpm_nonlocal_walls_neumann(mpm_nonlocal *ws)
 {
   for (int k = 0; k < 4; k++)
-    if (ws->ghost[k] == MPM_GHOST_DIRICHLET)
-      ws->ghost[k] = MPM_GHOST_NEUMANN;
-  ws->ghost_stamp++;
+    if (ws->grid.ghost[k] == MPM_GHOST_DIRICHLET)
+      ws->grid.ghost[k] = MPM_GHOST_NEUMANN;
+  ws->grid.stamp++;
 }
 
 void mpm_nonlocal_held_nodes(const mpm_nonlocal *ws, const mpm_mesh *m, unsigned char *held)
 {
   for (int i = 0; i < m->nnodes; i++)
     held[i] = 0;
+  const mpm_nonlocal_grid *g = &ws->grid;
   for (int e = 0; e < 4; e++) {
-    if (ws->ghost[e] != MPM_GHOST_DIRICHLET)
+    if (g->ghost[e] != MPM_GHOST_DIRICHLET)
       continue;
     const int len = e <= 1 ? m->ny : m->nx;            /* nodes 0 .. len along the edge */
+    const int along = e <= 1 ? 1 : 0;
     for (int a = 0; a <= len; a++) {
-      if (e == ws->open_edge && a >= ws->open_lo && a <= ws->open_hi)
+      if (e == g->open_face && a >= g->open_lo[along] && a <= g->open_hi[along])
         continue;                                      /* the faces lo .. hi-1 of an open outlet */
       const int i = e == 0 ? 0 : e == 1 ? m->nx : a, j = e == 2 ? 0 : e == 3 ? m->ny : a;
       held[mpm_mesh_node(m, i, j)] = 1;
@@ -156,24 +161,28 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
 
 static const char *const edge_names[4] = {"left", "right", "bottom", "top"};
 
-/* Ghost rules of the four edges; periodic pairs must match the mesh. */
-static int set_ghosts(mpm_nonlocal *ws, const mpm_mesh *m, const int edge[4], mpm_err *err)
+/* The unit grid of mesh m with the ghost rules of its four edges; periodic
+ * pairs must match the mesh. */
+static int set_grid(mpm_nonlocal *ws, const mpm_mesh *m, const int edge[4], mpm_err *err)
 {
+  int ghost[4];
   for (int k = 0; k < 4; k++) {
-    ws->ghost[k] = mpm_nonlocal_ghost_of_bc(edge[k]);
-    if (ws->ghost[k] < 0)
+    ghost[k] = mpm_nonlocal_ghost_of_bc(edge[k]);
+    if (ghost[k] < 0)
       return mpm_err_set(err, MPM_EINVAL, "nonlocal: %s edge has unknown kind %d",
                          edge_names[k], edge[k]);
   }
-  int px = ws->ghost[0] == MPM_GHOST_PERIODIC, px2 = ws->ghost[1] == MPM_GHOST_PERIODIC;
-  int py = ws->ghost[2] == MPM_GHOST_PERIODIC, py2 = ws->ghost[3] == MPM_GHOST_PERIODIC;
+  int px = ghost[0] == MPM_GHOST_PERIODIC, px2 = ghost[1] == MPM_GHOST_PERIODIC;
+  int py = ghost[2] == MPM_GHOST_PERIODIC, py2 = ghost[3] == MPM_GHOST_PERIODIC;
   if (px != px2 || px != (m->periodic_x != 0))
     return mpm_err_set(err, MPM_EINVAL,
                        "nonlocal: left/right periodic edges must match each other and the mesh");
   if (py != py2 || py != (m->periodic_y != 0))
     return mpm_err_set(err, MPM_EINVAL,
                        "nonlocal: bottom/top periodic edges must match each other and the mesh");
-  return MPM_OK;
+  const int n[2] = {m->nx, m->ny};
+  const double h[2] = {m->dx, m->dy};
+  return mpm_nonlocal_grid_set(&ws->grid, 2, n, h, ghost, err);
 }
 
 int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4], int rule,
@@ -188,8 +197,7 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   mpm_nonlocal *ws = calloc(1, sizeof *ws);
   if (!ws)
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for the workspace");
-  ws->open_edge = -1;
-  int rc = set_ghosts(ws, m, edge, err);
+  int rc = set_grid(ws, m, edge, err);
   if (rc != MPM_OK) {
     mpm_nonlocal_free(ws);
     return rc;
@@ -197,8 +205,6 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   size_t nu = (size_t)m->nx * (size_t)m->ny;
   ws->nx = m->nx;
   ws->ny = m->ny;
-  ws->idx2 = 1.0 / (m->dx * m->dx);
-  ws->idy2 = 1.0 / (m->dy * m->dy);
   ws->rule = rule;
   ws->bands = mpm_mesh_bands_alloc();
   ws->sm = calloc(nu, sizeof *ws->sm);
@@ -410,64 +416,16 @@ void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const 
     ws->ge[e] = ws->sm[e] > 0.0 ? ws->smg[e] / ws->sm[e] : 0.0;  /* g_e */
 }
 
-/* Unit offsets towards the sides W, E, S, N (enum mpm_nonlocal_side). */
-static const int side_di[4] = {-1, 1, 0, 0}, side_dj[4] = {0, 0, -1, 1};
-
 int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb)
 {
-  int ii = i + side_di[side], jj = j + side_dj[side], edge = -1;
-  if (ii < 0)
-    edge = 0;
-  else if (ii >= ws->nx)
-    edge = 1;
-  else if (jj < 0)
-    edge = 2;
-  else if (jj >= ws->ny)
-    edge = 3;
-  if (edge >= 0) {
-    const int along = edge <= 1 ? j : i;
-    if (edge == ws->open_edge && along >= ws->open_lo && along < ws->open_hi)
-      return 1;                                        /* open outlet: free surface */
-    if (ws->ghost[edge] == MPM_GHOST_DIRICHLET)
-      return -1;                                       /* g_ghost = -g_e: g = 0 on the face */
-    if (ws->ghost[edge] == MPM_GHOST_NEUMANN)
-      return 1;                                        /* g_ghost = g_e: d_n g = 0 */
-    ii = (ii + ws->nx) % ws->nx;                       /* periodic wrap */
-    jj = (jj + ws->ny) % ws->ny;
-  }
-  size_t e = (size_t)ii + (size_t)ws->nx * (size_t)jj;
-  if (!(ws->sm[e] > 0.0))
-    return 1;                                          /* empty neighbour: Neumann */
-  *nb = e;
-  return 0;
-}
-
-/* Neighbour value of unit (i, j) across side s: the filled neighbour's g_e,
- * else the ghost value +-g (exact: a product with +-1). */
-static double neighbour(const mpm_nonlocal *ws, int i, int j, int side, double g)
-{
-  size_t nb = 0;
-  int k = mpm_nonlocal_side(ws, i, j, side, &nb);
-  return k == 0 ? ws->ge[nb] : k * g;
+  const int c[3] = {i, j, 0};
+  return mpm_nonlocal_grid_side(&ws->grid, ws->sm, c, (size_t)i + (size_t)ws->nx * (size_t)j,
+                                side, nb);
 }
 
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
 {
-  const int nx = ws->nx, ny = ws->ny;
-#pragma omp parallel for schedule(static) if ((long)nx * ny > 256)  /* tiny grids: no fork */
-  for (int j = 0; j < ny; j++)
-    for (int i = 0; i < nx; i++) {
-      size_t e = (size_t)i + (size_t)nx * (size_t)j;
-      if (!(ws->sm[e] > 0.0)) {
-        ws->lap[e] = 0.0;
-        continue;
-      }
-      double g = ws->ge[e];
-      double gw = neighbour(ws, i, j, MPM_SIDE_W, g), ge = neighbour(ws, i, j, MPM_SIDE_E, g);
-      double gs = neighbour(ws, i, j, MPM_SIDE_S, g), gn = neighbour(ws, i, j, MPM_SIDE_N, g);
-      ws->lap[e] = (ge - 2.0 * g + gw) * ws->idx2     /* d2g/dx2 */
-                 + (gn - 2.0 * g + gs) * ws->idy2;    /* d2g/dy2 */
-    }
+  mpm_nonlocal_grid_laplacian(&ws->grid, ws->sm, ws->ge, ws->lap);
 }
 
 /* H(q) = ((q + c)^3/2 - (q - c)^3/2) / c without cancellation:
@@ -501,12 +459,12 @@ static int neighbour_p(const mpm_nonlocal *ws, int i, int j, int di, int dj, dou
 {
   int ii = i + di, jj = j + dj;
   if (ii < 0 || ii >= ws->nx) {
-    if (ws->ghost[ii < 0 ? 0 : 1] != MPM_GHOST_PERIODIC)
+    if (ws->grid.ghost[ii < 0 ? 0 : 1] != MPM_GHOST_PERIODIC)
       return 0;
     ii = (ii + ws->nx) % ws->nx;
   }
   if (jj < 0 || jj >= ws->ny) {
-    if (ws->ghost[jj < 0 ? 2 : 3] != MPM_GHOST_PERIODIC)
+    if (ws->grid.ghost[jj < 0 ? 2 : 3] != MPM_GHOST_PERIODIC)
       return 0;
     jj = (jj + ws->ny) % ws->ny;
   }

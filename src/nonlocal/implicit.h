@@ -5,7 +5,7 @@
  * k = dt_sub / t0, lap_e = L_h g_e the 5-point Laplacian with ghost rules
  * (nonlocal.h). The implicit one solves, on the filled units,
  *   (I - c L_h) g* = g_e,
- * L_h the same operator with the same ghosts (mpm_nonlocal_side), and hands
+ * L_h the same operator with the same ghosts (mpm_nonlocal_grid_side), and hands
  * the points lap_e = (g*_e - g_e) / c, which equals L_h g*_e: the points and
  * the material update (g* = g_n + c lap) are unchanged, only lap_e is taken
  * at the new level. The matrix is symmetric positive definite (see
@@ -17,7 +17,11 @@
  * Usage per (sub)step, after mpm_nonlocal_average (instead of
  * mpm_nonlocal_laplacian):
  *   mpm_nonlocal_implicit_laplacian(im, ws, k * A * A * d * d, err);
- * On an error the caller adds the step and the time to err. */
+ * On an error the caller adds the step and the time to err.
+ *
+ * The solve is written for the unit grid of grid.h, in 2 or 3 dimensions
+ * (the 5- or 7-point operator; its rows from mpm_nonlocal_grid_row): the 2D
+ * workspace calls it with its grid, the 3D field (field3.h) with its own. */
 #ifndef MPM_NONLOCAL_IMPLICIT_H
 #define MPM_NONLOCAL_IMPLICIT_H
 
@@ -30,6 +34,10 @@ typedef struct mpm_nonlocal_implicit mpm_nonlocal_implicit;   /* opaque */
 /* Solver workspace for the unit grid of ws (its size is kept: use it with
  * that workspace only). NULL (and err set) when out of memory. */
 mpm_nonlocal_implicit *mpm_nonlocal_implicit_alloc(const mpm_nonlocal *ws, mpm_err *err);
+
+/* The same for a unit grid g of 2 or 3 dimensions. */
+mpm_nonlocal_implicit *mpm_nonlocal_implicit_alloc_grid(const mpm_nonlocal_grid *g,
+                                                        mpm_err *err);
 void mpm_nonlocal_implicit_free(mpm_nonlocal_implicit *im);   /* accepts NULL */
 
 /* From ws->ge on the filled units (ws->sm > 0): g* of (I - c L_h) g* = g_e,
@@ -42,7 +50,15 @@ void mpm_nonlocal_implicit_free(mpm_nonlocal_implicit *im);   /* accepts NULL */
 int mpm_nonlocal_implicit_laplacian(mpm_nonlocal_implicit *im, mpm_nonlocal *ws, double c,
                                     mpm_err *err);
 
-/* g*_e of the last solve ([nx*ny], 0 on units empty then); valid until the
+/* The same on grid g (the one allocated for, same dimension and units) with
+ * unit arrays sm (filled when > 0), ge and lap of g->nu entries each:
+ * (I - c L_h) g* = ge on the filled units, lap[e] = (g*_e - ge_e)/c there and
+ * 0 elsewhere; c = 0: lap from mpm_nonlocal_grid_laplacian. Errors as above. */
+int mpm_nonlocal_implicit_grid(mpm_nonlocal_implicit *im, const mpm_nonlocal_grid *g,
+                               const double *sm, const double *ge, double *lap, double c,
+                               mpm_err *err);
+
+/* g*_e of the last solve ([nu], 0 on units empty then); valid until the
  * next call. */
 const double *mpm_nonlocal_implicit_gstar(const mpm_nonlocal_implicit *im);
 

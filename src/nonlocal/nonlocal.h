@@ -64,6 +64,7 @@
 
 #include "core/error.h"
 #include "mesh/mesh.h"
+#include "nonlocal/grid.h"
 
 /* How a point's g is shared between units. */
 enum mpm_nonlocal_rule {
@@ -76,21 +77,13 @@ enum mpm_nonlocal_rule {
 /* Largest number of units one point's extent overlaps. */
 #define MPM_NONLOCAL_PARTS 4
 
-/* Ghost rule of one mesh edge for g, derived from enum mpm_bc_kind. */
-enum mpm_nonlocal_ghost {
-  MPM_GHOST_NEUMANN = 0,    /* g_ghost = g_e */
-  MPM_GHOST_DIRICHLET,      /* g_ghost = -g_e (g = 0 on the edge) */
-  MPM_GHOST_PERIODIC        /* wrap to the opposite side */
-};
-
 typedef struct mpm_nonlocal {
   int nx, ny;           /* units */
-  double idx2, idy2;    /* 1/dx^2, 1/dy^2 [1/m^2] */
+  mpm_nonlocal_grid grid;  /* the unit grid (grid.h): 1/dx^2, 1/dy^2, the ghost rules of
+                              the left, right, bottom and top edges (grid.ghost[0..3],
+                              enum mpm_nonlocal_ghost), an open outlet's faces and a
+                              stamp that changes whenever the rules do */
   int rule;             /* enum mpm_nonlocal_rule */
-  int ghost[4];         /* left, right, bottom, top: enum mpm_nonlocal_ghost */
-  int open_edge;        /* edge with an open outlet (as ghost[]), -1: none ... */
-  int open_lo, open_hi; /* ... whose unit faces open_lo .. open_hi-1 are Neumann */
-  unsigned ghost_stamp; /* changes whenever the ghost rules do */
   double *sm;           /* [nx*ny] sum m of dense points [kg/m] */
   double *smg;          /* [nx*ny] sum m g [kg/(m s)] */
   double *ge;           /* [nx*ny] element fluidity g_e [1/s] (0 when empty) */
@@ -170,19 +163,21 @@ int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const dou
 void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
                           const unsigned char *dense);
 
-/* lap_e on every non-empty unit from the current g_e (5-point, ghost rules). */
+/* lap_e on every non-empty unit from the current g_e (5-point, ghost rules;
+ * the stencil of grid.h, mpm_nonlocal_grid_laplacian). */
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws);
 
-/* The four sides of a unit, in the order of the mesh edges they face. */
+/* The four sides of a unit, in the order of the mesh edges they face (the
+ * faces 0 .. 3 of grid.h). */
 enum mpm_nonlocal_side { MPM_SIDE_W = 0, MPM_SIDE_E, MPM_SIDE_S, MPM_SIDE_N };
 
-/* The ghost rules of the 5-point Laplacian, once for every user (the
- * explicit lap_e and the implicit matrix): across side `side` of unit
- * (i, j), either a filled neighbour, whose index i' + nx j' (periodic edges
- * wrapped) goes to *nb and 0 is returned, or a ghost g_ghost = k g_e with
- * k = +1 (Neumann: empty neighbour, free edge, frictionless or symmetry
- * wall, open outlet) or k = -1 (Dirichlet: no-slip wall), and k is returned
- * (*nb unset).
+/* The ghost rules of the 5-point Laplacian (mpm_nonlocal_grid_side, the one
+ * rule of the explicit lap_e and the implicit matrix in 2 and 3
+ * dimensions): across side `side` of unit (i, j), either a filled
+ * neighbour, whose index i' + nx j' (periodic edges wrapped) goes to *nb and
+ * 0 is returned, or a ghost g_ghost = k g_e with k = +1 (Neumann: empty
+ * neighbour, free edge, frictionless or symmetry wall, open outlet) or
+ * k = -1 (Dirichlet: no-slip wall), and k is returned (*nb unset).
  * On a periodic axis of two units both sides along it lead to the same
  * neighbour (the mesh allows no periodic axis of one unit). */
 int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb);
