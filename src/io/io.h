@@ -132,6 +132,16 @@ int mpm_io_checkpoint_remove(const char *dir, mpm_err *err);
  * header row; fields is a comma list of field names or NULL for all. */
 int mpm_io_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_err *err);
 
+/* A slab of a 3D run: the points with zmin <= z <= zmax. */
+typedef struct mpm_io_zrange {
+  double zmin, zmax;
+} mpm_io_zrange;
+
+/* mpm_io_extract of the points in zr only (NULL: every point); a 2D frame
+ * has no z (MPM_EINPUT). */
+int mpm_io_extract_in(const char *dir, int frame, const char *fields, const mpm_io_zrange *zr,
+                      FILE *out, mpm_err *err);
+
 /* Frames of a run directory read back into a point store (frame.c), for
  * post-processing. */
 typedef struct mpm_io_run mpm_io_run;
