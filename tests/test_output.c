@@ -747,8 +747,10 @@ static void same_points(const mpm_points *a, const mpm_points *b)
 {
   ck_assert_uint_eq(a->n, b->n);
   ck_assert_int_eq(a->next_id, b->next_id);
-#define SAME_(f, nm, d, u) \
-  ck_assert_msg(a->n == 0 || !memcmp(a->f, b->f, a->n * sizeof *a->f), "field %s differs", nm);
+  ck_assert_int_eq(a->dim, b->dim);
+#define SAME_(f, nm, d, u, dim) \
+  ck_assert_msg(a->n == 0 || !mpm_points_has(a, dim) || !memcmp(a->f, b->f, a->n * sizeof *a->f), \
+                "field %s differs", nm);
   MPM_POINT_REAL_FIELDS(SAME_)
   MPM_POINT_INT_FIELDS(SAME_)
 #undef SAME_

@@ -917,8 +917,9 @@ START_TEST(t_restart_bitwise)
   ck_assert_int_eq(b->step, ref->step);
   ck_assert_int_eq(b->frames, ref->frames);
   ck_assert_uint_eq(b->pts->n, ref->pts->n);
-#define SAME_(f, nm, d, u) \
-  ck_assert_msg(!memcmp(b->pts->f, ref->pts->f, ref->pts->n * sizeof *ref->pts->f), "%s", nm);
+#define SAME_(f, nm, d, u, dim) \
+  ck_assert_msg(!mpm_points_has(ref->pts, dim) || \
+                !memcmp(b->pts->f, ref->pts->f, ref->pts->n * sizeof *ref->pts->f), "%s", nm);
   MPM_POINT_REAL_FIELDS(SAME_)
   MPM_POINT_INT_FIELDS(SAME_)
 #undef SAME_

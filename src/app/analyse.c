@@ -5,7 +5,10 @@
  * mean mu of the flowing layer, front position and heap slope, the
  * silo classifier of [DK-silo] section 7.2 (static, flowing or unsure), and
  * the roughness of a frame's pressure with its dense fraction. Frames are
- * read back with io/frame.c; the numbers come from diag/flow.c. */
+ * read back with io/frame.c; the numbers come from diag/flow.c. A 3D run is
+ * measured on the x and y of its points (all of them, or those of a slab
+ * --z-range ZMIN:ZMAX) over the x-y section of its box mesh; --smooth,
+ * which needs the run's own 2D weights, takes 2D runs only. */
 #define _POSIX_C_SOURCE 200809L
 #include "app/analyse.h"
 
@@ -44,6 +47,8 @@ typedef struct opts {
   int front_min;        /* 1: no filtering */
   int slope;            /* 0 none, 1 range, 2 auto */
   double xa, xb;
+  int zsel;             /* --z-range given */
+  double zmin, zmax;
 } opts;
 
 static int bad_value(const char *opt, const char *what, const char *v)
@@ -54,13 +59,7 @@ static int bad_value(const char *opt, const char *what, const char *v)
 /* "A:B" with finite A < B. */
 static int pair(const char *s, double *a, double *b)
 {
-  char buf[128];
-  const char *c = strchr(s, ':');
-  if (!c || (size_t)(c - s) >= sizeof buf)
-    return 0;
-  memcpy(buf, s, (size_t)(c - s));
-  buf[c - s] = '\0';
-  return mpm_app_arg_real(buf, a) && mpm_app_arg_real(c + 1, b) && *a < *b;
+  return mpm_app_arg_pair(s, a, b);
 }
 
 /* Option a with the value v: -1 if a is no such option, else 0 or the usage
@@ -93,6 +92,10 @@ static int parse_valued(const char *a, const char *v, opts *o)
     return mpm_app_arg_frame("extract", v, &o->frame);
   if (strcmp(a, "--range") == 0)
     return pair(v, &o->ymin, &o->ymax) ? 0 : bad_value(a, "YMIN:YMAX with YMIN < YMAX", v);
+  if (strcmp(a, "--z-range") == 0) {
+    o->zsel = 1;
+    return pair(v, &o->zmin, &o->zmax) ? 0 : bad_value(a, "ZMIN:ZMAX with ZMIN < ZMAX", v);
+  }
   if (strcmp(a, "--slope") == 0) {
     if (strcmp(v, "auto") == 0)
       o->slope = 2;
@@ -148,6 +151,27 @@ int mpm_app_is_analysis(int argc, char **argv)
 }
 
 /* ---- the measurements --------------------------------------------------------- */
+
+/* Frame k (< 0: the last) of r into pts, with --z-range only the points of
+ * the slab zmin <= z <= zmax (a 2D run has no z: MPM_EINPUT). */
+static int read_frame(const opts *o, mpm_io_run *r, int k, mpm_points *pts, double *t,
+                      mpm_err *err)
+{
+  int rc = mpm_io_run_frame(r, k, pts, t, err);
+  if (rc != MPM_OK || !o->zsel)
+    return rc;
+  if (pts->dim != 3)
+    return mpm_err_set(err, MPM_EINPUT, "--z-range: run '%s' is 2D, its points have no z",
+                       o->dir);
+  unsigned char *keep = malloc(pts->n + 1);
+  if (!keep)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  for (size_t i = 0; i < pts->n; i++)
+    keep[i] = pts->z[i] >= o->zmin && pts->z[i] <= o->zmax;
+  mpm_points_compact(pts, keep);
+  free(keep);
+  return MPM_OK;
+}
 
 static int do_profile(const opts *o, const mpm_points *pts, const mpm_mesh *m, mpm_err *err)
 {
@@ -250,7 +274,7 @@ static int do_series(const opts *o, mpm_io_run *r, const mpm_mesh *m, mpm_err *e
   if (rc == MPM_OK && o->slope)
     rc = column_count(m, w, &ncol, err);   /* a bad --width is an error, not NaN slopes */
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
-    rc = mpm_io_run_frame(r, k, pts, &t[k], err);
+    rc = read_frame(o, r, k, pts, &t[k], err);
     if (rc != MPM_OK)
       break;
     mpm_diag_flow(pts, o->gdot_min, &f[k]);
@@ -312,7 +336,7 @@ static int do_rough(const opts *o, const mpm_points *pts, const mpm_mesh *m, dou
 
 /* --jam: the mean vy of the dense points and the point count of every frame,
  * classified (diag/jam.h); one CSV row with the evidence. */
-static int do_jam(mpm_io_run *r, mpm_err *err)
+static int do_jam(const opts *o, mpm_io_run *r, mpm_err *err)
 {
   const int nf = mpm_io_run_nframes(r);
   double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
@@ -320,7 +344,7 @@ static int do_jam(mpm_io_run *r, mpm_err *err)
   mpm_points *pts = mpm_points_alloc(0);
   int rc = (!t || !v || !n || !pts) ? mpm_err_set(err, MPM_ENOMEM, "out of memory") : MPM_OK;
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
-    rc = mpm_io_run_frame(r, k, pts, &t[k], err);
+    rc = read_frame(o, r, k, pts, &t[k], err);
     v[k] = mpm_diag_dense_vy(pts);
     n[k] = pts->n;
   }
@@ -354,14 +378,17 @@ int mpm_app_analyse(int argc, char **argv)
   int rc = pts ? mpm_io_run_open(&r, o.dir, &err) : mpm_err_set(&err, MPM_ENOMEM, "out of memory");
   if (rc == MPM_OK)
     rc = mpm_io_run_mesh(r, &m, shape, sizeof shape, &err);
+  if (rc == MPM_OK && o.mode == MODE_SMOOTH && mpm_io_run_dim(r) != 2)
+    rc = mpm_err_set(&err, MPM_EINPUT, "--smooth: run '%s' is 3D; the smoothing takes a 2D "
+                     "run's own weights", o.dir);
   if (rc == MPM_OK && o.mode != MODE_SERIES && o.mode != MODE_JAM)
-    rc = mpm_io_run_frame(r, o.frame, pts, &t, &err);
+    rc = read_frame(&o, r, o.frame, pts, &t, &err);
   if (rc == MPM_OK) {
     switch (o.mode) {
     case MODE_PROFILE: rc = do_profile(&o, pts, &m, &err); break;
     case MODE_SURFACE: rc = do_surface(&o, pts, &m, &err); break;
     case MODE_SMOOTH: rc = do_smooth(pts, &m, shape, t, &err); break;
-    case MODE_JAM: rc = do_jam(r, &err); break;
+    case MODE_JAM: rc = do_jam(&o, r, &err); break;
     case MODE_ROUGH: rc = do_rough(&o, pts, &m, t, &err); break;
     default: rc = do_series(&o, r, &m, &err); break;
     }

@@ -33,6 +33,17 @@ int mpm_app_arg_real(const char *s, double *v)
   return *s != '\0' && *end == '\0' && isfinite(*v) && !strpbrk(s, "xX");  /* decimal only */
 }
 
+int mpm_app_arg_pair(const char *s, double *a, double *b)
+{
+  char buf[128];
+  const char *c = strchr(s, ':');
+  if (!c || (size_t)(c - s) >= sizeof buf)
+    return 0;
+  memcpy(buf, s, (size_t)(c - s));
+  buf[c - s] = '\0';
+  return mpm_app_arg_real(buf, a) && mpm_app_arg_real(c + 1, b) && *a < *b;
+}
+
 int mpm_app_arg_int(const char *s, int lo, int hi, int *v)
 {
   double d;

@@ -31,6 +31,9 @@ int mpm_app_fail(const mpm_err *err);
 /* The whole of s as a finite decimal number (no hexadecimal); 1 on success. */
 int mpm_app_arg_real(const char *s, double *v);
 
+/* "A:B" with finite decimal A < B; 1 on success. */
+int mpm_app_arg_pair(const char *s, double *a, double *b);
+
 /* The whole of s as a whole number in [lo, hi] (written as any number:
  * "4", "4.0", "4e0"); 1 on success, *v untouched otherwise. */
 int mpm_app_arg_int(const char *s, int lo, int hi, int *v);

@@ -37,15 +37,18 @@ static const char usage_text[] =
   "  info RUNDIR [--status]\n"
   "        where a run came from (version, revision, command, host, threads,\n"
   "        times, resumptions, input) and how it stands\n"
-  "  extract RUNDIR [--frame N|last] [--fields a,b,c]\n"
-  "        print one output frame as CSV with a header row\n"
+  "  extract RUNDIR [--frame N|last] [--fields a,b,c] [--z-range ZMIN:ZMAX]\n"
+  "        print one output frame as CSV with a header row (a 3D run: z too;\n"
+  "        --z-range keeps the points with ZMIN <= z <= ZMAX)\n"
   "  extract RUNDIR --profile N [--frame N|last] [--range YMIN:YMAX]\n"
   "  extract RUNDIR --surface [--frame N|last] [--width W]\n"
   "  extract RUNDIR --smooth [--frame N|last]\n"
   "  extract RUNDIR --series [--gdot-min G] [--front-cell H] [--front-min K]\n"
   "                 [--slope XA:XB|auto] [--width W]\n"
   "        measurements: velocity profile, free surface, smoothed pressure,\n"
-  "        per-frame speed, acceleration, mu, front, slope (docs/diagnostics.md)\n"
+  "        per-frame speed, acceleration, mu, front, slope (docs/diagnostics.md);\n"
+  "        of a 3D run (not --smooth), on x and y, of the points with ZMIN <= z <=\n"
+  "        ZMAX when --z-range ZMIN:ZMAX is given (any measurement)\n"
   "  extract RUNDIR --jam\n"
   "        silo classifier of [DK-silo] 7.2: static, flowing or unsure, with evidence\n"
   "  extract RUNDIR --roughness [--frame N|last] [--radius R]\n"
@@ -104,6 +107,8 @@ static int cmd_extract(int argc, char **argv)
     return mpm_app_analyse(argc, argv);
   const char *dir = NULL, *fields = NULL;
   int frame = -1;
+  mpm_io_zrange zr;
+  const mpm_io_zrange *sel = NULL;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int st = 0;
@@ -112,6 +117,12 @@ static int cmd_extract(int argc, char **argv)
       i++;
     } else if (strcmp(a, "--fields") == 0 && v) {
       fields = v;
+      i++;
+    } else if (strcmp(a, "--z-range") == 0 && v) {
+      if (!mpm_app_arg_pair(v, &zr.zmin, &zr.zmax))
+        return mpm_app_usage("extract: --z-range expects ZMIN:ZMAX with ZMIN < ZMAX, got '%s'",
+                             v);
+      sel = &zr;
       i++;
     } else {
       st = mpm_app_arg_positional("extract", a, &dir, 1);
@@ -122,7 +133,7 @@ static int cmd_extract(int argc, char **argv)
   if (!dir)
     return mpm_app_usage("%s: a run directory is required", "extract");
   mpm_err err = {0};
-  if (mpm_io_extract(dir, frame, fields, stdout, &err) != MPM_OK)
+  if (mpm_io_extract_in(dir, frame, fields, sel, stdout, &err) != MPM_OK)
     return mpm_app_fail(&err);
   return 0;
 }

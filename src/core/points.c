@@ -1,14 +1,20 @@
-/* points.c: structure-of-arrays point store. */
+/* points.c: structure-of-arrays point store.
+ *
+ * Every loop over the fields skips those the store's dimension lacks
+ * (mpm_points_has): a 2D store's 3D arrays stay NULL. */
 #include "core/points.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-mpm_points *mpm_points_alloc(size_t cap)
+mpm_points *mpm_points_alloc_dim(size_t cap, int dim)
 {
+  if (dim != 2 && dim != 3)
+    return NULL;
   mpm_points *pts = calloc(1, sizeof *pts);
   if (!pts)
     return NULL;
+  pts->dim = dim;
   if (mpm_points_reserve(pts, cap ? cap : 16) != MPM_OK) {
     mpm_points_free(pts);
     return NULL;
@@ -16,11 +22,16 @@ mpm_points *mpm_points_alloc(size_t cap)
   return pts;
 }
 
+mpm_points *mpm_points_alloc(size_t cap)
+{
+  return mpm_points_alloc_dim(cap, 2);
+}
+
 void mpm_points_free(mpm_points *pts)
 {
   if (!pts)
     return;
-#define MPM_POINT_FREE_(f, nm, d, u) free(pts->f);
+#define MPM_POINT_FREE_(f, nm, d, u, dim) free(pts->f);
   MPM_POINT_REAL_FIELDS(MPM_POINT_FREE_)
   MPM_POINT_INT_FIELDS(MPM_POINT_FREE_)
 #undef MPM_POINT_FREE_
@@ -43,14 +54,43 @@ int mpm_points_reserve(mpm_points *pts, size_t cap)
   if (cap <= pts->cap)
     return MPM_OK;
   int rc = MPM_OK;
-#define MPM_POINT_GROW_(f, nm, d, u) \
-  if (rc == MPM_OK) rc = grow((void **)&pts->f, pts->cap, cap, sizeof *pts->f);
+#define MPM_POINT_GROW_(f, nm, d, u, dim)                                        \
+  if (rc == MPM_OK && mpm_points_has(pts, dim))                                 \
+    rc = grow((void **)&pts->f, pts->cap, cap, sizeof *pts->f);
   MPM_POINT_REAL_FIELDS(MPM_POINT_GROW_)
   MPM_POINT_INT_FIELDS(MPM_POINT_GROW_)
 #undef MPM_POINT_GROW_
   if (rc != MPM_OK)
     return rc;  /* arrays already grown stay valid; cap unchanged is safe */
   pts->cap = cap;
+  return MPM_OK;
+}
+
+int mpm_points_set_dim(mpm_points *pts, int dim)
+{
+  if (dim != 2 && dim != 3)
+    return MPM_EINVAL;
+  if (dim == pts->dim)
+    return MPM_OK;
+  int rc = MPM_OK;
+  /* the arrays the store gains (zero for every point) or loses */
+#define MPM_POINT_DIM_(f, nm, d, u, D)                                           \
+  if ((D) == 3 && dim == 3 && rc == MPM_OK) {                                   \
+    pts->f = calloc(pts->cap, sizeof *pts->f);                                  \
+    rc = pts->f ? MPM_OK : MPM_ENOMEM;                                          \
+  } else if ((D) == 3 && dim == 2) {                                            \
+    free(pts->f);                                                               \
+    pts->f = NULL;                                                              \
+  }
+  MPM_POINT_REAL_FIELDS(MPM_POINT_DIM_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_DIM_)
+#undef MPM_POINT_DIM_
+  if (rc != MPM_OK) {   /* back to 2D: the arrays allocated so far freed */
+    pts->dim = 3;
+    mpm_points_set_dim(pts, 2);
+    return rc;
+  }
+  pts->dim = dim;
   return MPM_OK;
 }
 
@@ -62,7 +102,8 @@ int mpm_points_push(mpm_points *pts, size_t *idx)
       return rc;
   }
   size_t i = pts->n++;
-#define MPM_POINT_ZERO_(f, nm, d, u) pts->f[i] = 0;
+#define MPM_POINT_ZERO_(f, nm, d, u, dim) \
+  if (mpm_points_has(pts, dim)) pts->f[i] = 0;
   MPM_POINT_REAL_FIELDS(MPM_POINT_ZERO_)
   MPM_POINT_INT_FIELDS(MPM_POINT_ZERO_)
 #undef MPM_POINT_ZERO_
@@ -73,11 +114,13 @@ int mpm_points_push(mpm_points *pts, size_t *idx)
 
 int mpm_points_copy(mpm_points *dst, const mpm_points *src)
 {
-  int rc = mpm_points_reserve(dst, src->n);
+  int rc = mpm_points_set_dim(dst, src->dim);
+  if (rc == MPM_OK)
+    rc = mpm_points_reserve(dst, src->n);
   if (rc != MPM_OK)
     return rc;
-#define MPM_POINT_COPY_(f, nm, d, u) \
-  if (src->n) memcpy(dst->f, src->f, src->n * sizeof *src->f);
+#define MPM_POINT_COPY_(f, nm, d, u, dim) \
+  if (src->n && mpm_points_has(src, dim)) memcpy(dst->f, src->f, src->n * sizeof *src->f);
   MPM_POINT_REAL_FIELDS(MPM_POINT_COPY_)
   MPM_POINT_INT_FIELDS(MPM_POINT_COPY_)
 #undef MPM_POINT_COPY_
@@ -88,12 +131,14 @@ int mpm_points_copy(mpm_points *dst, const mpm_points *src)
 
 void mpm_points_compact(mpm_points *pts, const unsigned char *keep)
 {
+  const int d3 = pts->dim == 3;
   size_t j = 0;
   for (size_t i = 0; i < pts->n; i++) {
     if (!keep[i])
       continue;
     if (j != i) {
-#define MPM_POINT_MOVE_(f, nm, d, u) pts->f[j] = pts->f[i];
+#define MPM_POINT_MOVE_(f, nm, d, u, dim) \
+  if ((dim) == 2 || d3) pts->f[j] = pts->f[i];
       MPM_POINT_REAL_FIELDS(MPM_POINT_MOVE_)
       MPM_POINT_INT_FIELDS(MPM_POINT_MOVE_)
 #undef MPM_POINT_MOVE_
@@ -108,12 +153,14 @@ void mpm_points_permute(mpm_points *pts, const int *order, void *scratch)
   const size_t n = pts->n;
   double *td = scratch;
   int *ti = scratch;
-#define MPM_POINT_PERMUTE_(t, f)                                         \
-  for (size_t k = 0; k < n; k++)                                         \
-    t[k] = pts->f[order[k]];                                             \
-  memcpy(pts->f, t, n * sizeof *t);
-#define MPM_POINT_PERMUTE_REAL_(f, nm, d, u) MPM_POINT_PERMUTE_(td, f)
-#define MPM_POINT_PERMUTE_INT_(f, nm, d, u) MPM_POINT_PERMUTE_(ti, f)
+#define MPM_POINT_PERMUTE_(t, f, dim)                                    \
+  if (mpm_points_has(pts, dim)) {                                        \
+    for (size_t k = 0; k < n; k++)                                       \
+      t[k] = pts->f[order[k]];                                           \
+    memcpy(pts->f, t, n * sizeof *t);                                    \
+  }
+#define MPM_POINT_PERMUTE_REAL_(f, nm, d, u, dim) MPM_POINT_PERMUTE_(td, f, dim)
+#define MPM_POINT_PERMUTE_INT_(f, nm, d, u, dim) MPM_POINT_PERMUTE_(ti, f, dim)
   MPM_POINT_REAL_FIELDS(MPM_POINT_PERMUTE_REAL_)
   MPM_POINT_INT_FIELDS(MPM_POINT_PERMUTE_INT_)
 #undef MPM_POINT_PERMUTE_REAL_

@@ -20,64 +20,96 @@ enum mpm_point_state {
 
 /* Every point field, once, in the order of the datasets of an output frame
  * (io/output.c; extract's default column order, which readers rely on):
- *   REAL(member, name, description, unit)  a double array of the store
- *   INT(member, name, description, unit)   an int array of the store
- *   DERIVED(key, name, description, unit)  output only, computed from the
+ *   REAL(member, name, description, unit, dim)  a double array of the store
+ *   INT(member, name, description, unit, dim)   an int array of the store
+ *   DERIVED(key, name, description, unit, dim)  output only, computed from the
  *                                          stored fields when a frame is written
- * name is the field's name in run.h5, run.xdmf and extract's CSV. The store
+ * name is the field's name in run.h5, run.xdmf and extract's CSV. dim is the
+ * smallest store dimension that has the field: 2, every store; 3, only a 3D
+ * store (the third coordinate, velocity and extent components, the third
+ * extent vector and the shear stresses that plane strain makes zero). A 2D
+ * store leaves a dim-3 array NULL and never touches it: it is allocated,
+ * grown, pushed, compacted, reordered, checkpointed and written only when
+ * the store is 3D (mpm_points_has). Units are those of a 2D store (per unit
+ * thickness); a 3D frame writes mass and volume in kg and m^3. The store
  * itself does not depend on the order. */
 #define MPM_POINT_FIELDS(REAL, INT, DERIVED)                                   \
-  REAL(x,       "x",      "position x", "m")                                   \
-  REAL(y,       "y",      "position y", "m")                                   \
-  REAL(vx,      "vx",     "velocity x", "m/s")                                 \
-  REAL(vy,      "vy",     "velocity y", "m/s")                                 \
-  REAL(sxx,     "sxx",    "Cauchy stress xx", "Pa")                            \
-  REAL(syy,     "syy",    "Cauchy stress yy", "Pa")                            \
-  REAL(szz,     "szz",    "Cauchy stress zz (out of plane)", "Pa")             \
-  REAL(sxy,     "sxy",    "Cauchy stress xy", "Pa")                            \
-  DERIVED(p,    "p",      "pressure -(sxx+syy+szz)/3", "Pa")                   \
-  REAL(mass,    "mass",   "mass per unit thickness", "kg/m")                   \
-  REAL(vol,     "volume", "true volume per unit thickness", "m^2")             \
-  INT(state,    "state",  "0 dense, 1 disconnected", "-")                      \
-  REAL(gdp,     "gdot_p", "equivalent plastic shear rate", "1/s")              \
-  REAL(g,       "g",      "granular fluidity", "1/s")                          \
-  INT(id,       "id",     "persistent point id", "-")                          \
-  REAL(r1x,     "r1x",    "extent half-vector r1, x", "m")                     \
-  REAL(r1y,     "r1y",    "extent half-vector r1, y", "m")                     \
-  REAL(r2x,     "r2x",    "extent half-vector r2, x", "m")                     \
-  REAL(r2y,     "r2y",    "extent half-vector r2, y", "m")
+  REAL(x,       "x",      "position x", "m", 2)                                \
+  REAL(y,       "y",      "position y", "m", 2)                                \
+  REAL(z,       "z",      "position z", "m", 3)                                \
+  REAL(vx,      "vx",     "velocity x", "m/s", 2)                              \
+  REAL(vy,      "vy",     "velocity y", "m/s", 2)                              \
+  REAL(vz,      "vz",     "velocity z", "m/s", 3)                              \
+  REAL(sxx,     "sxx",    "Cauchy stress xx", "Pa", 2)                         \
+  REAL(syy,     "syy",    "Cauchy stress yy", "Pa", 2)                         \
+  REAL(szz,     "szz",    "Cauchy stress zz (out of plane)", "Pa", 2)          \
+  REAL(sxy,     "sxy",    "Cauchy stress xy", "Pa", 2)                         \
+  REAL(syz,     "syz",    "Cauchy stress yz", "Pa", 3)                         \
+  REAL(szx,     "szx",    "Cauchy stress zx", "Pa", 3)                         \
+  DERIVED(p,    "p",      "pressure -(sxx+syy+szz)/3", "Pa", 2)                \
+  REAL(mass,    "mass",   "mass per unit thickness", "kg/m", 2)                \
+  REAL(vol,     "volume", "true volume per unit thickness", "m^2", 2)          \
+  INT(state,    "state",  "0 dense, 1 disconnected", "-", 2)                   \
+  REAL(gdp,     "gdot_p", "equivalent plastic shear rate", "1/s", 2)           \
+  REAL(g,       "g",      "granular fluidity", "1/s", 2)                       \
+  INT(id,       "id",     "persistent point id", "-", 2)                       \
+  REAL(r1x,     "r1x",    "extent half-vector r1, x", "m", 2)                  \
+  REAL(r1y,     "r1y",    "extent half-vector r1, y", "m", 2)                  \
+  REAL(r1z,     "r1z",    "extent half-vector r1, z", "m", 3)                  \
+  REAL(r2x,     "r2x",    "extent half-vector r2, x", "m", 2)                  \
+  REAL(r2y,     "r2y",    "extent half-vector r2, y", "m", 2)                  \
+  REAL(r2z,     "r2z",    "extent half-vector r2, z", "m", 3)                  \
+  REAL(r3x,     "r3x",    "extent half-vector r3, x", "m", 3)                  \
+  REAL(r3y,     "r3y",    "extent half-vector r3, y", "m", 3)                  \
+  REAL(r3z,     "r3z",    "extent half-vector r3, z", "m", 3)
 
 /* Stored fields that are state of the scheme, not results: kept in the
  * store and in checkpoints, not written to frames. X(member, name,
- * description, unit) as REAL above. */
+ * description, unit, dim) as REAL above. */
 #define MPM_POINT_STATE_FIELDS(X)                                              \
-  X(cxx,        "cxx",    "affine velocity matrix C, xx (time.transfer = apic)", "1/s") \
-  X(cxy,        "cxy",    "affine velocity matrix C, xy", "1/s")                \
-  X(cyx,        "cyx",    "affine velocity matrix C, yx", "1/s")                \
-  X(cyy,        "cyy",    "affine velocity matrix C, yy", "1/s")
+  X(cxx,        "cxx",    "affine velocity matrix C, xx (time.transfer = apic)", "1/s", 2) \
+  X(cxy,        "cxy",    "affine velocity matrix C, xy", "1/s", 2)             \
+  X(cyx,        "cyx",    "affine velocity matrix C, yx", "1/s", 2)             \
+  X(cyy,        "cyy",    "affine velocity matrix C, yy", "1/s", 2)             \
+  X(cxz,        "cxz",    "affine velocity matrix C, xz", "1/s", 3)             \
+  X(cyz,        "cyz",    "affine velocity matrix C, yz", "1/s", 3)             \
+  X(czx,        "czx",    "affine velocity matrix C, zx", "1/s", 3)             \
+  X(czy,        "czy",    "affine velocity matrix C, zy", "1/s", 3)             \
+  X(czz,        "czz",    "affine velocity matrix C, zz", "1/s", 3)
 
-/* The stored fields of one kind: X(member, name, description, unit). */
-#define MPM_POINT_SKIP_(f, nm, d, u)
+/* The stored fields of one kind: X(member, name, description, unit, dim). */
+#define MPM_POINT_SKIP_(f, nm, d, u, dim)
 #define MPM_POINT_REAL_FIELDS(X) MPM_POINT_FIELDS(X, MPM_POINT_SKIP_, MPM_POINT_SKIP_) \
   MPM_POINT_STATE_FIELDS(X)
 #define MPM_POINT_INT_FIELDS(X) MPM_POINT_FIELDS(MPM_POINT_SKIP_, X, MPM_POINT_SKIP_)
+
+/* 1 when store pts has the fields of dimension D (the last column above):
+ * a constant 1 for D = 2, so the 2D fields' code carries no test. */
+#define mpm_points_has(pts, D) ((D) == 2 || (pts)->dim >= (D))
 
 typedef struct mpm_points {
   size_t n;    /* points in use */
   size_t cap;  /* allocated length of every array */
   int next_id; /* id given to the next pushed point */
-#define MPM_POINT_DECL_REAL_(f, nm, d, u) double *f;
-#define MPM_POINT_DECL_INT_(f, nm, d, u) int *f;
+  int dim;     /* 2 (plane strain) or 3: which fields are allocated */
+#define MPM_POINT_DECL_REAL_(f, nm, d, u, dim) double *f;
+#define MPM_POINT_DECL_INT_(f, nm, d, u, dim) int *f;
   MPM_POINT_REAL_FIELDS(MPM_POINT_DECL_REAL_)
   MPM_POINT_INT_FIELDS(MPM_POINT_DECL_INT_)
 #undef MPM_POINT_DECL_REAL_
 #undef MPM_POINT_DECL_INT_
 } mpm_points;
 
-/* Stress of point i (plane strain: yz = zx = 0). */
+/* Stress of point i: the full tensor of a 3D store; plane strain has
+ * yz = zx = 0. */
 static inline mpm_sym3 mpm_points_stress(const mpm_points *pts, size_t i)
 {
-  return (mpm_sym3){pts->sxx[i], pts->syy[i], pts->szz[i], pts->sxy[i], 0.0, 0.0};
+  mpm_sym3 s = {pts->sxx[i], pts->syy[i], pts->szz[i], pts->sxy[i], 0.0, 0.0};
+  if (pts->dim == 3) {
+    s.yz = pts->syz[i];
+    s.zx = pts->szx[i];
+  }
+  return s;
 }
 
 /* Pressure of point i: p = -(sxx + syy + szz) / 3, compression positive. */
@@ -86,8 +118,15 @@ static inline double mpm_points_pressure(const mpm_points *pts, size_t i)
   return mpm_sym3_pressure(mpm_points_stress(pts, i));
 }
 
-/* Allocate an empty store with room for cap points (cap may be 0). */
+/* Allocate an empty 2D store with room for cap points (cap may be 0). */
 mpm_points *mpm_points_alloc(size_t cap);
+
+/* The same for a store of dimension dim (2 or 3; NULL for another). */
+mpm_points *mpm_points_alloc_dim(size_t cap, int dim);
+
+/* Change the dimension of a store (2 or 3): the 3D fields are allocated
+ * (zero) or freed; the other fields and the points are kept. */
+int mpm_points_set_dim(mpm_points *pts, int dim);
 void mpm_points_free(mpm_points *pts);  /* accepts NULL */
 
 /* Make room for at least cap points; contents kept. */
@@ -97,7 +136,8 @@ int mpm_points_reserve(mpm_points *pts, size_t cap);
  * afterwards; returns its index in *idx. The id is a running count that removal never reuses. */
 int mpm_points_push(mpm_points *pts, size_t *idx);
 
-/* dst becomes a copy of src (points, order, next_id); dst grows if needed. */
+/* dst becomes a copy of src (points, order, next_id, dimension); dst grows
+ * if needed. */
 int mpm_points_copy(mpm_points *dst, const mpm_points *src);
 
 /* Remove every point i with keep[i] == 0, preserving the order of the rest. */

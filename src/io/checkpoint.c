@@ -3,11 +3,12 @@
  *
  *   root attributes  format, written_by; t, dt, step, n_sub, mass0,
  *                    mass_removed, nremoved, seeded, outlet_open, frames,
- *                    frame_next, check_next, npoints, next_id
+ *                    frame_next, check_next, npoints, next_id; dimension
+ *                    (3 for a 3D store, absent for a 2D one)
  *   /input           the resolved input text (NUL-terminated characters)
  *   /points/NAME     one 1-D dataset per stored point field (MPM_POINT_FIELDS
- *                    and MPM_POINT_STATE_FIELDS,
- *                    by its output name), full precision
+ *                    and MPM_POINT_STATE_FIELDS that the store's dimension
+ *                    has, by its output name), full precision
  *   /series/t, /series/mass  time and region mass of every frame so far
  *
  * The file is assembled in memory (HDF5's core driver, no backing store),
@@ -37,11 +38,12 @@
 typedef struct stored_field {
   const char *name;
   int isint;
+  int dim;
   size_t offset;
 } stored_field;
 
-#define REAL_(f, nm, d, u) {nm, 0, offsetof(mpm_points, f)},
-#define INT_(f, nm, d, u) {nm, 1, offsetof(mpm_points, f)},
+#define REAL_(f, nm, d, u, D) {nm, 0, D, offsetof(mpm_points, f)},
+#define INT_(f, nm, d, u, D) {nm, 1, D, offsetof(mpm_points, f)},
 static const stored_field stored[] = {MPM_POINT_FIELDS(REAL_, INT_, MPM_POINT_SKIP_)
                                       MPM_POINT_STATE_FIELDS(REAL_)};
 #undef REAL_
@@ -91,10 +93,13 @@ static herr_t write_state(hid_t file, const mpm_run_state *st, const char *input
     rc = mpm_io_h5_attr_long(file, "npoints", (long)P->n);
   if (rc >= 0)
     rc = mpm_io_h5_attr_int(file, "next_id", P->next_id);
+  if (rc >= 0 && P->dim != 2)
+    rc = mpm_io_h5_attr_int(file, "dimension", P->dim);
   hid_t g = rc < 0 ? H5I_INVALID_HID
                    : H5Gcreate2(file, "points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (size_t k = 0; g >= 0 && rc >= 0 && k < NSTORED; k++)
-    rc = mpm_io_h5_write_array(g, stored[k].name, stored[k].isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
+    if (stored[k].dim <= P->dim)
+      rc = mpm_io_h5_write_array(g, stored[k].name, stored[k].isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
                                stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, P->n,
                                field_array(P, &stored[k]), NULL, NULL);
   rc = g < 0 ? -1 : rc;
@@ -243,22 +248,29 @@ static void *read_values(hid_t g, const char *name, hid_t type, size_t size, siz
 static int read_points(hid_t file, mpm_run_state *st, const char *path, mpm_err *err)
 {
   long n = -1;
-  int next_id = 0;
+  int next_id = 0, dim = 2;
   hid_t g = H5Gopen2(file, "points", H5P_DEFAULT);
   if (g < 0 || mpm_io_h5_attr_read(file, "npoints", H5T_NATIVE_LONG, &n) < 0 || n < 0 ||
       mpm_io_h5_attr_read(file, "next_id", H5T_NATIVE_INT, &next_id) < 0) {
     mpm_io_h5_close(g);
     return mpm_err_set(err, MPM_EIO, "'%s': no points or no point count", path);
   }
+  if (H5Aexists(file, "dimension") > 0 &&
+      (mpm_io_h5_attr_read(file, "dimension", H5T_NATIVE_INT, &dim) < 0 || (dim != 2 && dim != 3))) {
+    mpm_io_h5_close(g);
+    return mpm_err_set(err, MPM_EIO, "'%s': attribute 'dimension' is not 2 or 3", path);
+  }
   for (size_t k = 0; k < NSTORED; k++)       /* counts first: no allocation from a bad one */
-    if (mpm_io_h5_array_length(g, stored[k].name) != n) {
+    if (stored[k].dim <= dim && mpm_io_h5_array_length(g, stored[k].name) != n) {
       mpm_io_h5_close(g);
       return mpm_err_set(err, MPM_EIO, "'%s': field '%s' does not hold npoints = %ld values",
                          path, stored[k].name, n);
     }
-  st->pts = mpm_points_alloc((size_t)n);
+  st->pts = mpm_points_alloc_dim((size_t)n, dim);
   int rc = st->pts ? MPM_OK : mpm_err_set(err, MPM_ENOMEM, "'%s': no memory for %ld points", path, n);
   for (size_t k = 0; rc == MPM_OK && k < NSTORED; k++) {
+    if (stored[k].dim > dim)
+      continue;
     hid_t d = H5Dopen2(g, stored[k].name, H5P_DEFAULT);
     if (d < 0 || (n > 0 && H5Dread(d, stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
                                    H5S_ALL, H5S_ALL, H5P_DEFAULT,

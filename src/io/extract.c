@@ -5,7 +5,9 @@
  * The output has a header row of field names, then one row per point;
  * doubles are printed with %.17g, so they read back bit for bit, and integer
  * fields as integers. Columns are read in blocks of rows, so memory does not
- * grow with the number of points. */
+ * grow with the number of points. A 3D frame lists its z fields like any
+ * other; a z range keeps the rows with zmin <= z <= zmax (z read alongside,
+ * printed or not). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <ctype.h>
@@ -48,6 +50,8 @@ typedef struct extract_ctx {
   field_names avail;
   column col[COLUMNS_MAX];
   int ncol;
+  const mpm_io_zrange *zr; /* NULL: every row */
+  column zcol;             /* z, when zr is given */
   hsize_t npoints;
   mpm_io_h5_quiet quiet;
 } extract_ctx;
@@ -112,6 +116,9 @@ static int open_frame(extract_ctx *c, int frame, mpm_err *err)
   const char *missing = mpm_io_frame_missing_field(c->group);
   unsigned long long np = 0;
   long long have = mpm_io_h5_array_length(c->group, "x");
+  if (mpm_io_frame_dim(c->group) < 0)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': attribute 'dimension' is not 2 or 3 "
+                       "(a damaged run)", frame, c->path);
   if (missing)
     return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)", frame,
                        c->path, missing);
@@ -299,6 +306,8 @@ static void print_header(const extract_ctx *c, FILE *out)
 static void print_rows(const extract_ctx *c, size_t count, FILE *out)
 {
   for (size_t r = 0; r < count; r++) {
+    if (c->zr && !(c->zcol.d[r] >= c->zr->zmin && c->zcol.d[r] <= c->zr->zmax))
+      continue;
     for (int k = 0; k < c->ncol; k++) {
       const column *col = &c->col[k];
       if (k)
@@ -319,12 +328,26 @@ static int print_frame(extract_ctx *c, FILE *out, mpm_err *err)
     if (rc != MPM_OK)
       return rc;
   }
+  if (c->zr) {
+    int rc;
+    if (mpm_io_frame_dim(c->group) != 3)
+      return mpm_err_set(err, MPM_EINPUT, "frame %d of run '%s' is 2D: it has no z to select "
+                         "a range of", c->frame, c->dir);
+    c->zcol.name = "z";
+    if ((rc = open_column(c, &c->zcol, err)) != MPM_OK)
+      return rc;
+    if (c->zcol.isint)
+      return mpm_err_set(err, MPM_EIO, "field 'z' of frame %d in '%s' is not real (a damaged "
+                         "run)", c->frame, c->path);
+  }
   print_header(c, out);
   for (hsize_t start = 0; start < c->npoints; start += BLOCK_ROWS) {
     hsize_t count = c->npoints - start < BLOCK_ROWS ? c->npoints - start : BLOCK_ROWS;
     for (int k = 0; k < c->ncol; k++)
       if (read_block(&c->col[k], start, count) < 0)
         return h5_fail(err, c, "cannot read field in");
+    if (c->zr && read_block(&c->zcol, start, count) < 0)
+      return h5_fail(err, c, "cannot read field in");
     print_rows(c, (size_t)count, out);
   }
   if (fflush(out) != 0 || ferror(out))
@@ -338,6 +361,7 @@ static void ctx_close(extract_ctx *c)
   for (int k = 0; k < c->ncol; k++)
     if (c->col[k].dset >= 0)
       H5Dclose(c->col[k].dset);
+  mpm_io_h5_close(c->zcol.dset);
   mpm_io_h5_close(c->group);
   mpm_io_h5_close(c->file);
 }
@@ -348,21 +372,32 @@ static void ctx_free(extract_ctx *c)
     free(c->col[k].d);
     free(c->col[k].i);
   }
+  free(c->zcol.d);
+  free(c->zcol.i);
   free(c->path);
   free(c);
 }
 
 int mpm_io_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_err *err)
 {
+  return mpm_io_extract_in(dir, frame, fields, NULL, out, err);
+}
+
+int mpm_io_extract_in(const char *dir, int frame, const char *fields, const mpm_io_zrange *zr,
+                      FILE *out, mpm_err *err)
+{
   extract_ctx *c;
   int rc;
   if (!dir || !out)
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_extract: missing run directory or output stream");
+  if (zr && !(zr->zmin <= zr->zmax))
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_extract: empty z range");
   c = calloc(1, sizeof *c);
   if (!c)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory extracting from '%s'", dir);
   c->dir = dir;
-  c->file = c->group = H5I_INVALID_HID;
+  c->zr = zr;
+  c->file = c->group = c->zcol.dset = H5I_INVALID_HID;
   mpm_io_h5_quiet_begin(&c->quiet);
   rc = open_run(c, err);
   if (rc == MPM_OK)

@@ -5,7 +5,10 @@
  * input (attribute "input", for the shape-function name) and frame groups
  * /frames/NNNNNN with attribute "time" and one dataset per stored point
  * field (MPM_POINT_FIELDS, by its output name). Extents (r1x, r1y, r2x, r2y)
- * are read when the frame has them. */
+ * are read when the frame has them. A 3D frame (attribute dimension = 3)
+ * makes the store 3D and fills its dim-3 fields too; the mesh of a 3D run
+ * (a box) is given as its x-y section, a Q4 mesh, for the measurements made
+ * on the points' x and y. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
@@ -20,6 +23,7 @@ struct mpm_io_run {
   char path[MPM_PATH_MAX + 16];
   hid_t file;
   int nframes;
+  int dim;                /* 3 for a run with a box mesh or 3D frames */
   mpm_io_h5_quiet quiet;  /* HDF5's error printing is off while the run is open */
 };
 
@@ -54,8 +58,16 @@ int mpm_io_run_open(mpm_io_run **out, const char *dir, mpm_err *err)
     mpm_io_run_close(r);
     return rc;
   }
-  H5Gclose(g);
   r->nframes = (int)info.nlinks;
+  r->dim = 2;
+  if (H5Lexists(r->file, "mesh", H5P_DEFAULT) > 0 &&
+      H5Aexists_by_name(r->file, "mesh", "nz", H5P_DEFAULT) > 0)
+    r->dim = 3;
+  else if (r->nframes > 0 && H5Lexists(g, "000000", H5P_DEFAULT) > 0 &&
+           H5Aexists_by_name(g, "000000", "dimension", H5P_DEFAULT) > 0)
+    r->dim = 3;   /* a 3D run without a mesh; a bad value is found reading the frame */
+  H5Gclose(g);
+  r->quiet.reason[0] = '\0';
   *out = r;
   return MPM_OK;
 }
@@ -72,6 +84,11 @@ void mpm_io_run_close(mpm_io_run *r)
 int mpm_io_run_nframes(const mpm_io_run *r)
 {
   return r->nframes;
+}
+
+int mpm_io_run_dim(const mpm_io_run *r)
+{
+  return r->dim;
 }
 
 
@@ -104,13 +121,13 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
          mpm_io_h5_attr_read(g, "y0", H5T_NATIVE_DOUBLE, &m->y0) |
          mpm_io_h5_attr_read(g, "dx", H5T_NATIVE_DOUBLE, &m->dx) |
          mpm_io_h5_attr_read(g, "dy", H5T_NATIVE_DOUBLE, &m->dy) |
-         mpm_io_h5_attr_read(g, "mirror_x", H5T_NATIVE_DOUBLE, &m->mirror_x) |
+         (r->dim == 3 ? 0 : mpm_io_h5_attr_read(g, "mirror_x", H5T_NATIVE_DOUBLE, &m->mirror_x)) |
          mpm_io_h5_attr_read(g, "periodic_x", H5T_NATIVE_INT, &m->periodic_x) |
          mpm_io_h5_attr_read(g, "periodic_y", H5T_NATIVE_INT, &m->periodic_y);
-  for (int k = 0; rc == 0 && k < 2; k++) {
-    hid_t a = H5Aopen(g, k ? "diagonal" : "topology", H5P_DEFAULT);
+  for (int k = r->dim == 3; rc == 0 && k < 2; k++) {   /* a box: its x-y section, Q4 */
+    hid_t a = H5Aopen(g, k ? "topology" : "diagonal", H5P_DEFAULT);
     hid_t t = a < 0 ? -1 : H5Aget_type(a);
-    char *dst = k ? diag : topo;
+    char *dst = k ? topo : diag;
     if (t < 0 || H5Tget_size(t) >= sizeof topo || H5Aread(a, t, dst) < 0)
       rc = -1;
     mpm_io_h5_close(t);
@@ -119,6 +136,12 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
   mpm_io_h5_close(g);
   if (rc != 0)
     return fail((mpm_io_run *)r, err, "cannot read the mesh attributes");
+  if (r->dim == 3) {
+    if (strcmp(topo, "box") != 0)
+      return fail((mpm_io_run *)r, err, "unknown 3D mesh topology");
+    snprintf(topo, sizeof topo, "%s", mpm_mesh_topology_name(MPM_TOPO_Q4));
+    snprintf(diag, sizeof diag, "%s", mpm_mesh_diagonal_name(MPM_DIAG_SLASH));
+  }
   m->topology = mpm_mesh_topology_from_name(topo);
   m->diagonal = mpm_mesh_diagonal_from_name(diag);
   if (m->topology < 0 || m->diagonal < 0)
@@ -170,10 +193,14 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
   }
   /* The count is checked against the data before anything is allocated:
    * a damaged npoints must not ask for 2^63 bytes. */
-  const char *missing = mpm_io_frame_missing_field(g);
+  const int dim = mpm_io_frame_dim(g);
+  const char *missing = dim < 0 ? NULL : mpm_io_frame_missing_field(g);
   long long have = mpm_io_h5_array_length(g, "x");
-  if (missing || have != (long long)n) {
+  if (dim < 0 || missing || have != (long long)n) {
     H5Gclose(g);
+    if (dim < 0)
+      return mpm_err_set(err, MPM_EIO, "frame %d of '%s': attribute 'dimension' is not 2 or 3 "
+                         "(a damaged run)", frame, r->path);
     if (missing)
       return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)",
                          frame, r->path, missing);
@@ -181,20 +208,22 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
                        "values (a damaged run)", frame, r->path, n, have);
   }
   pts->n = 0;
-  if (mpm_points_reserve(pts, (size_t)n) != MPM_OK) {
+  if (mpm_points_set_dim(pts, dim) != MPM_OK || mpm_points_reserve(pts, (size_t)n) != MPM_OK) {
     H5Gclose(g);
     return mpm_err_set(err, MPM_ENOMEM, "out of memory reading frame %d of '%s'", frame, r->path);
   }
   pts->n = (size_t)n;
-#define STORED_REAL_(f, nm, d, u) {nm, pts->f, sizeof *pts->f, 0},
-#define STORED_INT_(f, nm, d, u) {nm, pts->f, sizeof *pts->f, 1},
-  const struct { const char *name; void *dst; size_t size; int isint; } field[] = {
+#define STORED_REAL_(f, nm, d, u, D) {nm, pts->f, sizeof *pts->f, 0, D},
+#define STORED_INT_(f, nm, d, u, D) {nm, pts->f, sizeof *pts->f, 1, D},
+  const struct { const char *name; void *dst; size_t size; int isint, dim; } field[] = {
     MPM_POINT_FIELDS(STORED_REAL_, STORED_INT_, MPM_POINT_SKIP_)
   };
 #undef STORED_REAL_
 #undef STORED_INT_
   int rc = MPM_OK;
   for (size_t k = 0; rc == MPM_OK && k < sizeof field / sizeof field[0]; k++) {
+    if (field[k].dim > dim)
+      continue;
     if (read_field(g, field[k].name, field[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, n,
                    field[k].dst) == 0)
       continue;

@@ -236,15 +236,31 @@ int mpm_io_frame_field_optional(const char *name)
   return optional_field(name);
 }
 
-#define NAME_(f, nm, d, u) nm,
-static const char *const frame_fields[] = {MPM_POINT_FIELDS(NAME_, NAME_, NAME_)};
+#define NAME_(f, nm, d, u, dim) {nm, dim},
+static const struct { const char *name; int dim; } frame_fields[] = {
+  MPM_POINT_FIELDS(NAME_, NAME_, NAME_)
+};
 #undef NAME_
+
+int mpm_io_frame_dim(hid_t g)
+{
+  int dim = 2;
+  if (H5Aexists(g, "dimension") <= 0)
+    return 2;
+  if (mpm_io_h5_attr_read(g, "dimension", H5T_NATIVE_INT, &dim) < 0 || (dim != 2 && dim != 3))
+    return -1;
+  return dim;
+}
 
 const char *mpm_io_frame_missing_field(hid_t g)
 {
+  int dim = mpm_io_frame_dim(g);
+  if (dim < 0)
+    return "dimension";
   for (size_t k = 0; k < sizeof frame_fields / sizeof frame_fields[0]; k++)
-    if (!optional_field(frame_fields[k]) && H5Lexists(g, frame_fields[k], H5P_DEFAULT) <= 0)
-      return frame_fields[k];
+    if (frame_fields[k].dim <= dim && !optional_field(frame_fields[k].name) &&
+        H5Lexists(g, frame_fields[k].name, H5P_DEFAULT) <= 0)
+      return frame_fields[k].name;
   return NULL;
 }
 

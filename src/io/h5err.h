@@ -63,12 +63,17 @@ herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mty
 /* The length of the 1-D dataset `name` of loc, -1 if missing or not 1-D. */
 long long mpm_io_h5_array_length(hid_t loc, const char *name);
 
-/* Frames: every field of MPM_POINT_FIELDS is written to each; the extents
- * (r1x, r1y, r2x, r2y) are optional (older runs lack them). The first
- * required field frame group g lacks, NULL when none is missing (a frame
- * without one is damaged, never read as a shorter frame). */
+/* Frames: every field of MPM_POINT_FIELDS that the frame's dimension has is
+ * written to each; the 2D extents (r1x, r1y, r2x, r2y) are optional (older
+ * runs lack them). The first required field frame group g lacks, NULL when
+ * none is missing (a frame without one is damaged, never read as a shorter
+ * frame); "dimension" when its dimension attribute is not 2 or 3. */
 int mpm_io_frame_field_optional(const char *name);
 const char *mpm_io_frame_missing_field(hid_t g);
+
+/* The dimension of frame group g: its "dimension" attribute, written on 3D
+ * frames only (2 when absent); -1 when it is there but not 2 or 3. */
+int mpm_io_frame_dim(hid_t g);
 
 /* "DIR/NAME" in a new string (free it); NULL when out of memory. */
 char *mpm_io_path_join(const char *dir, const char *name);

@@ -14,6 +14,7 @@
 #include "core/points.h"
 #include "core/state.h"
 #include "diag/diag.h"
+#include "mesh/box.h"
 #include "mesh/mesh.h"
 
 /* Defaults of every key (docs/input-reference.md). */
@@ -71,6 +72,15 @@ typedef struct mpm_io_origin {
 int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                        const char *input_text, const mpm_mesh *m, mpm_err *err);
 
+/* The same for a 3D run, on the box mesh m (NULL: none): its frames take 3D
+ * stores (mpm_points_alloc_dim(n, 3)) and hold their dim-3 fields too, with
+ * an attribute dimension = 3 and XYZ points in run.xdmf; /mesh holds the
+ * attributes of the 2D mesh that a box has (topology "box") and nz, z0, dz,
+ * periodic_z, node_z. Everything else is as in 2D (mpm_io_output_frame,
+ * _end, _close, _reopen). */
+int mpm_io_output_open3(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                        const char *input_text, const mpm_mesh3 *m, mpm_err *err);
+
 /* Open the output of a run in dir to continue it after its first nframes
  * frames: later frames (written after the checkpoint it continues from) are
  * removed from run.h5, diagnostics.csv is cut after its nframes rows and
@@ -86,7 +96,8 @@ int mpm_io_output_end(mpm_io_output *out, const char *status, mpm_err *err);
 /* 1 when dir holds a run (run.h5 or checkpoint.h5), with *what the file. */
 int mpm_io_output_occupied(const char *dir, const char **what);
 
-/* Append one frame of point fields and one diagnostics row. */
+/* Append one frame of point fields and one diagnostics row; the store's
+ * dimension is the run's (MPM_EINVAL otherwise). */
 int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_diag *d, mpm_err *err);
 
 /* Write run.xdmf and close everything; accepts NULL. */
@@ -121,6 +132,16 @@ int mpm_io_checkpoint_remove(const char *dir, mpm_err *err);
  * header row; fields is a comma list of field names or NULL for all. */
 int mpm_io_extract(const char *dir, int frame, const char *fields, FILE *out, mpm_err *err);
 
+/* A slab of a 3D run: the points with zmin <= z <= zmax. */
+typedef struct mpm_io_zrange {
+  double zmin, zmax;
+} mpm_io_zrange;
+
+/* mpm_io_extract of the points in zr only (NULL: every point); a 2D frame
+ * has no z (MPM_EINPUT). */
+int mpm_io_extract_in(const char *dir, int frame, const char *fields, const mpm_io_zrange *zr,
+                      FILE *out, mpm_err *err);
+
 /* Frames of a run directory read back into a point store (frame.c), for
  * post-processing. */
 typedef struct mpm_io_run mpm_io_run;
@@ -129,12 +150,17 @@ int mpm_io_run_open(mpm_io_run **r, const char *dir, mpm_err *err);
 void mpm_io_run_close(mpm_io_run *r);  /* accepts NULL */
 int mpm_io_run_nframes(const mpm_io_run *r);
 
-/* The run's mesh (set up) and the name of its shape-function variant. */
+/* 3 for a 3D run (a box mesh, or 3D frames), else 2. */
+int mpm_io_run_dim(const mpm_io_run *r);
+
+/* The run's mesh (set up) and the name of its shape-function variant; for a
+ * 3D run, the x-y section of its box mesh as a Q4 mesh. */
 int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
                     mpm_err *err);
 
-/* Frame `frame` (< 0: the last) into pts (previous contents replaced) and
- * its time *t. Extents are zero when the run did not write them; a frame
+/* Frame `frame` (< 0: the last) into pts (previous contents replaced, its
+ * dimension made the frame's) and its time *t. Extents are zero when the
+ * run did not write them; a frame
  * that lacks another field, or whose npoints does not match its data, is
  * MPM_EIO (a damaged run), found before anything is allocated. */
 int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,

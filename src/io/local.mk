@@ -31,3 +31,14 @@ tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \
 	libmpm_mesh.la libmpm_linalg.la libmpm_core.la $(SUITESPARSE_LIBS) $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
 EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh tests/inputs
+
+# test_output3: the store's dimension and the output of a 3D store; it also
+# writes the 3D run that cli-extract3.sh and paraview3.sh read (--write3).
+check_PROGRAMS += tests/test_output3
+TESTS += tests/test_output3 tests/cli-extract3.sh tests/paraview3.sh
+tests_test_output3_SOURCES = tests/test_output3.c src/io/output.c src/io/extract.c \
+	src/io/frame.c src/io/h5err.c src/io/checkpoint.c
+tests_test_output3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_output3_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LIBS) \
+	$(CHECK_LIBS) -lm
+EXTRA_DIST += tests/cli-extract3.sh tests/paraview3.sh

@@ -7,9 +7,16 @@
  *                                "description" attributes;
  *                    /xdmf/xy_NNNNNN  n x 2 virtual view of the frame's x and y
  *                                (no copy), the XY points of run.xdmf;
+ *                    /xdmf/xyz_NNNNNN  for a 3D frame instead: n x 3, x y z;
  *                    /xdmf/vertex_NNNNNN  0..n-1, the Polyvertex connectivity,
  *                                shared by consecutive frames with n points.
  *   run.xdmf         XDMF 3 temporal collection of one Polyvertex grid per frame.
+ *
+ * A 3D store (pts->dim = 3) is written by the same code: its frames carry
+ * the dim-3 fields of MPM_POINT_FIELDS too and an attribute dimension = 3,
+ * and their XDMF geometry is XYZ; a run opened with mpm_io_output_open3
+ * has the box mesh in /mesh (nz, z0, dz, periodic_z and node_z besides the
+ * 2D names). A 2D frame is written exactly as before the 3D fields came.
  *   diagnostics.csv  one mpm_diag row per frame.
  *
  * Every frame is flushed (H5Fflush, fflush) and run.xdmf is kept complete
@@ -36,6 +43,7 @@
 #include "diag/flow.h"
 #include "io/h5err.h"
 #include "io/io.h"
+#include "mesh/box.h"
 
 /* One output field: name in run.h5, unit, where it comes from. */
 enum field_kind { FIELD_REAL, FIELD_INT, FIELD_DERIVED };
@@ -48,6 +56,7 @@ typedef struct field_spec {
   const char *unit;
   const char *description;
   int kind;      /* enum field_kind */
+  int dim;       /* written to frames of this dimension and up */
   size_t offset; /* offsetof(mpm_points, array) for FIELD_REAL / FIELD_INT */
   derive_fn *derive; /* for FIELD_DERIVED */
 } field_spec;
@@ -60,9 +69,9 @@ static void derive_p(const mpm_points *pts, double *v)
 
 /* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets in
  * each frame group, which is the default column order of mpm_io_extract. */
-#define FIELD_REAL_(f, nm, d, u) {nm, u, d, FIELD_REAL, offsetof(mpm_points, f), NULL},
-#define FIELD_INT_(f, nm, d, u) {nm, u, d, FIELD_INT, offsetof(mpm_points, f), NULL},
-#define FIELD_DERIVED_(f, nm, d, u) {nm, u, d, FIELD_DERIVED, 0, derive_##f},
+#define FIELD_REAL_(f, nm, d, u, D) {nm, u, d, FIELD_REAL, D, offsetof(mpm_points, f), NULL},
+#define FIELD_INT_(f, nm, d, u, D) {nm, u, d, FIELD_INT, D, offsetof(mpm_points, f), NULL},
+#define FIELD_DERIVED_(f, nm, d, u, D) {nm, u, d, FIELD_DERIVED, D, 0, derive_##f},
 static const field_spec output_fields[] = {
   MPM_POINT_FIELDS(FIELD_REAL_, FIELD_INT_, FIELD_DERIVED_)
 };
@@ -71,6 +80,26 @@ static const field_spec output_fields[] = {
 #undef FIELD_DERIVED_
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define NFIELDS COUNT(output_fields)
+
+/* The fields whose unit or description in MPM_POINT_FIELDS is that of plane
+ * strain (per unit thickness, z out of plane), as a 3D frame writes them. */
+static const struct { const char *name, *unit, *description; } fields_3d[] = {
+  {"szz", "Pa", "Cauchy stress zz"},
+  {"mass", "kg", "mass"},
+  {"volume", "m^3", "true volume"},
+};
+
+/* The unit and description of field f in a frame of dimension dim. */
+static void field_text(const field_spec *f, int dim, const char **unit, const char **desc)
+{
+  *unit = f->unit;
+  *desc = f->description;
+  for (size_t k = 0; dim == 3 && k < COUNT(fields_3d); k++)
+    if (strcmp(f->name, fields_3d[k].name) == 0) {
+      *unit = fields_3d[k].unit;
+      *desc = fields_3d[k].description;
+    }
+}
 
 
 static const char xdmf_head[] =
@@ -89,6 +118,7 @@ struct mpm_io_output {
   FILE *xdmf;
   long xdmf_tail_pos; /* offset of the closing tags in run.xdmf */
   int nframes;
+  int dim;           /* of the run's point stores: 2, or 3 (mpm_io_output_open3) */
   size_t vertex_n;   /* length of the newest /xdmf/vertex_NNNNNN */
   int vertex_frame;  /* its frame number, -1 before the first */
   double *work;      /* per-point scratch for derived fields */
@@ -164,6 +194,7 @@ static mpm_io_output *output_alloc(const char *dir)
     return NULL;
   out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
   out->vertex_frame = -1;
+  out->dim = 2;
   out->h5_path = mpm_io_path_join(dir, "run.h5");
   out->csv_path = mpm_io_path_join(dir, "diagnostics.csv");
   out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
@@ -249,6 +280,31 @@ static herr_t write_mesh(hid_t file, const mpm_mesh *m)
   return rc;
 }
 
+/* The box mesh of a 3D run: the attributes and node lines of write_mesh
+ * and those of z; topology "box". */
+static herr_t write_mesh3(hid_t file, const mpm_mesh3 *m)
+{
+  hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t rc = g < 0 ? -1 : 0;
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_int(g, "nx", m->nx) | mpm_io_h5_attr_int(g, "ny", m->ny) |
+         mpm_io_h5_attr_int(g, "nz", m->nz) | mpm_io_h5_attr_double(g, "x0", m->x0) |
+         mpm_io_h5_attr_double(g, "y0", m->y0) | mpm_io_h5_attr_double(g, "z0", m->z0) |
+         mpm_io_h5_attr_double(g, "dx", m->dx) | mpm_io_h5_attr_double(g, "dy", m->dy) |
+         mpm_io_h5_attr_double(g, "dz", m->dz) | mpm_io_h5_attr_string(g, "topology", "box") |
+         mpm_io_h5_attr_int(g, "periodic_x", m->periodic_x) |
+         mpm_io_h5_attr_int(g, "periodic_y", m->periodic_y) |
+         mpm_io_h5_attr_int(g, "periodic_z", m->periodic_z);
+  if (rc >= 0)
+    rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the mesh planes normal to x");
+  if (rc >= 0)
+    rc = write_lines(g, "node_y", m->ny, m->y0, m->dy, "y of the mesh planes normal to y");
+  if (rc >= 0)
+    rc = write_lines(g, "node_z", m->nz, m->z0, m->dz, "z of the mesh planes normal to z");
+  mpm_io_h5_close(g);
+  return rc;
+}
+
 /* The time now, UTC, ISO 8601. */
 static void utc_now(char *buf, size_t len)
 {
@@ -296,11 +352,13 @@ static herr_t write_origin(hid_t file, const mpm_io_origin *o, const char *input
 }
 
 static herr_t write_header(mpm_io_output *out, const mpm_io_origin *o, const char *input,
-                           const mpm_mesh *m)
+                           const mpm_mesh *m, const mpm_mesh3 *m3)
 {
   herr_t rc = write_origin(out->file, o, input);
   if (rc >= 0 && m)
     rc = write_mesh(out->file, m);
+  if (rc >= 0 && m3)
+    rc = write_mesh3(out->file, m3);
   if (rc >= 0) {
     out->frames = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     out->xdmf_group = H5Gcreate2(out->file, "xdmf", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -312,7 +370,8 @@ static herr_t write_header(mpm_io_output *out, const mpm_io_origin *o, const cha
 }
 
 static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origin *o,
-                       const char *input, const mpm_mesh *m, const mpm_io_h5_quiet *q, mpm_err *err)
+                       const char *input, const mpm_mesh *m, const mpm_mesh3 *m3,
+                       const mpm_io_h5_quiet *q, mpm_err *err)
 {
   int rc = make_dirs(dir, err);
   mpm_io_output *out;
@@ -329,7 +388,7 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
     if (out->file < 0)
       rc = mpm_io_h5_fail(err, q, "cannot create", out->h5_path);
   }
-  if (rc == MPM_OK && write_header(out, o, input, m) < 0)
+  if (rc == MPM_OK && write_header(out, o, input, m, m3) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot write header of", out->h5_path);
   if (rc != MPM_OK) {
     output_free(out);
@@ -339,8 +398,10 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   return MPM_OK;
 }
 
-int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
-                       const char *input_text, const mpm_mesh *m, mpm_err *err)
+/* mpm_io_output_open and _open3: a 2D mesh m or a box mesh m3 (or none). */
+static int open_any(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                    const char *input_text, const mpm_mesh *m, const mpm_mesh3 *m3,
+                    mpm_err *err)
 {
   mpm_io_h5_quiet q;
   int rc;
@@ -351,9 +412,23 @@ int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: empty output directory");
   mpm_io_h5_init();
   mpm_io_h5_quiet_begin(&q);
-  rc = output_open(out, dir, origin, input_text, m, &q, err);
+  rc = output_open(out, dir, origin, input_text, m, m3, &q, err);
   mpm_io_h5_quiet_end(&q);
+  if (rc == MPM_OK && m3)
+    (*out)->dim = 3;
   return rc;
+}
+
+int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                       const char *input_text, const mpm_mesh *m, mpm_err *err)
+{
+  return open_any(out, dir, origin, input_text, m, NULL, err);
+}
+
+int mpm_io_output_open3(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                        const char *input_text, const mpm_mesh3 *m, mpm_err *err)
+{
+  return open_any(out, dir, origin, input_text, NULL, m, err);
 }
 
 int mpm_io_output_occupied(const char *dir, const char **what)
@@ -375,7 +450,7 @@ int mpm_io_output_occupied(const char *dir, const char **what)
 
 /* ---- reopening a run to append to it ---------------------------------------- */
 
-static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, mpm_err *err);
+static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err);
 
 /* Frames from `first` on (with their XY views and connectivity) removed:
  * written after the checkpoint a run continues from. */
@@ -388,8 +463,8 @@ static herr_t drop_frames(mpm_io_output *out, long first)
       return 0;
     if (H5Ldelete(out->frames, name, H5P_DEFAULT) < 0)
       return -1;
-    const char *views[] = {"xy_%06ld", "vertex_%06ld"};
-    for (int v = 0; v < 2; v++) {
+    const char *views[] = {"xy_%06ld", "xyz_%06ld", "vertex_%06ld"};
+    for (int v = 0; v < 3; v++) {
       snprintf(name, sizeof name, views[v], k);
       if (H5Lexists(out->xdmf_group, name, H5P_DEFAULT) > 0 &&
           H5Ldelete(out->xdmf_group, name, H5P_DEFAULT) < 0)
@@ -456,10 +531,12 @@ static int rebuild_xdmf(mpm_io_output *out, long nframes, const mpm_io_h5_quiet 
     char name[32];
     unsigned long long n = 0;
     double t = 0.0;
+    int dim = -1;
     snprintf(name, sizeof name, "%06ld", k);
     hid_t g = H5Gopen2(out->frames, name, H5P_DEFAULT);
     if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, &t) < 0 ||
-        mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0)
+        mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0 ||
+        (dim = mpm_io_frame_dim(g)) < 0)
       rc = mpm_io_h5_fail(err, q, "cannot read the frames of", out->h5_path);
     mpm_io_h5_close(g);
     snprintf(name, sizeof name, "vertex_%06ld", k);
@@ -469,7 +546,7 @@ static int rebuild_xdmf(mpm_io_output *out, long nframes, const mpm_io_h5_quiet 
     }
     out->nframes = (int)k;
     if (rc == MPM_OK)
-      rc = write_xdmf_frame(out, t, (size_t)n, err);
+      rc = write_xdmf_frame(out, t, (size_t)n, dim, err);
   }
   out->nframes = (int)nframes;
   return rc;
@@ -489,6 +566,9 @@ static int output_reopen(mpm_io_output *out, const mpm_io_origin *o, long nframe
   H5G_info_t info;
   if (out->frames < 0 || out->xdmf_group < 0 || H5Gget_info(out->frames, &info) < 0)
     return mpm_io_h5_fail(err, q, "no frames in", out->h5_path);
+  if (H5Lexists(out->file, "mesh", H5P_DEFAULT) > 0 &&
+      H5Aexists_by_name(out->file, "mesh", "nz", H5P_DEFAULT) > 0)
+    out->dim = 3;                                /* a box mesh: a 3D run */
   if ((long long)info.nlinks < nframes)
     return mpm_err_set(err, MPM_EIO, "'%s' has %llu frames, the checkpoint counts %ld",
                        out->h5_path, (unsigned long long)info.nlinks, nframes);
@@ -568,9 +648,13 @@ static int write_fields(mpm_io_output *out, hid_t g, const mpm_points *pts,
   for (size_t k = 0; k < NFIELDS; k++) {
     const field_spec *f = &output_fields[k];
     int isint = f->kind == FIELD_INT;
+    const char *unit, *desc;
+    if (f->dim > pts->dim)
+      continue;
+    field_text(f, pts->dim, &unit, &desc);
     herr_t rc = mpm_io_h5_write_array(g, f->name, isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
                             isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, pts->n,
-                            field_values(out, f, pts), f->unit, f->description);
+                            field_values(out, f, pts), unit, desc);
     if (rc < 0)
       return mpm_err_set(err, MPM_EIO, "cannot write field '%s' of frame %d to '%s': %s", f->name,
                          out->nframes, out->h5_path, mpm_io_h5_reason(q));
@@ -604,10 +688,11 @@ static int write_vertices(mpm_io_output *out, size_t n, const mpm_io_h5_quiet *q
 
 /* /xdmf/xy_NNNNNN: an n x 2 virtual dataset whose columns are the frame's x
  * and y datasets, so readers that want interleaved XY points get them
- * without a second copy of the positions. */
-static herr_t write_xy_view(hid_t xg, int frame, size_t n)
+ * without a second copy of the positions; /xdmf/xyz_NNNNNN, n x 3 with z,
+ * for a 3D frame (dim = 3). */
+static herr_t write_xy_view(hid_t xg, int frame, size_t n, int dim)
 {
-  hsize_t vdims[2] = {(hsize_t)n, 2}, sdims[1] = {(hsize_t)n};
+  hsize_t vdims[2] = {(hsize_t)n, (hsize_t)dim}, sdims[1] = {(hsize_t)n};
   hsize_t start[2] = {0, 0}, count[2] = {(hsize_t)n, 1};
   hid_t vspace = H5Screate_simple(2, vdims, NULL);
   hid_t sspace = H5Screate_simple(1, sdims, NULL);
@@ -615,14 +700,14 @@ static herr_t write_xy_view(hid_t xg, int frame, size_t n)
   hid_t dset = H5I_INVALID_HID;
   herr_t rc = (vspace < 0 || sspace < 0 || dcpl < 0) ? -1 : 0;
   char src[48], name[32];
-  for (int c = 0; c < 2 && rc >= 0; c++) {
+  for (int c = 0; c < dim && rc >= 0; c++) {
     start[1] = (hsize_t)c;
-    snprintf(src, sizeof src, "/frames/%06d/%s", frame, c ? "y" : "x");
+    snprintf(src, sizeof src, "/frames/%06d/%s", frame, c == 0 ? "x" : c == 1 ? "y" : "z");
     rc = H5Sselect_hyperslab(vspace, H5S_SELECT_SET, start, NULL, count, NULL);
     if (rc >= 0)
       rc = H5Pset_virtual(dcpl, vspace, ".", src, sspace);
   }
-  snprintf(name, sizeof name, "xy_%06d", frame);
+  snprintf(name, sizeof name, dim == 3 ? "xyz_%06d" : "xy_%06d", frame);
   if (rc >= 0)
     dset = H5Dcreate2(xg, name, H5T_IEEE_F64LE, vspace, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   if (rc >= 0 && dset < 0)
@@ -648,14 +733,16 @@ static int write_frame_h5(mpm_io_output *out, const mpm_points *pts, double t,
     g = H5Gcreate2(out->frames, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
   mpm_io_h5_close(gcpl);
   if (g < 0 || mpm_io_h5_attr_double(g, "time", t) < 0 ||
-      mpm_io_h5_attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0)
+      mpm_io_h5_attr_scalar(g, "npoints", H5T_NATIVE_ULLONG, &(unsigned long long){pts->n}) < 0 ||
+      (pts->dim != 2 && mpm_io_h5_attr_int(g, "dimension", pts->dim) < 0))
     rc = mpm_io_h5_fail(err, q, "cannot create frame group in", out->h5_path);
   if (rc == MPM_OK)
     rc = write_fields(out, g, pts, q, err);
   mpm_io_h5_close(g);
   if (rc == MPM_OK)
     rc = write_vertices(out, pts->n, q, err);
-  if (rc == MPM_OK && pts->n > 0 && write_xy_view(out->xdmf_group, out->nframes, pts->n) < 0)
+  if (rc == MPM_OK && pts->n > 0 &&
+      write_xy_view(out->xdmf_group, out->nframes, pts->n, pts->dim) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot write XY view to", out->h5_path);
   if (rc == MPM_OK && H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot flush", out->h5_path);
@@ -685,8 +772,9 @@ static void xdmf_item(FILE *f, const char *path, size_t n, int isint, const char
  * (5.11) opens it with all three of its XDMF readers (XDMF, Xdmf3 S/T) and
  * sets z = 0. Geometries assembled from the separate x and y datasets do not
  * work there: "X_Y" and a JOIN function crash the Xdmf3 readers and "X_Y_Z"
- * loses the points; only the legacy XDMF reader understands them. */
-static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n)
+ * loses the points; only the legacy XDMF reader understands them. A 3D
+ * frame (dim = 3) has geometry "XYZ" from its n x 3 view likewise. */
+static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n, int dim)
 {
   char path[64];
   fprintf(f, "      <Grid Name=\"frame_%06d\" GridType=\"Uniform\">\n", out->nframes);
@@ -697,14 +785,17 @@ static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n)
           n);
   snprintf(path, sizeof path, "/xdmf/vertex_%06d", out->vertex_frame);
   xdmf_item(f, path, n, 1, "          ");
-  fprintf(f, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+  fprintf(f, "        </Topology>\n        <Geometry GeometryType=\"%s\">\n",
+          dim == 3 ? "XYZ" : "XY");
   fprintf(f,
-          "          <DataItem Dimensions=\"%zu 2\" NumberType=\"Float\" Precision=\"8\" "
-          "Format=\"HDF\">run.h5:/xdmf/xy_%06d</DataItem>\n",
-          n, out->nframes);
+          "          <DataItem Dimensions=\"%zu %d\" NumberType=\"Float\" Precision=\"8\" "
+          "Format=\"HDF\">run.h5:/xdmf/%s_%06d</DataItem>\n",
+          n, dim, dim == 3 ? "xyz" : "xy", out->nframes);
   fprintf(f, "        </Geometry>\n");
   for (size_t k = 0; k < NFIELDS; k++) {
     const field_spec *s = &output_fields[k];
+    if (s->dim > dim)
+      continue;
     fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",
             s->name);
     snprintf(path, sizeof path, "/frames/%06d/%s", out->nframes, s->name);
@@ -716,7 +807,7 @@ static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n)
 
 /* Insert the frame's grid before the closing tags. A frame without points
  * gets no grid: readers reject empty datasets. */
-static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, mpm_err *err)
+static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err)
 {
   FILE *f = out->xdmf;
   if (n == 0)
@@ -724,7 +815,7 @@ static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, mpm_err *err
   if (fseek(f, out->xdmf_tail_pos, SEEK_SET) != 0)
     return mpm_err_set(err, MPM_EIO, "cannot seek in '%s': %s", out->xdmf_path,
                        strerror(errno));
-  xdmf_grid(f, out, t, n);
+  xdmf_grid(f, out, t, n, dim);
   out->xdmf_tail_pos = ftell(f);
   if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, f) < 0 || fflush(f) != 0 || ferror(f))
     return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
@@ -739,6 +830,9 @@ int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_dia
   if (!out || !pts || !d)
     return mpm_err_set(err, MPM_EINVAL,
                        "mpm_io_output_frame: missing output, points or diagnostics");
+  if (pts->dim != out->dim)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_frame: a %dD store for the %dD run '%s'",
+                       pts->dim, out->dim, out->h5_path);
   if (work_reserve(out, pts->n) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory writing frame %d", out->nframes);
   mpm_io_h5_quiet_begin(&q);
@@ -747,7 +841,7 @@ int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_dia
   if (rc == MPM_OK)
     rc = write_csv_row(out, d, err);
   if (rc == MPM_OK)
-    rc = write_xdmf_frame(out, d->t, pts->n, err);
+    rc = write_xdmf_frame(out, d->t, pts->n, pts->dim, err);
   if (rc == MPM_OK)
     out->nframes++;
   return rc;

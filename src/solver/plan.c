@@ -16,13 +16,13 @@
 
 #include "scenario/scenario.h"
 
-/* Bytes per point of the point store: every stored field. */
-#define ONE_(f, nm, d, u) +sizeof(((mpm_points *)0)->f[0])
+/* Bytes per point of the (2D) point store: every stored field it has. */
+#define ONE_(f, nm, d, u, dim) +((dim) == 2 ? sizeof(((mpm_points *)0)->f[0]) : 0)
 static const size_t point_store_bytes = 0 MPM_POINT_REAL_FIELDS(ONE_) MPM_POINT_INT_FIELDS(ONE_);
 /* Bytes per point of a frame in run.h5: every output field (the derived ones
  * in double precision) and the XDMF connectivity when the point count changes. */
-#define OUT_REAL_(f, nm, d, u) +8
-#define OUT_INT_(f, nm, d, u) +4
+#define OUT_REAL_(f, nm, d, u, dim) +((dim) == 2 ? 8 : 0)
+#define OUT_INT_(f, nm, d, u, dim) +((dim) == 2 ? 4 : 0)
 static const size_t frame_point_bytes =
     4 MPM_POINT_FIELDS(OUT_REAL_, OUT_INT_, OUT_REAL_);
 #undef ONE_

@@ -34,6 +34,9 @@ int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err)
   if (!st->pts || st->pts->n > s->pts->cap)
     return mpm_err_set(err, MPM_EINPUT, "checkpoint: %zu points, more than the %zu of the input",
                        st->pts ? st->pts->n : 0, s->pts->n);
+  if (st->pts->dim != s->pts->dim)
+    return mpm_err_set(err, MPM_EINPUT, "checkpoint: points of a %dD store, the run is %dD",
+                       st->pts->dim, s->pts->dim);
   int rc = mpm_points_copy(s->pts, st->pts);
   if (rc != MPM_OK)
     return mpm_err_set(err, rc, "checkpoint: no memory for %zu points", st->pts->n);
