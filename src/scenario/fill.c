@@ -10,6 +10,7 @@
  * The pre-stressed material is compressed consistently with the hypoelastic
  * law dp = K drho / rho: rho = rho_fill exp(p / K), so the mass grows. */
 #include "scenario/scenario.h"
+#include "scenario/scenario_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,12 +37,6 @@ static int inside_polygon(const mpm_fill_config *f, double x, double y)
     if (x < xc[c])
       in = !in;
   return in;
-}
-
-/* Centre of sub-cell i (of n per unit) along x; the same for y with y0, dy. */
-static double sub_centre(double x0, double d, int n, long i)
-{
-  return x0 + ((double)i + 0.5) * (d / n);
 }
 
 int mpm_scenario_inside(const mpm_fill_config *f, double x, double y)
@@ -111,9 +106,9 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
   if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points", pts->n + count);
   for (int j = 0; j < m->ny * n; j++) {
-    double y = sub_centre(m->y0, m->dy, n, j);
+    double y = mpm_scenario_in_sub_centre(m->y0, m->dy, n, j);
     for (int i = 0; i < m->nx * n; i++) {
-      double x = sub_centre(m->x0, m->dx, n, i);
+      double x = mpm_scenario_in_sub_centre(m->x0, m->dx, n, i);
       if (!mpm_scenario_inside(f, x, y))
         continue;
       size_t p;
@@ -152,13 +147,19 @@ typedef struct row {
   const mpm_fill_config *f;
 } row;
 
+/* x_i, the centre of sub-cell i of the row. */
+static double row_x(const row *r, long i)
+{
+  return mpm_scenario_in_sub_centre(r->x0, r->d, r->n, i);
+}
+
 /* The first i in [lo, hi) where inside(x_i) differs from `from` (hi if none),
  * for a predicate that changes at most once on [lo, hi). */
 static long first_change(const row *r, long lo, long hi, int from)
 {
   while (lo < hi) {
     long mid = lo + (hi - lo) / 2;
-    if (mpm_scenario_inside(r->f, sub_centre(r->x0, r->d, r->n, mid), r->y) == from)
+    if (mpm_scenario_inside(r->f, row_x(r, mid), r->y) == from)
       lo = mid + 1;
     else
       hi = mid;
@@ -172,7 +173,7 @@ static long first_at_or_after(const row *r, double x)
   long lo = 0, hi = r->ni;
   while (lo < hi) {
     long mid = lo + (hi - lo) / 2;
-    if (sub_centre(r->x0, r->d, r->n, mid) < x)
+    if (row_x(r, mid) < x)
       lo = mid + 1;
     else
       hi = mid;
@@ -211,10 +212,10 @@ static long row_count(const row *r)
   }
   double centre = f->shape == MPM_FILL_DISC ? f->cx : 0.5 * (f->xmin + f->xmax);
   long ic = first_at_or_after(r, centre);
-  long left = ic > 0 && mpm_scenario_inside(f, sub_centre(r->x0, r->d, r->n, ic - 1), r->y)
+  long left = ic > 0 && mpm_scenario_inside(f, row_x(r, ic - 1), r->y)
                   ? first_change(r, 0, ic, 0)    /* outside ... inside up to ic */
                   : ic;
-  long right = ic < r->ni && mpm_scenario_inside(f, sub_centre(r->x0, r->d, r->n, ic), r->y)
+  long right = ic < r->ni && mpm_scenario_inside(f, row_x(r, ic), r->y)
                    ? first_change(r, ic, r->ni, 1)  /* inside from ic ... outside */
                    : ic;
   return right - left;
@@ -228,7 +229,7 @@ size_t mpm_scenario_count(const mpm_fill_config *f, const mpm_mesh *m)
   row r = {.x0 = m->x0, .d = m->dx, .n = n, .ni = (long)m->nx * n, .f = f};
   size_t total = 0;
   for (long j = 0; j < (long)m->ny * n; j++) {
-    r.y = sub_centre(m->y0, m->dy, n, j);
+    r.y = mpm_scenario_in_sub_centre(m->y0, m->dy, n, j);
     total += (size_t)row_count(&r);
   }
   return total;
