@@ -3,7 +3,11 @@
  * Fill regions (rectangle, disc, polygon) with n x n points per mesh unit at a
  * given density and velocity; each point gets mass rho * V, true volume V =
  * dx dy / n^2 and a uGIMP extent r1 = (dx/2n, 0), r2 = (0, dy/2n). Optional
- * lithostatic pre-stress from the weight of the material above. */
+ * lithostatic pre-stress from the weight of the material above.
+ *
+ * 3D fills (fill3.c) of a box or a cylinder on a mesh of boxes (mpm_mesh3)
+ * into a 3D point store: n x n x n points per unit, V = dx dy dz / n^3,
+ * r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0), r3 = (0, 0, dz/2n), zero stress. */
 #ifndef MPM_SCENARIO_SCENARIO_H
 #define MPM_SCENARIO_SCENARIO_H
 
@@ -13,6 +17,7 @@
 #include "core/error.h"
 #include "core/points.h"
 #include "material/material.h"
+#include "mesh/box.h"
 #include "mesh/mesh.h"
 
 /* Append the points of one fill region; gy is the final vertical gravity used
@@ -27,5 +32,34 @@ size_t mpm_scenario_count(const mpm_fill_config *f, const mpm_mesh *m);
 
 /* 1 if (x, y) lies in the region. */
 int mpm_scenario_inside(const mpm_fill_config *f, double x, double y);
+
+/* ---- 3D ------------------------------------------------------------------ */
+
+enum mpm_fill3_shape { MPM_FILL3_BOX = 0, MPM_FILL3_CYLINDER };
+
+/* A region of a 3D fill and its material; no input keys read it yet. */
+typedef struct mpm_fill3_region {
+  int shape;                   /* enum mpm_fill3_shape */
+  double lo[3], hi[3];         /* box [lo_x, hi_x] x [lo_y, hi_y] x [lo_z, hi_z] [m] */
+  int axis;                    /* cylinder axis: 0 x, 1 y, 2 z */
+  double centre[3];            /* cylinder centre: on the axis, mid-length [m] */
+  double radius, length;       /* cylinder radius and extent along the axis [m] */
+  int ppu;                     /* points per unit along each direction (n x n x n) */
+  double density;              /* initial density [kg/m^3] */
+  double v[3];                 /* initial velocity [m/s] */
+} mpm_fill3_region;
+
+/* 1 if x lies in the region (boundary included). */
+int mpm_scenario_inside3(const mpm_fill3_region *f, const double x[3]);
+
+/* Append the points of region f on m (set up) to the 3D store pts at the
+ * sub-cell centres inside f, with zero stress. MPM_EINPUT for a 2D store, a
+ * region that is not whole or leaves the mesh, or one with no centre in it. */
+int mpm_scenario_fill3(mpm_points *pts, const mpm_mesh3 *m, const mpm_fill3_region *f,
+                       mpm_err *err);
+
+/* The number of points mpm_scenario_fill3 appends for f on m (0 when it
+ * would refuse f). */
+size_t mpm_scenario_count3(const mpm_fill3_region *f, const mpm_mesh3 *m);
 
 #endif

@@ -1,0 +1,173 @@
+/* fill3.c: fill regions of a 3D mesh of boxes with material points (initial
+ * state of the 3D module).
+ *
+ * As the 2D fill (fill.c): points sit at the centres of an n x n x n
+ * sub-grid of every unit whose sub-cell centre lies in the region (the same
+ * sub-cell centre, scenario_internal.h): V_p = dx dy dz / n^3,
+ * m_p = rho V_p, uGIMP extent r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0),
+ * r3 = (0, 0, dz/2n). Regions: an axis-aligned box and a cylinder whose axis
+ * is x, y or z. The stress starts at zero. A region must lie in the mesh,
+ * periodic axes included: a fill that only covers the mesh's part of it
+ * would silently lose material. */
+#include "scenario/scenario.h"
+#include "scenario/scenario_internal.h"
+
+#include <math.h>
+
+static const char axis_name[3] = {'x', 'y', 'z'};
+
+int mpm_scenario_inside3(const mpm_fill3_region *f, const double x[3])
+{
+  switch (f->shape) {
+  case MPM_FILL3_BOX:
+    return x[0] >= f->lo[0] && x[0] <= f->hi[0] && x[1] >= f->lo[1] && x[1] <= f->hi[1] &&
+           x[2] >= f->lo[2] && x[2] <= f->hi[2];
+  case MPM_FILL3_CYLINDER: {
+    const int a = f->axis, b = (a + 1) % 3, c = (a + 2) % 3;
+    const double eb = x[b] - f->centre[b], ec = x[c] - f->centre[c];
+    return fabs(x[a] - f->centre[a]) <= 0.5 * f->length &&
+           eb * eb + ec * ec <= f->radius * f->radius;
+  }
+  default:
+    return 0;
+  }
+}
+
+/* The region's bounding box, lo[d] .. hi[d]. */
+static void bounds(const mpm_fill3_region *f, double lo[3], double hi[3])
+{
+  for (int d = 0; d < 3; d++) {
+    if (f->shape == MPM_FILL3_BOX) {
+      lo[d] = f->lo[d];
+      hi[d] = f->hi[d];
+    } else {
+      const double h = d == f->axis ? 0.5 * f->length : f->radius;
+      lo[d] = f->centre[d] - h;
+      hi[d] = f->centre[d] + h;
+    }
+  }
+}
+
+/* MPM_OK if f is a whole region in m, else MPM_EINPUT with the reason. */
+static int check(const mpm_fill3_region *f, const mpm_mesh3 *m, mpm_err *err)
+{
+  if (f->ppu < 1)
+    return mpm_err_set(err, MPM_EINPUT, "fill3: ppu = %d must be >= 1", f->ppu);
+  if (!(f->density > 0.0) || !isfinite(f->density))
+    return mpm_err_set(err, MPM_EINPUT, "fill3: density = %g must be > 0 kg/m^3", f->density);
+  for (int d = 0; d < 3; d++)
+    if (!isfinite(f->v[d]))
+      return mpm_err_set(err, MPM_EINPUT, "fill3: velocity v%c = %g is not finite",
+                         axis_name[d], f->v[d]);
+  if (f->shape == MPM_FILL3_BOX) {
+    for (int d = 0; d < 3; d++)
+      if (!(f->lo[d] < f->hi[d]) || !isfinite(f->lo[d]) || !isfinite(f->hi[d]))
+        return mpm_err_set(err, MPM_EINPUT, "fill3: box %c range [%g, %g] m is empty",
+                           axis_name[d], f->lo[d], f->hi[d]);
+  } else if (f->shape == MPM_FILL3_CYLINDER) {
+    if (f->axis < 0 || f->axis > 2)
+      return mpm_err_set(err, MPM_EINPUT, "fill3: cylinder axis = %d must be 0 (x), 1 (y) "
+                         "or 2 (z)", f->axis);
+    if (!(f->radius > 0.0) || !(f->length > 0.0) || !isfinite(f->radius) ||
+        !isfinite(f->length))
+      return mpm_err_set(err, MPM_EINPUT, "fill3: cylinder radius = %g m and length = %g m "
+                         "must be > 0", f->radius, f->length);
+    for (int d = 0; d < 3; d++)
+      if (!isfinite(f->centre[d]))
+        return mpm_err_set(err, MPM_EINPUT, "fill3: cylinder centre %c = %g is not finite",
+                           axis_name[d], f->centre[d]);
+  } else {
+    return mpm_err_set(err, MPM_EINPUT, "fill3: unknown region shape %d", f->shape);
+  }
+  double lo[3], hi[3];
+  bounds(f, lo, hi);
+  const double o[3] = {m->x0, m->y0, m->z0}, l[3] = {m->lx, m->ly, m->lz};
+  for (int d = 0; d < 3; d++)
+    if (lo[d] < o[d] || hi[d] > o[d] + l[d])
+      return mpm_err_set(err, MPM_EINPUT, "fill3: the region's %c range [%g, %g] m leaves "
+                         "the mesh's [%g, %g] m: its points outside the mesh would be lost",
+                         axis_name[d], lo[d], hi[d], o[d], o[d] + l[d]);
+  return MPM_OK;
+}
+
+/* The sub-cells of m along each axis whose centres may lie in f:
+ * [i0[d], i1[d]), the bounding box widened by one sub-cell on each side
+ * (the inside test decides). */
+static void index_range(const mpm_fill3_region *f, const mpm_mesh3 *m, long i0[3], long i1[3])
+{
+  double lo[3], hi[3];
+  bounds(f, lo, hi);
+  const double o[3] = {m->x0, m->y0, m->z0}, du[3] = {m->dx, m->dy, m->dz};
+  const long nu[3] = {m->nx, m->ny, m->nz};
+  for (int d = 0; d < 3; d++) {
+    const double h = du[d] / f->ppu;
+    const long ns = nu[d] * f->ppu;
+    long a = (long)floor((lo[d] - o[d]) / h) - 1, b = (long)floor((hi[d] - o[d]) / h) + 2;
+    i0[d] = a < 0 ? 0 : a;
+    i1[d] = b > ns ? ns : b;
+  }
+}
+
+/* Visit the sub-cell centres of m inside f in the fill's order (x fastest,
+ * z slowest); without pts, count them only. */
+static size_t visit(const mpm_fill3_region *f, const mpm_mesh3 *m, mpm_points *pts)
+{
+  const int n = f->ppu;
+  long i0[3], i1[3];
+  index_range(f, m, i0, i1);
+  const double hx = m->dx / n, hy = m->dy / n, hz = m->dz / n;
+  const double vol = hx * hy * hz;                         /* V_p = dx dy dz / n^3 */
+  size_t count = 0;
+  for (long k = i0[2]; k < i1[2]; k++)
+    for (long j = i0[1]; j < i1[1]; j++)
+      for (long i = i0[0]; i < i1[0]; i++) {
+        const double x[3] = {mpm_scenario_in_sub_centre(m->x0, m->dx, n, i),
+                             mpm_scenario_in_sub_centre(m->y0, m->dy, n, j),
+                             mpm_scenario_in_sub_centre(m->z0, m->dz, n, k)};
+        if (!mpm_scenario_inside3(f, x))
+          continue;
+        count++;
+        if (!pts)
+          continue;
+        size_t p;
+        (void)mpm_points_push(pts, &p);                    /* room reserved: cannot fail */
+        pts->x[p] = x[0];
+        pts->y[p] = x[1];
+        pts->z[p] = x[2];
+        pts->vx[p] = f->v[0];
+        pts->vy[p] = f->v[1];
+        pts->vz[p] = f->v[2];
+        pts->vol[p] = vol;
+        pts->mass[p] = f->density * vol;                   /* m_p = rho V_p */
+        pts->r1x[p] = 0.5 * hx;
+        pts->r2y[p] = 0.5 * hy;
+        pts->r3z[p] = 0.5 * hz;
+        pts->state[p] = MPM_STATE_DENSE;
+      }
+  return count;
+}
+
+size_t mpm_scenario_count3(const mpm_fill3_region *f, const mpm_mesh3 *m)
+{
+  mpm_err err = {0};
+  return check(f, m, &err) == MPM_OK ? visit(f, m, NULL) : 0;
+}
+
+int mpm_scenario_fill3(mpm_points *pts, const mpm_mesh3 *m, const mpm_fill3_region *f,
+                       mpm_err *err)
+{
+  if (pts->dim != 3)
+    return mpm_err_set(err, MPM_EINPUT, "fill3: the point store has dimension %d; a 3D "
+                       "fill needs a store of dimension 3 (mpm_points_alloc_dim)", pts->dim);
+  int rc = check(f, m, err);
+  if (rc != MPM_OK)
+    return rc;
+  const size_t count = visit(f, m, NULL);
+  if (count == 0)
+    return mpm_err_set(err, MPM_EINPUT, "fill3: region contains no point centre at ppu = %d",
+                       f->ppu);
+  if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
+    return mpm_err_set(err, MPM_ENOMEM, "fill3: out of memory for %zu points", pts->n + count);
+  visit(f, m, pts);
+  return MPM_OK;
+}
