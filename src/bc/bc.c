@@ -9,6 +9,7 @@
 
 #include "core/config.h"
 #include "core/names.h"
+#include "bc/bc_internal.h"
 
 static const char *const bc_names[] = {
   [MPM_BC_FREE] = "free",
@@ -41,31 +42,37 @@ const char *mpm_bc_kind_name(int kind)
   return mpm_names_at(bc_names, MPM_NAMES_COUNT(bc_names), kind);
 }
 
-/* Mask bits an edge of a given kind sets; the normal of left/right edges is x. */
+/* Mask bits an edge of a given kind sets: its normal is x on left/right
+ * (MPM_EDGE_* / 2 is the normal's axis). */
 static unsigned char edge_bits(int kind, int edge)
 {
-  unsigned char normal = (edge == MPM_EDGE_LEFT || edge == MPM_EDGE_RIGHT) ? MPM_FIX_X : MPM_FIX_Y;
-  switch (kind) {
-  case MPM_BC_NOSLIP: return MPM_FIX_X | MPM_FIX_Y;
-  case MPM_BC_FRICTIONLESS:
-  case MPM_BC_SYMMETRY: return normal;
-  default: return 0;
+  return mpm_bc_wall_bits(kind, edge / 2, 2);
+}
+
+int mpm_bc_check_kinds(const int *kind, int dim, const int *periodic,
+                       const char *const *names, const char *what, mpm_err *err)
+{
+  for (int e = 0; e < 2 * dim; e++)
+    if (!mpm_bc_kind_name(kind[e]))
+      return mpm_err_set(err, MPM_EINVAL, "boundary '%s': unknown kind %d", names[e], kind[e]);
+  for (int a = 0; a < dim; a++) {
+    const int lo = kind[2 * a] == MPM_BC_PERIODIC, hi = kind[2 * a + 1] == MPM_BC_PERIODIC;
+    if (lo != hi)
+      return mpm_err_set(err, MPM_EINPUT, "boundary: '%s' and '%s' must both be periodic or neither",
+                         names[2 * a], names[2 * a + 1]);
   }
+  for (int a = 0; a < dim; a++)
+    if ((kind[2 * a] == MPM_BC_PERIODIC) != (periodic[a] != 0))
+      return mpm_err_set(err, MPM_EINVAL, "boundary: periodic %s disagree with the mesh", what);
+  return MPM_OK;
 }
 
 int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
 {
-  for (int e = 0; e < 4; e++)
-    if (!mpm_bc_kind_name(edge[e]))
-      return mpm_err_set(err, MPM_EINVAL, "boundary '%s': unknown kind %d", edge_names[e], edge[e]);
-  int px = edge[MPM_EDGE_LEFT] == MPM_BC_PERIODIC, px2 = edge[MPM_EDGE_RIGHT] == MPM_BC_PERIODIC;
-  int py = edge[MPM_EDGE_BOTTOM] == MPM_BC_PERIODIC, py2 = edge[MPM_EDGE_TOP] == MPM_BC_PERIODIC;
-  if (px != px2)
-    return mpm_err_set(err, MPM_EINPUT, "boundary: 'left' and 'right' must both be periodic or neither");
-  if (py != py2)
-    return mpm_err_set(err, MPM_EINPUT, "boundary: 'bottom' and 'top' must both be periodic or neither");
-  if (px != m->periodic_x || py != m->periodic_y)
-    return mpm_err_set(err, MPM_EINVAL, "boundary: periodic edges disagree with the mesh");
+  const int periodic[2] = {m->periodic_x, m->periodic_y};
+  int rc = mpm_bc_check_kinds(edge, 2, periodic, edge_names, "edges", err);
+  if (rc != MPM_OK)
+    return rc;
 
   memcpy(bc->edge, edge, sizeof bc->edge);
   bc->nnodes = m->nnodes;

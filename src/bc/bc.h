@@ -7,12 +7,30 @@
 #ifndef MPM_BC_BC_H
 #define MPM_BC_BC_H
 
+#include "core/config.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
 
 /* MPM_FIX_N: the component along the node's wall normal (an oblique
- * frictionless wall side); together with MPM_FIX_X or MPM_FIX_Y it holds both. */
-enum { MPM_FIX_X = 1, MPM_FIX_Y = 2, MPM_FIX_N = 4 };
+ * frictionless wall side); together with MPM_FIX_X or MPM_FIX_Y it holds both.
+ * MPM_FIX_Z: the z component, in 3D (bc/bc3.h). */
+enum { MPM_FIX_X = 1, MPM_FIX_Y = 2, MPM_FIX_N = 4, MPM_FIX_Z = 8 };
+
+/* Mask bits of an axis-parallel wall of kind `kind` (enum mpm_bc_kind) whose
+ * normal is along axis 0, 1 or 2 (x, y, z), in dim = 2 or 3 dimensions:
+ * no-slip holds every component, frictionless and symmetry the normal one,
+ * free and periodic none. The one rule for 2D edges, 2D outlets and 3D
+ * faces. */
+static inline unsigned char mpm_bc_wall_bits(int kind, int axis, int dim)
+{
+  static const unsigned char bit[3] = {MPM_FIX_X, MPM_FIX_Y, MPM_FIX_Z};
+  switch (kind) {
+  case MPM_BC_NOSLIP: return dim == 3 ? MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z : MPM_FIX_X | MPM_FIX_Y;
+  case MPM_BC_FRICTIONLESS:
+  case MPM_BC_SYMMETRY: return bit[axis];
+  default: return 0;
+  }
+}
 
 typedef struct mpm_bc {
   int edge[4];          /* left, right, bottom, top: enum mpm_bc_kind */

@@ -17,12 +17,7 @@
 /* Mask bits of a wall of this kind whose normal is along x (nx_dir = 1) or y. */
 static unsigned char wall_bits(int kind, int nx_dir)
 {
-  switch (kind) {
-  case MPM_BC_NOSLIP: return MPM_FIX_X | MPM_FIX_Y;
-  case MPM_BC_FRICTIONLESS:
-  case MPM_BC_SYMMETRY: return nx_dir ? MPM_FIX_X : MPM_FIX_Y;
-  default: return 0;
-  }
+  return mpm_bc_wall_bits(kind, nx_dir ? 0 : 1, 2);
 }
 
 static int edge_is_vertical(int e)

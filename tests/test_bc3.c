@@ -1,0 +1,327 @@
+/* test_bc3.c: face boundary conditions of the 3D mesh of boxes (bc/bc3.h) on
+ * a mesh with an offset origin and unequal unit sizes. Every kind on every
+ * face constrains exactly the face's nodes with the expected bits; with all
+ * faces walls, edge and corner nodes take the union (counts of one-, two-
+ * and three-bit nodes exact); applying zeroes exactly the constrained
+ * components; periodic faces not in pairs or not matching the mesh are
+ * refused; a rectangular and a disc outlet free exactly the face nodes
+ * inside them (a direct count) once opened, and none before. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bc/bc3.h"
+#include "core/config.h"
+
+static void mesh_of(mpm_mesh3 *m, int nx, int ny, int nz)
+{
+  memset(m, 0, sizeof *m);
+  m->nx = nx;
+  m->ny = ny;
+  m->nz = nz;
+  m->x0 = 1.0;
+  m->y0 = -2.0;
+  m->z0 = 0.5;
+  m->dx = 0.5;
+  m->dy = 0.25;
+  m->dz = 0.4;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_mesh3_setup(m, &err) == MPM_OK, "%s", err.msg);
+}
+
+/* The test's own statement of the rule: bits of kind k on a face normal to
+ * axis a. */
+static unsigned char expected_bits(int k, int a)
+{
+  const unsigned char axis[3] = {MPM_FIX_X, MPM_FIX_Y, MPM_FIX_Z};
+  if (k == MPM_BC_NOSLIP)
+    return MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z;
+  if (k == MPM_BC_FRICTIONLESS || k == MPM_BC_SYMMETRY)
+    return axis[a];
+  return 0;
+}
+
+static int on_face(const mpm_mesh3 *m, int f, int i, int j, int k)
+{
+  const int ijk[3] = {i, j, k}, n[3] = {m->nx, m->ny, m->nz};
+  return ijk[f / 2] == (f % 2 ? n[f / 2] : 0);
+}
+
+static int nbits(unsigned char b)
+{
+  return (b & 1) + (b >> 1 & 1) + (b >> 2 & 1) + (b >> 3 & 1);
+}
+
+START_TEST(each_kind_on_each_face)
+{
+  mpm_mesh3 m;
+  mesh_of(&m, 4, 3, 5);
+  const int n[3] = {4, 3, 5};
+  const int kinds[4] = {MPM_BC_FREE, MPM_BC_NOSLIP, MPM_BC_FRICTIONLESS, MPM_BC_SYMMETRY};
+  for (int f = 0; f < 6; f++)
+    for (int q = 0; q < 4; q++) {
+      int face[6] = {0};
+      face[f] = kinds[q];
+      mpm_bc3 bc = {0};
+      mpm_err err = {0};
+      ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+      const unsigned char want = expected_bits(kinds[q], f / 2);
+      int held = 0;
+      for (int k = 0; k <= m.nz; k++)
+        for (int j = 0; j <= m.ny; j++)
+          for (int i = 0; i <= m.nx; i++) {
+            const unsigned char b = bc.fix[mpm_mesh3_node(&m, i, j, k)];
+            ck_assert_uint_eq(b, on_face(&m, f, i, j, k) ? want : 0);
+            held += b != 0;
+          }
+      const int a = f / 2, face_nodes = (n[(a + 1) % 3] + 1) * (n[(a + 2) % 3] + 1);
+      ck_assert_int_eq(held, want ? face_nodes : 0);
+      mpm_bc3_clear(&bc);
+    }
+}
+END_TEST
+
+/* All six faces frictionless: face-interior nodes hold one component, edge
+ * nodes two, the 8 corners all three. */
+START_TEST(edges_and_corners_take_the_union)
+{
+  mpm_mesh3 m;
+  mesh_of(&m, 4, 3, 5);
+  const int nx = 4, ny = 3, nz = 5;
+  int face[6];
+  for (int f = 0; f < 6; f++)
+    face[f] = MPM_BC_FRICTIONLESS;
+  mpm_bc3 bc = {0};
+  mpm_err err = {0};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  int count[4] = {0};
+  for (int id = 0; id < m.nnodes; id++)
+    count[nbits(bc.fix[id])]++;
+  ck_assert_int_eq(count[3], 8);
+  ck_assert_int_eq(count[2], 4 * ((nx - 1) + (ny - 1) + (nz - 1)));
+  ck_assert_int_eq(count[1], 2 * ((ny - 1) * (nz - 1) + (nx - 1) * (nz - 1) + (nx - 1) * (ny - 1)));
+  ck_assert_int_eq(count[0], (nx - 1) * (ny - 1) * (nz - 1));
+  /* the edge x = x0, z = z0 holds x and z, the corner all three */
+  ck_assert_uint_eq(bc.fix[mpm_mesh3_node(&m, 0, 1, 0)], MPM_FIX_X | MPM_FIX_Z);
+  ck_assert_uint_eq(bc.fix[mpm_mesh3_node(&m, nx, ny, nz)], MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z);
+  mpm_bc3_clear(&bc);
+
+  /* mixed: -z noslip, +x symmetry, the rest free; their shared edge holds
+   * all three, the +x face alone only x */
+  const int mixed[6] = {MPM_BC_FREE, MPM_BC_SYMMETRY, MPM_BC_FREE, MPM_BC_FREE, MPM_BC_NOSLIP,
+                        MPM_BC_FREE};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, mixed, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_uint_eq(bc.fix[mpm_mesh3_node(&m, nx, 1, 0)], MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z);
+  ck_assert_uint_eq(bc.fix[mpm_mesh3_node(&m, nx, 1, 2)], MPM_FIX_X);
+  ck_assert_uint_eq(bc.fix[mpm_mesh3_node(&m, 0, 1, 2)], 0);
+  int held = 0;
+  for (int id = 0; id < m.nnodes; id++)
+    held += bc.fix[id] != 0;
+  ck_assert_int_eq(held, (nx + 1) * (ny + 1) + (ny + 1) * (nz + 1) - (ny + 1));
+  mpm_bc3_clear(&bc);
+}
+END_TEST
+
+START_TEST(apply_zeroes_exactly_the_held_components)
+{
+  mpm_mesh3 m;
+  mesh_of(&m, 4, 3, 5);
+  const int face[6] = {MPM_BC_NOSLIP, MPM_BC_FRICTIONLESS, MPM_BC_SYMMETRY,
+                       MPM_BC_FRICTIONLESS, MPM_BC_FREE, MPM_BC_SYMMETRY};
+  mpm_bc3 bc = {0};
+  mpm_err err = {0};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  const unsigned char bit[3] = {MPM_FIX_X, MPM_FIX_Y, MPM_FIX_Z};
+  int seen[16] = {0};
+  for (int id = 0; id < m.nnodes; id++) {
+    double v[3] = {1.5, -2.5, 3.5};
+    const double v0[3] = {1.5, -2.5, 3.5};
+    mpm_bc3_apply_node(&bc, id, v);
+    for (int c = 0; c < 3; c++)
+      ck_assert(v[c] == ((bc.fix[id] & bit[c]) ? 0.0 : v0[c]));
+    seen[bc.fix[id]] = 1;
+  }
+  /* the free, one-, two- and three-component masks all occurred */
+  ck_assert(seen[0] && seen[MPM_FIX_X] && seen[MPM_FIX_Y] && seen[MPM_FIX_Z]);
+  ck_assert(seen[MPM_FIX_Y | MPM_FIX_Z] && seen[MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z]);
+  mpm_bc3_clear(&bc);
+}
+END_TEST
+
+START_TEST(periodic_faces_in_pairs_matching_the_mesh)
+{
+  mpm_mesh3 m;
+  memset(&m, 0, sizeof m);
+  m.nx = 4;
+  m.ny = 3;
+  m.nz = 5;
+  m.dx = m.dy = m.dz = 0.5;
+  m.periodic_x = 1;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_mesh3_setup(&m, &err) == MPM_OK, "%s", err.msg);
+  mpm_bc3 bc = {0};
+  const int P = MPM_BC_PERIODIC, W = MPM_BC_NOSLIP;
+  const int good[6] = {P, P, W, W, MPM_BC_FREE, MPM_BC_FREE};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, good, &err) == MPM_OK, "%s", err.msg);
+  /* the aliased x faces hold nothing; the y walls hold all their nodes once */
+  int held = 0;
+  for (int id = 0; id < m.nnodes; id++)
+    held += bc.fix[id] != 0;
+  ck_assert_int_eq(held, 2 * m.snx * (m.nz + 1));
+  mpm_bc3_clear(&bc);
+
+  const int one[6] = {P, W, W, W, W, W};
+  ck_assert_int_eq(mpm_bc3_setup(&bc, &m, one, &err), MPM_EINPUT);
+  ck_assert_ptr_null(bc.fix);
+  const int not_periodic[6] = {W, W, W, W, W, W};
+  ck_assert_int_eq(mpm_bc3_setup(&bc, &m, not_periodic, &err), MPM_EINVAL);
+  const int wrong_axis[6] = {P, P, W, W, P, P};
+  ck_assert_int_eq(mpm_bc3_setup(&bc, &m, wrong_axis, &err), MPM_EINVAL);
+  const int unknown[6] = {P, P, W, W, W, 99};
+  ck_assert_int_eq(mpm_bc3_setup(&bc, &m, unknown, &err), MPM_EINVAL);
+  ck_assert_ptr_null(bc.fix);
+}
+END_TEST
+
+/* Number of face-f nodes whose position in the face's axes satisfies the
+ * outlet, counted directly; and check that exactly those are free in bc's
+ * open mask and that none is free before opening. */
+static int direct_count(const mpm_mesh3 *m, int f, int disc, const double a[2],
+                        const double b[2], double r, int inside[])
+{
+  int ax[2];
+  mpm_bc3_face_axes(f, ax);
+  int count = 0;
+  for (int k = 0; k <= m->nz; k++)
+    for (int j = 0; j <= m->ny; j++)
+      for (int i = 0; i <= m->nx; i++) {
+        const int id = mpm_mesh3_node(m, i, j, k);
+        inside[id] = 0;
+        if (!on_face(m, f, i, j, k))
+          continue;
+        double x[3];
+        mpm_mesh3_node_pos(m, i, j, k, x);
+        const double s = x[ax[0]], t = x[ax[1]];
+        inside[id] = disc ? hypot(s - a[0], t - a[1]) < r
+                          : s > a[0] && s < b[0] && t > a[1] && t < b[1];
+        count += inside[id];
+      }
+  return count;
+}
+
+static void check_outlet(int f, int disc, const double a[2], const double b[2], double r,
+                         int min_count)
+{
+  mpm_mesh3 m;
+  mesh_of(&m, 6, 5, 7);
+  int face[6];
+  for (int q = 0; q < 6; q++)
+    face[q] = MPM_BC_NOSLIP;
+  mpm_bc3 bc = {0};
+  mpm_err err = {0};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  int rc = disc ? mpm_bc3_set_outlet_disc(&bc, &m, f, a, r, MPM_BC_FRICTIONLESS, &err)
+                : mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_FRICTIONLESS, &err);
+  ck_assert_msg(rc == MPM_OK, "%s", err.msg);
+  int *inside = malloc(sizeof(int) * (size_t)m.nnodes);
+  const int want = direct_count(&m, f, disc, a, b, r, inside);
+  ck_assert_int_ge(want, min_count);
+
+  int held = 0;            /* closed: every boundary node still held */
+  for (int id = 0; id < m.nnodes; id++) {
+    held += bc.fix[id] != 0;
+    if (inside[id])       /* the closed frictionless wall: normal only */
+      ck_assert_uint_eq(bc.fix[id], expected_bits(MPM_BC_FRICTIONLESS, f / 2));
+  }
+  ck_assert_int_eq(held, m.nnodes - (m.nx - 1) * (m.ny - 1) * (m.nz - 1));
+
+  mpm_bc3_open_outlet(&bc);
+  int freed = 0;
+  for (int id = 0; id < m.nnodes; id++) {
+    const int on_boundary = bc.mask[0][id] != 0;
+    if (on_boundary && bc.fix[id] == 0) {
+      ck_assert(inside[id]);
+      freed++;
+    } else if (on_boundary) {
+      ck_assert(!inside[id]);
+      ck_assert_uint_eq(bc.fix[id], MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z);
+    }
+  }
+  ck_assert_int_eq(freed, want);
+  double v[3] = {1.0, 2.0, 3.0};
+  for (int id = 0; id < m.nnodes; id++)
+    if (inside[id]) {
+      mpm_bc3_apply_node(&bc, id, v);
+      ck_assert(v[0] == 1.0 && v[1] == 2.0 && v[2] == 3.0);
+    }
+  free(inside);
+  mpm_bc3_clear(&bc);
+}
+
+START_TEST(rectangle_outlet_frees_the_nodes_inside)
+{
+  /* -z face (axes x, y), x0 = 1, dx = 0.5; y0 = -2, dy = 0.25: bounds off
+   * the nodes, so "inside" has no ties */
+  const double lo[2] = {1.7, -1.6}, hi[2] = {3.3, -0.9};
+  check_outlet(MPM_FACE_ZLO, 0, lo, hi, 0.0, 6);
+  /* +x face (axes y, z) */
+  const double lo2[2] = {-1.9, 1.1}, hi2[2] = {-1.1, 2.3};
+  check_outlet(MPM_FACE_XHI, 0, lo2, hi2, 0.0, 6);
+}
+END_TEST
+
+START_TEST(disc_outlet_frees_the_nodes_inside)
+{
+  /* +y face (axes x, z): centre on no node, radius off every node distance */
+  const double c[2] = {2.6, 1.9};
+  check_outlet(MPM_FACE_YHI, 1, c, c, 0.93, 6);
+  /* -z face (axes x, y) */
+  const double c2[2] = {2.4, -1.4};
+  check_outlet(MPM_FACE_ZLO, 1, c2, c2, 0.55, 6);
+}
+END_TEST
+
+START_TEST(outlet_refusals)
+{
+  mpm_mesh3 m;
+  mesh_of(&m, 4, 3, 5);
+  int face[6] = {MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP,
+                 MPM_BC_NOSLIP};
+  mpm_bc3 bc = {0};
+  mpm_err err = {0};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  const double lo[2] = {1.0, -2.0}, hi[2] = {1.0, -1.0}, c[2] = {2.0, -1.5};
+  ck_assert_int_eq(mpm_bc3_set_outlet_rectangle(&bc, &m, MPM_FACE_ZLO, lo, hi, MPM_BC_NOSLIP,
+                                                &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_ZLO, c, 0.0, MPM_BC_NOSLIP, &err),
+                   MPM_EINVAL);
+  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, 6, c, 0.5, MPM_BC_NOSLIP, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_ZLO, c, 0.5, MPM_BC_SYMMETRY, &err),
+                   MPM_EINVAL);
+  ck_assert_ptr_null(bc.mask[1]);
+  ck_assert_int_eq(bc.out_face, -1);
+  mpm_bc3_open_outlet(&bc);  /* no outlet: nothing to open */
+  ck_assert_ptr_eq(bc.fix, bc.mask[0]);
+  mpm_bc3_clear(&bc);
+}
+END_TEST
+
+int main(void)
+{
+  Suite *s = suite_create("bc3");
+  TCase *tc = tcase_create("faces");
+  tcase_add_test(tc, each_kind_on_each_face);
+  tcase_add_test(tc, edges_and_corners_take_the_union);
+  tcase_add_test(tc, apply_zeroes_exactly_the_held_components);
+  tcase_add_test(tc, periodic_faces_in_pairs_matching_the_mesh);
+  tcase_add_test(tc, rectangle_outlet_frees_the_nodes_inside);
+  tcase_add_test(tc, disc_outlet_frees_the_nodes_inside);
+  tcase_add_test(tc, outlet_refusals);
+  suite_add_tcase(s, tc);
+  SRunner *sr = srunner_create(s);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
