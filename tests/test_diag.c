@@ -1,5 +1,5 @@
-/* test_diag.c: whole-body diagnostics against hand-computed values, and the
- * diagnostics CSV header and row. */
+/* test_diag.c: whole-body diagnostics against hand-computed values for 2D
+ * and 3D stores, and the diagnostics CSV header and row of each dimension. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -129,7 +129,7 @@ END_TEST
 
 START_TEST(t_csv_header)
 {
-  const char *h = mpm_diag_csv_header();
+  const char *h = mpm_diag_csv_header(2);
   ck_assert_str_eq(h, "t,kinetic,kinetic_per_mass,px,py,mass,volume,xcm,ycm,pmean,"
                       "npoints,ndisconnected,stop,mass_removed,nremoved,mass_region\n");
 }
@@ -143,10 +143,10 @@ START_TEST(t_csv_row)
   double v[10];
   unsigned long np, nd;
   mpm_diag_compute(pts, 0.125, &d);
-  ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 2, buf, sizeof buf), MPM_OK);
   ck_assert_str_eq(buf, "0.125,15.125,3.78125,0,0.5,4,1,0.75,1.5,3.25,3,1,0,0,0,0\n");
   d.stop = MPM_STOP_KE;
-  ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 2, buf, sizeof buf), MPM_OK);
   int stop = -1;
   int got = sscanf(buf, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lu,%lu,%d", &v[0], &v[1],
                    &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &np, &nd, &stop);
@@ -156,7 +156,7 @@ START_TEST(t_csv_row)
   ck_assert_uint_eq(nd, 1);
   /* %.10g: ten significant digits */
   d.kinetic = 1.0 / 3.0;
-  ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_OK);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 2, buf, sizeof buf), MPM_OK);
   ck_assert_ptr_nonnull(strstr(buf, ",0.3333333333,"));
   mpm_points_free(pts);
 }
@@ -168,9 +168,116 @@ START_TEST(t_csv_row_small_buffer)
   char buf[16];
   memset(&d, 0, sizeof d);
   d.t = 1.0 / 3.0;
-  ck_assert_int_eq(mpm_diag_csv_row(&d, buf, sizeof buf), MPM_EINVAL);
-  ck_assert_int_eq(mpm_diag_csv_row(&d, buf, 0), MPM_EINVAL);
-  ck_assert_int_eq(mpm_diag_csv_row(NULL, buf, sizeof buf), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 2, buf, sizeof buf), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 2, buf, 0), MPM_EINVAL);
+  ck_assert_int_eq(mpm_diag_csv_row(NULL, 2, buf, sizeof buf), MPM_EINVAL);
+}
+END_TEST
+
+/* The three points above in a 3D store, with z, vz and the shear stresses
+ * syz, szx (which leave p alone):
+ *   0: v (1, 2, 2),    x (0, 0, 1),  syz 5, szx 7
+ *   1: v (-2, 0.5, -1), x (3, 0, -2)
+ *   2: v (0, -4, 3),   x (0, 6, 4)
+ * K = (2*9 + 1*5.25 + 1*25)/2 = 24.125, K/M = 6.03125, P = (0, 0.5, 6),
+ * x_c = (0.75, 1.5, 1), p_m = 3.25, V = 1 (m^3). */
+static const double three_z[3][3] = {{1, 2, 5}, {-2, -1, 0}, {4, 3, 0}}; /* z, vz, syz */
+
+static mpm_points *make_points3(int with_z)
+{
+  mpm_points *pts = make_points(three, 3);
+  ck_assert_int_eq(mpm_points_set_dim(pts, 3), MPM_OK);
+  ck_assert_int_eq(pts->dim, 3);
+  for (size_t i = 0; with_z && i < 3; i++) {
+    pts->z[i] = three_z[i][0];
+    pts->vz[i] = three_z[i][1];
+    pts->syz[i] = three_z[i][2];
+  }
+  if (with_z)
+    pts->szx[0] = 7.0;
+  return pts;
+}
+
+START_TEST(t_three_points_3d)
+{
+  mpm_points *pts = make_points3(1);
+  mpm_diag d;
+  mpm_diag_compute(pts, 0.125, &d);
+  ck_close(d.kinetic, 24.125);
+  ck_close(d.kinetic_per_mass, 6.03125);
+  ck_assert(mpm_diag_kinetic_per_mass(pts) == d.kinetic_per_mass);
+  ck_close(d.px, 0.0);
+  ck_close(d.py, 0.5);
+  ck_close(d.pz, 6.0);
+  ck_close(d.mass, 4.0);
+  ck_close(d.volume, 1.0);
+  ck_close(d.xcm, 0.75);
+  ck_close(d.ycm, 1.5);
+  ck_close(d.zcm, 1.0);
+  ck_close(d.pmean, 3.25);
+  ck_assert_uint_eq(d.npoints, 3);
+  ck_assert_uint_eq(d.ndisconnected, 1);
+  mpm_points_free(pts);
+}
+END_TEST
+
+/* A 2D store has zero z fields; a 3D store with z = vz = 0 gives the 2D
+ * store's values bit for bit. */
+START_TEST(t_2d_equals_flat_3d)
+{
+  mpm_points *p2 = make_points(three, 3), *p3 = make_points3(0);
+  mpm_diag a, b;
+  mpm_diag_compute(p2, 0.5, &a);
+  mpm_diag_compute(p3, 0.5, &b);
+  ck_assert(a.pz == 0.0 && a.zcm == 0.0);
+  ck_assert(a.kinetic == b.kinetic && a.kinetic_per_mass == b.kinetic_per_mass);
+  ck_assert(a.px == b.px && a.py == b.py && b.pz == 0.0);
+  ck_assert(a.mass == b.mass && a.volume == b.volume && a.pmean == b.pmean);
+  ck_assert(a.xcm == b.xcm && a.ycm == b.ycm && b.zcm == 0.0);
+  ck_assert(a.npoints == b.npoints && a.ndisconnected == b.ndisconnected);
+  ck_assert(mpm_diag_kinetic_per_mass(p2) == mpm_diag_kinetic_per_mass(p3));
+  mpm_points_free(p2);
+  mpm_points_free(p3);
+}
+END_TEST
+
+static int count_columns(const char *line)
+{
+  int n = 1;
+  for (; *line && *line != '\n'; line++)
+    n += *line == ',';
+  return n;
+}
+
+START_TEST(t_csv_3d)
+{
+  const char *h2 = mpm_diag_csv_header(2), *h3 = mpm_diag_csv_header(3);
+  mpm_points *pts = make_points3(1);
+  mpm_diag d;
+  char buf[512];
+  double v[18];
+  /* the 2D columns keep their positions; pz and zcm follow */
+  ck_assert_int_eq(count_columns(h2), 16);
+  ck_assert_int_eq(count_columns(h3), 18);
+  ck_assert_int_eq(strncmp(h3, h2, strlen(h2) - 1), 0);
+  ck_assert_str_eq(h3 + strlen(h2) - 1, ",pz,zcm\n");
+  mpm_diag_compute(pts, 0.125, &d);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 3, buf, sizeof buf), MPM_OK);
+  ck_assert_str_eq(buf, "0.125,24.125,6.03125,0,0.5,4,1,0.75,1.5,3.25,3,1,0,0,0,0,6,1\n");
+  ck_assert_int_eq(count_columns(buf), 18);
+  int got = sscanf(buf, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf",
+                   &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8], &v[9],
+                   &v[10], &v[11], &v[12], &v[13], &v[14], &v[15], &v[16], &v[17]);
+  ck_assert_int_eq(got, 18);
+  ck_assert(v[16] == 6.0 && v[17] == 1.0);
+  /* the same diagnostics as a 2D row: the 2D columns only */
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 2, buf, sizeof buf), MPM_OK);
+  ck_assert_str_eq(buf, "0.125,24.125,6.03125,0,0.5,4,1,0.75,1.5,3.25,3,1,0,0,0,0\n");
+  /* room for the 2D part but not for pz and zcm */
+  size_t n2 = strlen(buf);
+  ck_assert_int_eq(mpm_diag_csv_row(&d, 3, buf, n2 + 2), MPM_EINVAL);
+  ck_assert_str_eq(buf, "");
+  mpm_points_free(pts);
 }
 END_TEST
 
@@ -184,6 +291,9 @@ int main(void)
   tcase_add_test(tc, t_csv_header);
   tcase_add_test(tc, t_csv_row);
   tcase_add_test(tc, t_csv_row_small_buffer);
+  tcase_add_test(tc, t_three_points_3d);
+  tcase_add_test(tc, t_2d_equals_flat_3d);
+  tcase_add_test(tc, t_csv_3d);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

@@ -468,14 +468,14 @@ START_TEST(t_diagnostics_csv)
   ck_assert_int_eq(count_lines(c), 1 + NFRAMES);
   ck_assert_int_eq(split(c, '\n', line, 8), NFRAMES + 2);
   ck_assert_int_eq(strncmp(line[0], "t,", 2), 0);
-  snprintf(row, sizeof row, "%s", mpm_diag_csv_header());
+  snprintf(row, sizeof row, "%s", mpm_diag_csv_header(2));
   row[strlen(row) - 1] = '\0';
   ck_assert_str_eq(line[0], row);
   for (int f = 0; f < NFRAMES; f++) {
     mpm_points *pts = frame_points(f);
     mpm_diag d;
     mpm_diag_compute(pts, frame_time(f), &d);
-    ck_assert_int_eq(mpm_diag_csv_row(&d, row, sizeof row), MPM_OK);
+    ck_assert_int_eq(mpm_diag_csv_row(&d, 2, row, sizeof row), MPM_OK);
     row[strlen(row) - 1] = '\0';
     ck_assert_str_eq(line[f + 1], row);
     mpm_points_free(pts);

@@ -1,4 +1,9 @@
-/* diag.h: whole-body diagnostics of the point set, one row per output frame. */
+/* diag.h: whole-body diagnostics of the point set, one row per output frame.
+ *
+ * Units are those of the store's dimension: a 2D (plane-strain) store gives
+ * values per unit thickness (mass in kg/m, volume in m^2, energy in J/m,
+ * momentum in kg/s per m of thickness), a 3D store whole values (kg, m^3,
+ * J, kg m/s). The z fields (pz, zcm) are 0 for a 2D store. */
 #ifndef MPM_DIAG_DIAG_H
 #define MPM_DIAG_DIAG_H
 
@@ -17,19 +22,19 @@ enum mpm_stop_reason {
 
 typedef struct mpm_diag {
   double t;                    /* time [s] */
-  double kinetic;              /* sum m |v|^2 / 2 [J/m] */
+  double kinetic;              /* sum m |v|^2 / 2 [J/m; 3D: J] */
   double kinetic_per_mass;     /* kinetic / mass [J/kg] */
-  double px, py;               /* momentum [kg/s] (per unit thickness) */
-  double mass;                 /* [kg/m] */
-  double volume;               /* sum of true volumes [m^2] */
-  double xcm, ycm;             /* centre of mass [m] */
+  double px, py, pz;           /* momentum [kg/s per m of thickness; 3D: kg m/s] */
+  double mass;                 /* [kg/m; 3D: kg] */
+  double volume;               /* sum of true volumes [m^2; 3D: m^3] */
+  double xcm, ycm, zcm;        /* centre of mass [m] */
   double pmean;                /* mass-weighted mean pressure [Pa] */
   size_t npoints;
   size_t ndisconnected;
   int stop;                    /* enum mpm_stop_reason; set by the caller */
-  double mass_removed;         /* mass removed so far [kg/m]; set by the caller */
+  double mass_removed;         /* mass removed so far [kg/m; 3D: kg]; set by the caller */
   long nremoved;               /* points removed so far; set by the caller */
-  double mass_region;          /* mass in the reported region [kg/m]; set by the caller */
+  double mass_region;          /* mass in the reported region [kg/m; 3D: kg]; set by the caller */
 } mpm_diag;
 
 /* Every field but those set by the caller (left 0). */
@@ -39,8 +44,11 @@ void mpm_diag_compute(const mpm_points *pts, double t, mpm_diag *d);
  * value as mpm_diag_compute's kinetic_per_mass, for per-step stop tests. */
 double mpm_diag_kinetic_per_mass(const mpm_points *pts);
 
-/* CSV header line and one row (no trailing newline handling needed: both end in '\n'). */
-const char *mpm_diag_csv_header(void);
-int mpm_diag_csv_row(const mpm_diag *d, char *buf, size_t len);
+/* CSV header line and one row of a run of store dimension dim (both end in
+ * '\n'). dim 3 appends the columns pz and zcm after the 2D ones, which keep
+ * their positions; any other dim gives the 2D columns. The row fails
+ * (MPM_EINVAL, buf emptied) when it does not fit in len bytes. */
+const char *mpm_diag_csv_header(int dim);
+int mpm_diag_csv_row(const mpm_diag *d, int dim, char *buf, size_t len);
 
 #endif

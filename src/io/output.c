@@ -380,7 +380,7 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   out = output_alloc(dir);
   if (!out)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
-  rc = open_text(&out->csv, out->csv_path, mpm_diag_csv_header(), err);
+  rc = open_text(&out->csv, out->csv_path, mpm_diag_csv_header(m3 ? 3 : 2), err);
   if (rc == MPM_OK)
     rc = open_xdmf(out, err);
   if (rc == MPM_OK) {
@@ -752,7 +752,7 @@ static int write_frame_h5(mpm_io_output *out, const mpm_points *pts, double t,
 static int write_csv_row(mpm_io_output *out, const mpm_diag *d, mpm_err *err)
 {
   char row[512];
-  if (mpm_diag_csv_row(d, row, sizeof row) != MPM_OK)
+  if (mpm_diag_csv_row(d, out->dim, row, sizeof row) != MPM_OK)
     return mpm_err_set(err, MPM_EINVAL, "diagnostics row of frame %d too long", out->nframes);
   if (fputs(row, out->csv) < 0 || fflush(out->csv) != 0)
     return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->csv_path, strerror(errno));
