@@ -137,16 +137,6 @@ static void jacobi(double a[3][3], double lam[3], mpm_mat3 *v)
     lam[i] = a[i][i];
 }
 
-static void sym3_array(mpm_sym3 s, double a[3][3])
-{
-  a[0][0] = s.xx;
-  a[1][1] = s.yy;
-  a[2][2] = s.zz;
-  a[0][1] = a[1][0] = s.xy;
-  a[1][2] = a[2][1] = s.yz;
-  a[0][2] = a[2][0] = s.zx;
-}
-
 static mpm_sym3 sym3_diag(const double d[3])
 {
   return (mpm_sym3){d[0], d[1], d[2], 0.0, 0.0, 0.0};
@@ -154,9 +144,8 @@ static mpm_sym3 sym3_diag(const double d[3])
 
 void mpm_material_hyper_eigen(mpm_sym3 a, double lam[3], mpm_mat3 *v)
 {
-  double w[3][3];
-  sym3_array(a, w);
-  jacobi(w, lam, v);
+  mpm_mat3 w = mpm_sym3_full(a);
+  jacobi(w.m, lam, v);
 }
 
 mpm_sym3 mpm_material_hyper_log(mpm_sym3 a)
