@@ -97,6 +97,20 @@ static inline int mpm_shape_in_corners_axis(int nc, const double *s, double o, d
   return bad ? -1 : 0;
 }
 
+/* Span of the corners along one axis (unit size 1/ih, n units) for the
+ * largest corner reach h = max_p sum_k |r_kd| of the points: the corners
+ * span 2 h ih units, so they fall in at most floor(2 h ih) + 2 units and
+ * touch one node more (*nodes, capped at cap), and lie at most
+ * floor(h ih) + 1 units from the point's own (*reach, capped at n). The
+ * small slack covers round-off in the corner positions. */
+static inline void mpm_shape_in_span_axis(double h, double ih, int n, int cap, int *nodes,
+                                          int *reach)
+{
+  const double s = 2.0 * h * ih + 1e-6;
+  *nodes = s < cap ? (int)s + 3 : cap;
+  *reach = 0.5 * s < n ? (int)(0.5 * s) + 1 : n;
+}
+
 /* Index of the lowest set bit of u != 0 (the block slots of the used nodes,
  * in slot order). */
 static inline int mpm_shape_in_lowest_bit(unsigned u)

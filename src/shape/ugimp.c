@@ -136,10 +136,8 @@ static int ugimp_eval(const mpm_mesh *mesh, double x, double y, const double r[4
 }
 
 /* The corners of a point lie within hx = |r1x| + |r2x|, hy = |r1y| + |r2y|
- * of it. Along x they span 2 hx / dx units, so they fall in at most
- * floor(2 hx / dx) + 2 unit columns and touch one node column more; they
- * lie at most floor(hy / dy) + 1 unit rows from the point's own. (The small
- * slack covers round-off in the corner positions.) */
+ * of it; the node columns and rows they touch and the rows they reach
+ * follow per axis (mpm_shape_in_span_axis). */
 static void ugimp_span(const mpm_mesh *m, const mpm_points *pts, int *width, int *reach)
 {
   double hx = 0.0, hy = 0.0;
@@ -150,11 +148,10 @@ static void ugimp_span(const mpm_mesh *m, const mpm_points *pts, int *width, int
     hx = ax > hx ? ax : hx;
     hy = ay > hy ? ay : hy;
   }
-  const double sx = 2.0 * hx * m->idx + 1e-6, sy = 2.0 * hy * m->idy + 1e-6;
-  const int cols = sx < MPM_STENCIL_W ? (int)sx + 3 : MPM_STENCIL_W;  /* node columns */
-  const int rows = sy < MPM_STENCIL_W ? (int)sy + 3 : MPM_STENCIL_W;
+  int cols, rows, rx;                        /* node columns and rows, reaches */
+  mpm_shape_in_span_axis(hx, m->idx, m->nx, MPM_STENCIL_W, &cols, &rx);
+  mpm_shape_in_span_axis(hy, m->idy, m->ny, MPM_STENCIL_W, &rows, reach);
   *width = cols * rows < MPM_STENCIL_W ? cols * rows : MPM_STENCIL_W;
-  *reach = 0.5 * sy < m->ny ? (int)(0.5 * sy) + 1 : m->ny;
 }
 
 const mpm_shape_type mpm_shape_ugimp = {

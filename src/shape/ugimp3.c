@@ -143,11 +143,9 @@ static int ugimp3_eval(const mpm_mesh3 *m, const double x[3], const double r[9],
   return cnt;
 }
 
-/* The corners of a point lie within h_d = sum_k |r_kd| of it along axis d:
- * they span 2 h_d / dx_d units, so they fall in at most
- * floor(2 h_d / dx_d) + 2 units and touch one node more along d, and lie at
- * most floor(h_d / dx_d) + 1 units from the point's own (ugimp.c's span,
- * per axis; the small slack covers round-off in the corner positions). */
+/* The corners of a point lie within h_d = sum_k |r_kd| of it along axis d;
+ * the nodes they touch and the units they reach follow per axis
+ * (mpm_shape_in_span_axis, as in 2D). */
 static void ugimp3_span(const mpm_mesh3 *m, size_t n, const double *r, int *width, int *reach)
 {
   double h[3] = {0.0, 0.0, 0.0};
@@ -160,9 +158,9 @@ static void ugimp3_span(const mpm_mesh3 *m, size_t n, const double *r, int *widt
   const int nu[3] = {m->nx, m->ny, m->nz};
   int w = 1, re = 0;
   for (int d = 0; d < 3; d++) {
-    const double s = 2.0 * h[d] * ih[d] + 1e-6;
-    w *= s < MPM_STENCIL3_W ? (int)s + 3 : MPM_STENCIL3_W;    /* nodes along d; <= 64^3 */
-    const int rd = 0.5 * s < nu[d] ? (int)(0.5 * s) + 1 : nu[d];
+    int nd, rd;
+    mpm_shape_in_span_axis(h[d], ih[d], nu[d], MPM_STENCIL3_W, &nd, &rd);
+    w *= nd;                                                  /* nodes along d; <= 64^3 */
     re = rd > re ? rd : re;
   }
   *width = w < MPM_STENCIL3_W ? w : MPM_STENCIL3_W;
