@@ -351,16 +351,9 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
     syy += d;
   }
   const double a[4] = {m * P->vx[p], m * P->vy[p], m * bx, m * by};
-  const double ax[4] = {0.0, 0.0, -V * sxx, -V * sxy};
-  const double ay[4] = {0.0, 0.0, -V * sxy, -V * syy};
-  for (int k = 0; k < c; k++) {
-    double *q = nq[node[k]];
-    const double Sk = S[k], gxk = gx[k], gyk = gy[k];
-    nm[node[k]] += Sk * m;                                 /* m_i += S m */
-#pragma omp simd
-    for (int l = 0; l < 4; l++)
-      q[l] += Sk * a[l] + gxk * ax[l] + gyk * ay[l];       /* (mv, f)_i */
-  }
+  const double ad[2][4] = {{0.0, 0.0, -V * sxx, -V * sxy}, {0.0, 0.0, -V * sxy, -V * syy}};
+  const double *const g[2] = {gx, gy};
+  mpm_tr_p2g2(nm, nq, c, node, S, g, m, a, ad);
   if (apic)
     p2g_affine(s, nq, p, c, node, S);
 }
@@ -417,31 +410,9 @@ static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double
  * Nodes lighter than mtiny are empty: v_i = a_i = 0. */
 static inline void grid_node(mpm_sim *s, int i, double bx, double by, double idt)
 {
-  const double m = s->nm[i];
-  double *q = s->nq[i];
-  if (!(m > s->mtiny)) {
-    q[0] = q[1] = q[2] = q[3] = 0.0;
-    return;
-  }
-  double mvx = q[0], mvy = q[1], fx = q[2], fy = q[3];
-  const double vx = mvx / m, vy = mvy / m;                /* v_i^n, before the wall */
-  if (m < s->mlight) {                                    /* light node: body force only */
-    fx = m * bx;
-    fy = m * by;
-  }
-  double jx = 0.0, jy = 0.0;
-  if (s->bc.fix[i]) {
-    mpm_bc_apply_node(&s->bc, i, &mvx, &mvy);
-    mpm_bc_apply_node(&s->bc, i, &fx, &fy);
-    jx = (mvx / m - vx) * idt;                            /* the wall's velocity jump / dt, or 0 */
-    jy = (mvy / m - vy) * idt;
-  }
-  mvx += s->dt * fx;                                      /* (mv)_i += dt f_i */
-  mvy += s->dt * fy;
-  q[0] = mvx / m;                                         /* v_i */
-  q[1] = mvy / m;
-  q[2] = fx / m + jx;                                     /* a_i */
-  q[3] = fy / m + jy;
+  const double b[2] = {bx, by};
+  mpm_tr_grid_node2(&s->bc, i, s->bc.fix[i] != 0, s->nm[i], s->nq[i], b, s->dt, idt, s->mtiny,
+                    s->mlight);
 }
 
 /* Step 2 for band k with the weights of the step (a constant kind at each

@@ -19,6 +19,17 @@
 
 #include "solver/solver.h"
 
+/* The transfer kernels of transfer.inc for the plane (mpm_tr_*2). */
+#define DIM 2
+#define TR(name) name##2
+#define TR_BC mpm_bc
+#define TR_BC_APPLY(bc, i, v) mpm_bc_apply_node(bc, i, &(v)[0], &(v)[1])
+#include "solver/transfer.inc"
+#undef DIM
+#undef TR
+#undef TR_BC
+#undef TR_BC_APPLY
+
 /* exp(x) for |x| <= 2^-6 (1 beyond): the volume ratio V_{n+1} / V_n =
  * exp(dt tr L) of a step, whose dt tr L is small (2^-6 is a 1.6 % change of
  * volume in one step), as the Taylor series to x^7 in Horner form:
@@ -127,34 +138,13 @@ static inline void mpm_sim_in_node_offset(const mpm_mesh *m, int i, double x, do
 }
 
 /* Step 4 for a point with weights (c, node, S, gx, gy), after the grid
- * update: vg = sum S v_i (the PIC velocity, the grid velocity that moves the
- * point), ag = sum S a_i, and L_p = sum v_i (x) gradS_ip (the in-plane
- * entries, L = {xx, xy, yx, yy}). */
+ * update: vg, ag and the in-plane L = {xx, xy, yx, yy} of mpm_tr_gather2. */
 static inline void mpm_sim_in_gather(const mpm_sim *s, int c, const int *node,
                                      const double *S, const double *gx, const double *gy,
                                      double vg[2], double ag[2], double L[4])
 {
-  const double (*nq)[4] = (const double (*)[4])s->nq;
-  double as[4] = {0.0}, ax[4] = {0.0}, ay[4] = {0.0};
-  for (int k = 0; k < c; k++) {
-    const double *w = nq[node[k]];              /* (v_x, v_y, a_x, a_y) of node k */
-    const double Sk = S[k], gxk = gx[k], gyk = gy[k];
-#pragma omp simd
-    for (int l = 0; l < 4; l++) {
-      as[l] += Sk * w[l];                       /* sum S (v, a) */
-      ax[l] += w[l] * gxk;                      /* sum v dS/dx */
-      ay[l] += w[l] * gyk;                      /* sum v dS/dy */
-    }
-  }
-  const double lxx = ax[0], lxy = ay[0], lyx = ax[1], lyy = ay[1];
-  vg[0] = as[0];
-  vg[1] = as[1];
-  ag[0] = as[2];
-  ag[1] = as[3];
-  L[0] = lxx;
-  L[1] = lxy;
-  L[2] = lyx;
-  L[3] = lyy;
+  const double *const g[2] = {gx, gy};
+  mpm_tr_gather2((const double (*)[4])s->nq, c, node, S, g, vg, ag, L);
 }
 
 /* Step 4 (the rest) and 5 for points [a, b) from what mpm_sim_in_gather gave
