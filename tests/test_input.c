@@ -397,11 +397,12 @@ static const bad_set bad_sets[] = {
   {"meshes.nx=3", "--set 'meshes.nx=3': unknown section 'meshes' (allowed: mesh, time, gravity, "
                   "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
   {"mesh.nxx=3", "--set 'mesh.nxx=3': unknown key 'mesh.nxx' (allowed keys in 'mesh': nx, ny, "
-                 "x0, y0, dx, dy, topology, diagonal, mirror_x, shape, dilatation)"},
+                 "x0, y0, dx, dy, nz, z0, dz, topology, diagonal, mirror_x, shape, "
+                 "dilatation)"},
   {"fill.b.ppu=3", "--set 'fill.b.ppu=3': no fill titled 'b' (allowed: a)"},
   {"fill.a.speed=3", "--set 'fill.a.speed=3': unknown key 'fill.a.speed' (allowed keys in 'fill': "
                      "shape, xmin, ymin, xmax, ymax, cx, cy, radius, x, y, ppu, density, vx, vy, "
-                     "lithostatic, pressure)"},
+                     "zmin, zmax, vz, lithostatic, pressure)"},
   {"fill.ppu=0", "--set 'fill.ppu=0': key 'fill.ppu': value 0 out of range (allowed: 1 ... 8)"},
   {"fill.a.radius=1", "--set 'fill.a.radius=1': key 'fill.a.radius': not used by shape "
                       "\"rectangle\" (allowed keys for \"rectangle\": xmin, ymin, xmax, ymax)"},

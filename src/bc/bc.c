@@ -110,32 +110,13 @@ void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay)
     mpm_bc_apply_node(bc, i, &ax[i], &ay[i]);
 }
 
-/* 1 if an edge of this kind is a wall that material cannot cross. */
-static int is_wall(int kind)
-{
-  return kind == MPM_BC_NOSLIP || kind == MPM_BC_FRICTIONLESS || kind == MPM_BC_SYMMETRY;
-}
-
 void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, double *vx,
                   double *vy, double gvx, double gvy)
 {
-  double xhi = m->x0 + m->lx, yhi = m->y0 + m->ly;
   if (mpm_bc_left_through_outlet(bc, m, *x, *y))
     return;                                  /* leaves through the open outlet */
-  if (*x < m->x0 && is_wall(bc->edge[MPM_EDGE_LEFT])) {
-    *x = m->x0;
-    *vx = fmax(*vx, fmin(gvx, 0.0));
-  }
-  if (*x > xhi && is_wall(bc->edge[MPM_EDGE_RIGHT])) {
-    *x = xhi;
-    *vx = fmin(*vx, fmax(gvx, 0.0));
-  }
-  if (*y < m->y0 && is_wall(bc->edge[MPM_EDGE_BOTTOM])) {
-    *y = m->y0;
-    *vy = fmax(*vy, fmin(gvy, 0.0));
-  }
-  if (*y > yhi && is_wall(bc->edge[MPM_EDGE_TOP])) {
-    *y = yhi;
-    *vy = fmin(*vy, fmax(gvy, 0.0));
-  }
+  mpm_bc_clamp_axis(x, vx, gvx, m->x0, m->x0 + m->lx, mpm_bc_is_wall(bc->edge[MPM_EDGE_LEFT]),
+                    mpm_bc_is_wall(bc->edge[MPM_EDGE_RIGHT]));
+  mpm_bc_clamp_axis(y, vy, gvy, m->y0, m->y0 + m->ly, mpm_bc_is_wall(bc->edge[MPM_EDGE_BOTTOM]),
+                    mpm_bc_is_wall(bc->edge[MPM_EDGE_TOP]));
 }

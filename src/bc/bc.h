@@ -7,6 +7,8 @@
 #ifndef MPM_BC_BC_H
 #define MPM_BC_BC_H
 
+#include <math.h>
+
 #include "core/config.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
@@ -98,6 +100,28 @@ static inline void mpm_bc_apply_node(const mpm_bc *bc, int i, double *ax, double
 static inline int mpm_bc_outside(const mpm_mesh *m, double x, double y)
 {
   return (x < m->x0) | (x > m->x0 + m->lx) | (y < m->y0) | (y > m->y0 + m->ly);
+}
+
+/* 1 if an edge or face of this kind is a wall that material cannot cross. */
+static inline int mpm_bc_is_wall(int kind)
+{
+  return kind == MPM_BC_NOSLIP || kind == MPM_BC_FRICTIONLESS || kind == MPM_BC_SYMMETRY;
+}
+
+/* Along one axis of a mesh [lo, hi]: a point beyond a wall end (wall_lo,
+ * wall_hi) is put back on it, and its velocity v into that wall limited to
+ * the grid's gv (none if the grid moves away). */
+static inline void mpm_bc_clamp_axis(double *x, double *v, double gv, double lo, double hi,
+                                     int wall_lo, int wall_hi)
+{
+  if (*x < lo && wall_lo) {
+    *x = lo;
+    *v = fmax(*v, fmin(gv, 0.0));
+  }
+  if (*x > hi && wall_hi) {
+    *x = hi;
+    *v = fmin(*v, fmax(gv, 0.0));
+  }
 }
 
 /* Move a point that crossed a wall edge (no-slip, frictionless, symmetry)

@@ -46,6 +46,9 @@ typedef struct mpm_fill_config {
   int ppu;                     /* points per unit along each direction (n x n) */
   double density;              /* initial density [kg/m^3] */
   double vx, vy;               /* initial velocity [m/s] */
+  double zmin, zmax;           /* 3D (mesh.nz > 0): the z range of the fill, which
+                                  extrudes its plane shape along z [m] */
+  double vz;                   /* 3D: initial velocity z [m/s] */
   int lithostatic;             /* 1: pre-stress from the weight above (K0 = nu/(1-nu)) */
   double pressure;             /* isotropic initial pressure [Pa] (0: none) */
   char name[MPM_NAME_MAX];     /* title of the fill section ("fill NAME { ... }") */
@@ -58,6 +61,9 @@ typedef struct mpm_config {
     int nx, ny;                /* units along x and y */
     double x0, y0;             /* lower-left corner [m] */
     double dx, dy;             /* unit size [m] */
+    int nz;                    /* units along z: 0 a plane-strain run, > 0 a 3D one
+                                  (boxes of dx x dy x dz; y stays the vertical) */
+    double z0, dz;             /* 3D: the z of the mesh's origin, the unit depth [m] */
     char topology[MPM_NAME_MAX];  /* "q4" | "t3" */
     char diagonal[MPM_NAME_MAX];  /* "/" "\\" "mirror" (T3 only) */
     double mirror_x;           /* x of the mirror line [m] */
@@ -79,6 +85,7 @@ typedef struct mpm_config {
   struct {
     double gx, gy;             /* final gravity vector [m/s^2] (from angle and g when
                                   use_angle) */
+    double gz;                 /* 3D: its z component [m/s^2] */
     double angle;              /* incline angle [deg]: gx = g sin, gy = -g cos */
     double g;                  /* magnitude for angle [m/s^2] */
     int use_angle;             /* 1: gravity was given as angle and g */
@@ -113,6 +120,7 @@ typedef struct mpm_config {
 
   struct {
     int left, right, bottom, top;  /* enum mpm_bc_kind */
+    int front, back;               /* 3D: the faces z = z0 and z = z0 + nz dz */
     int wall_acceleration;         /* enum mpm_bc_wall_acceleration: what the points
                                       get from a held velocity component */
   } bc;

@@ -451,6 +451,96 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
   return MPM_OK;
 }
 
+/* A 3D run (mesh.nz > 0): the keys it needs and what it does not have yet;
+ * a plane run: no 3D key set. */
+static int check_dimension(in_ctx *c, const mpm_config *cfg)
+{
+  const int knz = key_index(S_MESH, "nz");
+  if (cfg->mesh.nz == 0) {
+    for (int f = -1; f < cfg->nfill; f++)
+      for (int k = 0; k < NKEYS; k++) {
+        if (!(mpm_io_in_keys[k].flags & KF_3D) || k == knz ||
+            (mpm_io_in_keys[k].sec == S_FILL) != (f >= 0) || !is_set(c, k, f))
+          continue;
+        where w = {.at = c->at[f < 0 ? 0 : f][k], .sec = mpm_io_in_keys[k].sec, .key = k,
+                   .fill = f, .title = f >= 0 ? cfg->fill[f].name : NULL};
+        return mpm_io_in_fail_key(c, &w, "a key of 3D runs, set in a plane one (allowed: with "
+                                  "mesh.nz > 0 only)");
+      }
+    return MPM_OK;
+  }
+  const int kdz = key_index(S_MESH, "dz");
+  if (!(cfg->mesh.dz > 0.0)) {
+    where w = blame(c, cfg, -1, kdz, knz);
+    return mpm_io_in_fail_key(c, &w, "nz = %d without dz (allowed: dz = %s with nz > 0)",
+                              cfg->mesh.nz, mpm_io_in_allowed_text(&mpm_io_in_keys[kdz]).s);
+  }
+  if ((cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0) * (cfg->mesh.nz + 1.0) > MAX_NODES) {
+    where w = blame(c, cfg, -1, knz, knz);
+    return mpm_io_in_fail_key(c, &w, "%d x %d x %d units make too many nodes (allowed: "
+                              "(nx+1)(ny+1)(nz+1) <= %s)", cfg->mesh.nx, cfg->mesh.ny,
+                              cfg->mesh.nz, mpm_io_in_num(MAX_NODES).s);
+  }
+  /* what the plane run has and the 3D one has not (yet): named, not ignored */
+  struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
+    {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
+    {cfg->mesh.dilatation != MPM_DILATATION_POINT, S_MESH, "dilatation", "\"point\""},
+    {cfg->time.transfer != MPM_TRANSFER_FLIP, S_TIME, "transfer", "\"flip\""},
+    {cfg->material.state_density != 0, S_MATERIAL, "state_density", "\"point\""},
+    {cfg->outlet.edge != MPM_OUTLET_NONE, S_OUTLET, "edge", "\"none\""},
+    {c->wall_nlist[0] > 0, S_WALL, "x", "no wall polygon"},
+    {cfg->absorb.above < 1e9, S_ABSORB, "above", "no absorbing layer"},
+    {cfg->remove.free_edges || cfg->remove.below > -1e9, S_REMOVE,
+     cfg->remove.free_edges ? "free_edges" : "below", "no removal"},
+    {cfg->stop.mass > 0.0, S_STOP, "mass", "0"},
+  };
+  for (size_t i = 0; i < sizeof no3 / sizeof no3[0]; i++) {
+    if (!no3[i].on)
+      continue;
+    const int k = key_index(no3[i].sec, no3[i].key);
+    where w = blame(c, cfg, -1, k, knz);
+    return mpm_io_in_fail_key(c, &w, "not available in a 3D run (mesh.nz > 0) (allowed: %s)",
+                              no3[i].allowed);
+  }
+  const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
+  if (t && t->nonlocal) {
+    const int k = key_index(S_MATERIAL, "model");
+    where w = blame(c, cfg, -1, k, knz);
+    return mpm_io_in_fail_key(c, &w, "model \"%s\" is not available in a 3D run (allowed: "
+                              "\"elastic\", \"mu_i\")", cfg->material.model);
+  }
+  if (check_periodic_pair(c, cfg, "front", "back", cfg->bc.front, cfg->bc.back) != MPM_OK)
+    return MPM_EINPUT;
+  const double z1 = cfg->mesh.z0 + cfg->mesh.nz * cfg->mesh.dz, tol = GEOM_TOL * cfg->mesh.dz;
+  const int kz0 = key_index(S_FILL, "zmin"), kz1 = key_index(S_FILL, "zmax");
+  for (int f = 0; f < cfg->nfill; f++) {
+    const mpm_fill_config *fc = &cfg->fill[f];
+    const int k = key_index(S_FILL, "shape");
+    if (fc->shape == MPM_FILL_POLYGON || fc->lithostatic || fc->pressure > 0.0) {
+      const int kb = fc->shape == MPM_FILL_POLYGON ? k : key_index(S_FILL, fc->lithostatic ?
+                                                                      "lithostatic" : "pressure");
+      where w = {.at = c->at[f][kb], .sec = S_FILL, .key = kb, .fill = f, .title = fc->name};
+      return mpm_io_in_fail_key(c, &w, "not available in a 3D run (allowed: shape "
+                                "\"rectangle\" (a box) or \"disc\" (a cylinder along z), no "
+                                "initial stress)");
+    }
+    if (!is_set(c, kz0, f) || !is_set(c, kz1, f)) {
+      const int km = is_set(c, kz0, f) ? kz1 : kz0;
+      where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .fill = f, .title = fc->name};
+      return mpm_io_in_fail_key(c, &w, "required in a 3D run, not set (allowed: %s ... %s m)",
+                                mpm_io_in_approx(cfg->mesh.z0).s, mpm_io_in_approx(z1).s);
+    }
+    if (!(fc->zmin < fc->zmax) || fc->zmin < cfg->mesh.z0 - tol || fc->zmax > z1 + tol) {
+      where w = blame(c, cfg, f, kz1, kz0);
+      return mpm_io_in_fail_key(c, &w, "the fill spans z %s ... %s (allowed: zmin < zmax "
+                                "within %s ... %s m)", mpm_io_in_num(fc->zmin).s,
+                                mpm_io_in_num(fc->zmax).s, mpm_io_in_approx(cfg->mesh.z0).s,
+                                mpm_io_in_approx(z1).s);
+    }
+  }
+  return MPM_OK;
+}
+
 int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
 {
   if (check_required(c) != MPM_OK)
@@ -462,7 +552,7 @@ int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
   }
   if (check_mesh(c, cfg) || check_time(c, cfg) || check_gravity(c, cfg) ||
       check_material(c, cfg) || check_boundary(c, cfg) || check_outlet(c, cfg) ||
-      check_wall(c, cfg) || check_region(c, cfg))
+      check_wall(c, cfg) || check_region(c, cfg) || check_dimension(c, cfg))
     return MPM_EINPUT;
   resolve_stop(c, cfg);
   for (int i = 0; i < cfg->nfill; i++)

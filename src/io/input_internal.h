@@ -76,7 +76,9 @@ enum key_flag {
   KF_HI_OPEN = 4,   /* value < hi rather than <= hi */
   KF_RHO_C = 8,     /* default: material.rho_c */
   KF_T0X10 = 16,    /* default: 10 material.t0 */
-  KF_ZERO_OFF = 32  /* 0 ("off", "from another key") or a value in the range */
+  KF_ZERO_OFF = 32, /* 0 ("off", "from another key") or a value in the range */
+  KF_3D = 64        /* a key of 3D runs (mesh.nz > 0): refused in a plane run, and
+                       left out of its resolved input (mesh.nz itself too when 0) */
 };
 
 /* Fill shapes that use a key (0: every shape). */
@@ -94,7 +96,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 91
+#define NKEYS 100
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];

@@ -40,6 +40,9 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_MESH, KT_REAL, "y0", C_(mesh.y0), 0, -1e9, 1e9, 0, "m"),
     NUM(S_MESH, KT_REAL, "dx", C_(mesh.dx), 0, 1e-6, 1e6, KF_REQUIRED, "m"),
     NUM(S_MESH, KT_REAL, "dy", C_(mesh.dy), 0, 1e-6, 1e6, KF_REQUIRED, "m"),
+    NUM(S_MESH, KT_INT, "nz", C_(mesh.nz), 0, 1, 100000, KF_ZERO_OFF | KF_3D, "-"),
+    NUM(S_MESH, KT_REAL, "z0", C_(mesh.z0), 0, -1e9, 1e9, KF_3D, "m"),
+    NUM(S_MESH, KT_REAL, "dz", C_(mesh.dz), 0, 1e-6, 1e6, KF_ZERO_OFF | KF_3D, "m"),
     NAMED(S_MESH, KT_NAME, "topology", C_(mesh.topology), NK_TOPOLOGY, "q4"),
     NAMED(S_MESH, KT_NAME, "diagonal", C_(mesh.diagonal), NK_DIAGONAL, "/"),
     NUM(S_MESH, KT_REAL, "mirror_x", C_(mesh.mirror_x), 0, -1e9, 1e9, 0, "m"),
@@ -56,6 +59,7 @@ const key_def mpm_io_in_keys[] = {
 
     NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
     NUM(S_GRAVITY, KT_REAL, "gy", C_(gravity.gy), -9.8, -1e5, 1e5, 0, "m/s^2"),
+    NUM(S_GRAVITY, KT_REAL, "gz", C_(gravity.gz), 0, -1e5, 1e5, KF_3D, "m/s^2"),
     NUM(S_GRAVITY, KT_REAL, "angle", C_(gravity.angle), 0, -90, 90, 0, "deg"),
     NUM(S_GRAVITY, KT_REAL, "g", C_(gravity.g), 9.8, 0, 1e5, 0, "m/s^2"),
     NUM(S_GRAVITY, KT_REAL, "t_ramp", C_(gravity.t_ramp), 0.1, 0, 1e9, 0, "s"),
@@ -90,6 +94,10 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "bottom", C_(bc.bottom), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "top", C_(bc.top), NK_BC, "free"),
+    {.name = "front", .sec = S_BOUNDARY, .type = KT_ENUM, .off = C_(bc.front), .kind = NK_BC,
+     .sdef = "free", .flags = KF_3D},
+    {.name = "back", .sec = S_BOUNDARY, .type = KT_ENUM, .off = C_(bc.back), .kind = NK_BC,
+     .sdef = "free", .flags = KF_3D},
     NAMED(S_BOUNDARY, KT_ENUM, "wall_acceleration", C_(bc.wall_acceleration), NK_WALL_ACC,
           "jump"),
 
@@ -107,6 +115,9 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_FILL, KT_REAL, "density", F_(density), 0, 1, 1e5, KF_RHO_C, "kg/m^3"),
     NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
     NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
+    NUM(S_FILL, KT_REAL, "zmin", F_(zmin), 0, -1e9, 1e9, KF_3D, "m"),
+    NUM(S_FILL, KT_REAL, "zmax", F_(zmax), 0, -1e9, 1e9, KF_3D, "m"),
+    NUM(S_FILL, KT_REAL, "vz", F_(vz), 0, -1e4, 1e4, KF_3D, "m/s"),
     NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
     NUM(S_FILL, KT_REAL, "pressure", F_(pressure), 0, 0, 1e9, 0, "Pa"),
 

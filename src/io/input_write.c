@@ -66,7 +66,8 @@ static void write_section(FILE *f, const mpm_config *cfg, int s)
 {
   fprintf(f, "%s {\n", mpm_io_in_sec_names[s]);
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_io_in_keys[k].sec != s || derived_key(cfg, &mpm_io_in_keys[k]))
+    if (mpm_io_in_keys[k].sec != s || derived_key(cfg, &mpm_io_in_keys[k]) ||
+        ((mpm_io_in_keys[k].flags & KF_3D) && cfg->mesh.nz == 0))
       continue;
     if (mpm_io_in_keys[k].type == KT_PATH) {
       fprintf(f, "  %s = ", mpm_io_in_keys[k].name);
@@ -79,7 +80,7 @@ static void write_section(FILE *f, const mpm_config *cfg, int s)
   fputs("}\n", f);
 }
 
-static void write_fill(FILE *f, const mpm_fill_config *fc, int i)
+static void write_fill(FILE *f, const mpm_fill_config *fc, int i, int dim3)
 {
   if (mpm_io_in_valid_title(fc->name))
     fprintf(f, "fill %s {\n", fc->name);
@@ -89,7 +90,8 @@ static void write_fill(FILE *f, const mpm_fill_config *fc, int i)
   int nvert = fc->nvert < 0 ? 0 : fc->nvert > MPM_MAX_POLY ? MPM_MAX_POLY : fc->nvert;
   for (int k = 0; k < NKEYS; k++)
     if (mpm_io_in_keys[k].sec == S_FILL &&
-        (!mpm_io_in_keys[k].shapes || (mpm_io_in_keys[k].shapes & mask)))
+        (!mpm_io_in_keys[k].shapes || (mpm_io_in_keys[k].shapes & mask)) &&
+        (dim3 || !(mpm_io_in_keys[k].flags & KF_3D)))
       write_key(f, fc, &mpm_io_in_keys[k], nvert);
   fputs("}\n", f);
 }
@@ -110,7 +112,7 @@ int mpm_io_input_write(FILE *f, const mpm_config *cfg)
       write_section(f, cfg, s);
     else
       for (int i = 0; i < cfg->nfill && i < MPM_MAX_FILLS; i++)
-        write_fill(f, &cfg->fill[i], i);
+        write_fill(f, &cfg->fill[i], i, cfg->mesh.nz > 0);
   }
   return ferror(f) ? MPM_EIO : MPM_OK;
 }

@@ -40,17 +40,16 @@ void mpm_mesh_bands_free(mpm_mesh_bands *b)
  * last two bands merge when it is odd), so the colours alternate round it;
  * one band when the rows are too few for two. One colour when lo + hi = 0
  * (each row writes only to itself). */
-static void band_layout(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi)
+static void band_layout(mpm_mesh_bands *b, int ny, int periodic, int lo, int hi)
 {
-  const int ny = m->ny;
   int h = lo + hi > 1 ? lo + hi : 1;
   int nb = ny / h;
   if (nb < 1)
     nb = 1;
   b->ncolour = lo + hi > 0 ? 2 : 1;
-  if (b->ncolour == 2 && m->periodic_y && nb % 2 == 1)
+  if (b->ncolour == 2 && periodic && nb % 2 == 1)
     nb = nb > 1 ? nb - 1 : 1;
-  if (b->ncolour == 2 && m->periodic_y && nb == 1)
+  if (b->ncolour == 2 && periodic && nb == 1)
     b->ncolour = 1;               /* one band wraps onto itself: one thread takes it */
   b->h = h;
   b->nb = nb;
@@ -61,21 +60,21 @@ static void band_layout(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi)
   }
 }
 
-int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, size_t n,
+int mpm_mesh_bands_sort(mpm_mesh_bands *b, int ny, int periodic, int lo, int hi, size_t n,
                         const int *row, mpm_err *err)
 {
   if (n > (size_t)INT_MAX)
     return mpm_err_set(err, MPM_ENOMEM, "bands: %zu points, at most %d", n, INT_MAX);
-  if (m->ny > b->rcap) {
-    int *r = realloc(b->band_of_row, (size_t)m->ny * sizeof *r);
-    int *st = realloc(b->start, ((size_t)m->ny + 1) * sizeof *st);
+  if (ny > b->rcap) {
+    int *r = realloc(b->band_of_row, (size_t)ny * sizeof *r);
+    int *st = realloc(b->start, ((size_t)ny + 1) * sizeof *st);
     if (r)
       b->band_of_row = r;
     if (st)
       b->start = st;
     if (!r || !st)
-      return mpm_err_set(err, MPM_ENOMEM, "bands: no memory for %d rows", m->ny);
-    b->rcap = m->ny;
+      return mpm_err_set(err, MPM_ENOMEM, "bands: no memory for %d rows", ny);
+    b->rcap = ny;
   }
   if (n > b->cap) {
     int *ix = realloc(b->idx, n * sizeof *ix);
@@ -84,8 +83,8 @@ int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, si
     b->idx = ix;
     b->cap = n;
   }
-  if (b->ny != m->ny || b->lo != lo || b->hi != hi) {
-    band_layout(b, m, lo, hi);
+  if (b->ny != ny || b->lo != lo || b->hi != hi) {
+    band_layout(b, ny, periodic, lo, hi);
     b->lo = lo;
     b->hi = hi;
   }

@@ -67,3 +67,14 @@ int mpm_mesh3_basis(const mpm_mesh3 *m, const double x[3], int node[8], double N
     return -1;
   return mpm_mesh3_basis_at(m, u, l, node, N, dNx, dNy, dNz);
 }
+
+int mpm_mesh3_from_config(mpm_mesh3 *m, const mpm_config *cfg, mpm_err *err)
+{
+  *m = (mpm_mesh3){.nx = cfg->mesh.nx, .ny = cfg->mesh.ny, .nz = cfg->mesh.nz,
+                   .x0 = cfg->mesh.x0, .y0 = cfg->mesh.y0, .z0 = cfg->mesh.z0,
+                   .dx = cfg->mesh.dx, .dy = cfg->mesh.dy, .dz = cfg->mesh.dz,
+                   .periodic_x = cfg->bc.left == MPM_BC_PERIODIC,
+                   .periodic_y = cfg->bc.bottom == MPM_BC_PERIODIC,
+                   .periodic_z = cfg->bc.front == MPM_BC_PERIODIC};
+  return mpm_mesh3_setup(m, err);
+}

@@ -19,6 +19,7 @@
 #ifndef MPM_MESH_BOX_H
 #define MPM_MESH_BOX_H
 
+#include "core/config.h"
 #include "core/error.h"
 #include "mesh/mesh.h"
 
@@ -37,6 +38,11 @@ typedef struct mpm_mesh3 {
 /* Validate the caller's fields and fill the derived ones (MPM_EINPUT names
  * the field, as mpm_mesh_setup does). */
 int mpm_mesh3_setup(mpm_mesh3 *m, mpm_err *err);
+
+/* The box mesh of a 3D input (mesh.nz > 0): units and origin of the mesh
+ * section, periodic axes where boundary.left, .bottom, .front are
+ * "periodic"; set up (errors as mpm_mesh3_setup; err may be NULL). */
+int mpm_mesh3_from_config(mpm_mesh3 *m, const mpm_config *cfg, mpm_err *err);
 
 /* Storage index of logical node (i, j, k), with periodic aliasing (any
  * integer index along a periodic axis). */

@@ -173,18 +173,21 @@ double mpm_mesh_axis_wrap(double s, double len)
   return s;
 }
 
+void mpm_mesh_axis_wrap_coord(double *x, double o, double len)
+{
+  if (!isfinite(*x))
+    return;
+  double s = *x - o;
+  if (!(s >= 0.0 && s < len))
+    *x = o + mpm_mesh_axis_wrap(s, len);
+}
+
 void mpm_mesh_wrap(const mpm_mesh *m, double *x, double *y)
 {
-  if (m->periodic_x && isfinite(*x)) {
-    double s = *x - m->x0;
-    if (!(s >= 0.0 && s < m->lx))
-      *x = m->x0 + mpm_mesh_axis_wrap(s, m->lx);
-  }
-  if (m->periodic_y && isfinite(*y)) {
-    double s = *y - m->y0;
-    if (!(s >= 0.0 && s < m->ly))
-      *y = m->y0 + mpm_mesh_axis_wrap(s, m->ly);
-  }
+  if (m->periodic_x)
+    mpm_mesh_axis_wrap_coord(x, m->x0, m->lx);
+  if (m->periodic_y)
+    mpm_mesh_axis_wrap_coord(y, m->y0, m->ly);
 }
 
 int mpm_mesh_unit(const mpm_mesh *m, double x, double y, int *i, int *j)

@@ -77,6 +77,10 @@ int mpm_mesh_basis(const mpm_mesh *m, double x, double y,
  * round-off of a tiny negative s is the same point: 0). */
 double mpm_mesh_axis_wrap(double s, double len);
 
+/* A coordinate x along a periodic axis of origin o and length len wrapped
+ * into [o, o + len) (left alone if not finite: the health check reports it). */
+void mpm_mesh_axis_wrap_coord(double *x, double o, double len);
+
 /* Unit k in [0, n-1] and local coordinate u in [0, 1] at distance s in
  * [0, n/ih] from the start of an axis of n units of size 1/ih (a point on
  * the upper end belongs to the last unit). */
@@ -309,9 +313,10 @@ typedef struct mpm_mesh_bands {
 mpm_mesh_bands *mpm_mesh_bands_alloc(void);
 void mpm_mesh_bands_free(mpm_mesh_bands *b);  /* accepts NULL */
 
-/* Bin n points by their unit rows row[p] (0 <= row[p] < m->ny) for writes
- * to rows row - lo .. row + hi. */
-int mpm_mesh_bands_sort(mpm_mesh_bands *b, const mpm_mesh *m, int lo, int hi, size_t n,
+/* Bin n points by their unit rows row[p] (0 <= row[p] < ny, the rows of
+ * an axis, periodic or not: the y axis of a plane mesh, the z layers of a
+ * box mesh) for writes to rows row - lo .. row + hi. */
+int mpm_mesh_bands_sort(mpm_mesh_bands *b, int ny, int periodic, int lo, int hi, size_t n,
                         const int *row, mpm_err *err);
 
 #endif

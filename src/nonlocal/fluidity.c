@@ -329,7 +329,7 @@ int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, c
                        2.0 * (fabs(r[1][p]) + fabs(r[3][p])));
   }
   /* the rows a point's shares reach: its own, and one either side with extents */
-  return mpm_mesh_bands_sort(ws->bands, m, ext, ext, n, ws->row, err);
+  return mpm_mesh_bands_sort(ws->bands, m->ny, m->periodic_y, ext, ext, n, ws->row, err);
 }
 
 int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,

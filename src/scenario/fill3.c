@@ -9,6 +9,8 @@
  * is x, y or z. The stress starts at zero. A region must lie in the mesh,
  * periodic axes included: a fill that only covers the mesh's part of it
  * would silently lose material. */
+#include <string.h>
+
 #include "scenario/scenario.h"
 #include "scenario/scenario_internal.h"
 
@@ -170,4 +172,28 @@ int mpm_scenario_fill3(mpm_points *pts, const mpm_mesh3 *m, const mpm_fill3_regi
     return mpm_err_set(err, MPM_ENOMEM, "fill3: out of memory for %zu points", pts->n + count);
   visit(f, m, pts);
   return MPM_OK;
+}
+
+void mpm_scenario_region3(const mpm_fill_config *f, mpm_fill3_region *r)
+{
+  memset(r, 0, sizeof *r);
+  if (f->shape == MPM_FILL_DISC) {
+    r->shape = MPM_FILL3_CYLINDER;
+    r->axis = 2;
+    r->centre[0] = f->cx;
+    r->centre[1] = f->cy;
+    r->centre[2] = 0.5 * (f->zmin + f->zmax);
+    r->radius = f->radius;
+    r->length = f->zmax - f->zmin;
+  } else {
+    r->shape = MPM_FILL3_BOX;
+    const double lo[3] = {f->xmin, f->ymin, f->zmin}, hi[3] = {f->xmax, f->ymax, f->zmax};
+    memcpy(r->lo, lo, sizeof lo);
+    memcpy(r->hi, hi, sizeof hi);
+  }
+  r->ppu = f->ppu;
+  r->density = f->density;
+  r->v[0] = f->vx;
+  r->v[1] = f->vy;
+  r->v[2] = f->vz;
 }

@@ -37,7 +37,7 @@ int mpm_scenario_inside(const mpm_fill_config *f, double x, double y);
 
 enum mpm_fill3_shape { MPM_FILL3_BOX = 0, MPM_FILL3_CYLINDER };
 
-/* A region of a 3D fill and its material; no input keys read it yet. */
+/* A region of a 3D fill and its material. */
 typedef struct mpm_fill3_region {
   int shape;                   /* enum mpm_fill3_shape */
   double lo[3], hi[3];         /* box [lo_x, hi_x] x [lo_y, hi_y] x [lo_z, hi_z] [m] */
@@ -61,5 +61,9 @@ int mpm_scenario_fill3(mpm_points *pts, const mpm_mesh3 *m, const mpm_fill3_regi
 /* The number of points mpm_scenario_fill3 appends for f on m (0 when it
  * would refuse f). */
 size_t mpm_scenario_count3(const mpm_fill3_region *f, const mpm_mesh3 *m);
+
+/* The 3D region of a fill section of a 3D input (mesh.nz > 0): a rectangle
+ * extruded over [zmin, zmax] is a box, a disc a cylinder along z. */
+void mpm_scenario_region3(const mpm_fill_config *f, mpm_fill3_region *r);
 
 #endif

@@ -40,13 +40,11 @@ static int grow(void **a, size_t n, size_t sz)
   return MPM_OK;
 }
 
-/* Make room for cap points at width w; on failure the old arrays stay valid
- * (with the old cap). */
-static int stencil_reserve(mpm_shape_stencil *st, size_t cap, int w)
+int mpm_shape_stencil_reserve(mpm_shape_stencil *st, size_t cap, int w, int dim)
 {
   if (cap == 0)
     cap = 1;
-  if (cap > SIZE_MAX / (MPM_STENCIL_W * sizeof(double)))
+  if (w < 1 || cap > SIZE_MAX / ((size_t)w * sizeof(double)))
     return MPM_ENOMEM;
   const size_t slots = cap * (size_t)w;
   if (cap > st->cap || !st->count) {
@@ -54,11 +52,12 @@ static int stencil_reserve(mpm_shape_stencil *st, size_t cap, int w)
         grow((void **)&st->row, cap, sizeof *st->row) != MPM_OK)
       return MPM_ENOMEM;
   }
-  if (slots > st->wcap || !st->node) {
+  if (slots > st->wcap || !st->node || (dim == 3 && !st->dSz)) {
     if (grow((void **)&st->node, slots, sizeof *st->node) != MPM_OK ||
         grow((void **)&st->S, slots, sizeof *st->S) != MPM_OK ||
         grow((void **)&st->dSx, slots, sizeof *st->dSx) != MPM_OK ||
-        grow((void **)&st->dSy, slots, sizeof *st->dSy) != MPM_OK)
+        grow((void **)&st->dSy, slots, sizeof *st->dSy) != MPM_OK ||
+        (dim == 3 && grow((void **)&st->dSz, slots, sizeof *st->dSz) != MPM_OK))
       return MPM_ENOMEM;
     st->wcap = slots;
   }
@@ -73,7 +72,7 @@ mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap)
   mpm_shape_stencil *st = calloc(1, sizeof *st);
   if (!st)
     return NULL;
-  if (cap > 0 && stencil_reserve(st, cap, MPM_STENCIL_W) != MPM_OK) {
+  if (cap > 0 && mpm_shape_stencil_reserve(st, cap, MPM_STENCIL_W, 2) != MPM_OK) {
     mpm_shape_stencil_free(st);
     return NULL;
   }
@@ -91,6 +90,7 @@ void mpm_shape_stencil_free(mpm_shape_stencil *st)
   free(st->S);
   free(st->dSx);
   free(st->dSy);
+  free(st->dSz);
   free(st);
 }
 
@@ -129,7 +129,7 @@ int mpm_shape_stencil_compute(mpm_shape_stencil *st, const mpm_shape_type *type,
                        "mesh or points");
   int w, reach;
   type->span(m, pts, &w, &reach);
-  if (stencil_reserve(st, pts->n, w) != MPM_OK)
+  if (mpm_shape_stencil_reserve(st, pts->n, w, 2) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "stencil for %zu points: out of memory",
                        pts->n);
   st->reach = reach;

@@ -89,8 +89,10 @@ extern const mpm_shape_type *const mpm_shape_table[];
 const mpm_shape_type *mpm_shape_lookup(const char *name);
 
 /* Point p's nodes are node[p w .. p w + count[p]), their weights and
- * gradients at the same places of S, dSx, dSy: w is the width of the shape
- * for the points (span), so a stencil takes w (4 + 3 x 8) bytes a point. */
+ * gradients at the same places of S, dSx, dSy (and dSz on a 3D mesh, NULL
+ * on a plane one): w is the width of the shape for the points (span), so a
+ * plane stencil takes w (4 + 3 x 8) bytes a point. The 3D one is computed by
+ * mpm_shape3_stencil_compute (shape3.h), its row the unit layer along z. */
 typedef struct mpm_shape_stencil {
   size_t cap;     /* points it has room for, at width w */
   int w;          /* slots per point */
@@ -98,12 +100,16 @@ typedef struct mpm_shape_stencil {
   int *count;     /* [cap] nodes per point */
   int *row;       /* [cap] unit row of each point's centre */
   int *node;      /* [cap * w] storage node ids */
-  double *S, *dSx, *dSy;  /* [cap * w] */
+  double *S, *dSx, *dSy, *dSz;  /* [cap * w]; dSz only in 3D */
   size_t wcap;    /* room in node, S, dSx, dSy (entries) */
 } mpm_shape_stencil;
 
 mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap);
 void mpm_shape_stencil_free(mpm_shape_stencil *st);  /* accepts NULL */
+
+/* Room for cap points at width w in dimension dim (2 or 3: dSz too); on
+ * failure (MPM_ENOMEM) the old arrays stay valid. */
+int mpm_shape_stencil_reserve(mpm_shape_stencil *st, size_t cap, int w, int dim);
 
 /* Stencil of every point (grows st as needed; sets w and reach from the
  * shape's span). A point outside the mesh is MPM_EOUTSIDE with a message

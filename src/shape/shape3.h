@@ -10,7 +10,8 @@
  *          r3 (8 corners, corners.h), the extent fixed as filled;
  *   cpdi   CPDI1: the same rule, the extent convected by the deformation
  *          (mpm_shape_extent_convect_dim with D = 3).
- * Only the weights exist: no 3D point store, stencil or transfer yet. */
+ * mpm_shape3_stencil_compute stores them for every point of a 3D store, in
+ * the stencil of shape.h. */
 #ifndef MPM_SHAPE_SHAPE3_H
 #define MPM_SHAPE_SHAPE3_H
 
@@ -51,5 +52,14 @@ extern const mpm_shape3_type *const mpm_shape3_table[];
 
 /* Variant by name, NULL if unknown. */
 const mpm_shape3_type *mpm_shape3_lookup(const char *name);
+
+/* The stencil of every point of the 3D store pts (grows st; w the largest
+ * width the shape's span gives one of the points, reach the largest reach;
+ * row[p] the unit layer along z of the point's centre). A point outside a
+ * non-periodic face, or with a non-finite position or extent, is
+ * MPM_EOUTSIDE naming the point, its position and time t. */
+int mpm_shape3_stencil_compute(mpm_shape_stencil *st, const mpm_shape3_type *type,
+                               const mpm_mesh3 *m, const mpm_points *pts, double t,
+                               mpm_err *err);
 
 #endif

@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_solver.la
 libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h src/solver/remove.c \
-	src/solver/transfer.c src/solver/transfer.h src/solver/transfer.inc src/solver/health.c src/solver/plan.c src/solver/state.c
+	src/solver/transfer.c src/solver/transfer3.c src/solver/step3.c src/solver/transfer.h src/solver/transfer.inc src/solver/health.c src/solver/plan.c src/solver/state.c
 
 check_PROGRAMS += tests/test_solver
 TESTS += tests/test_solver

@@ -84,11 +84,18 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   mpm_mesh m;
   if (mpm_mesh_from_config(&m, cfg, NULL) != MPM_OK)
     return;
+  const int dim3 = cfg->mesh.nz > 0;
+  mpm_mesh3 m3;
+  if (dim3 && mpm_mesh3_from_config(&m3, cfg, NULL) != MPM_OK)
+    return;
   for (int f = 0; f < cfg->nfill; f++) {
-    sz->fill_points[f] = mpm_scenario_count(&cfg->fill[f], &m);
+    mpm_fill3_region r;
+    if (dim3)
+      mpm_scenario_region3(&cfg->fill[f], &r);
+    sz->fill_points[f] = dim3 ? mpm_scenario_count3(&r, &m3) : mpm_scenario_count(&cfg->fill[f], &m);
     sz->points += sz->fill_points[f];
   }
-  sz->nodes = (long)(cfg->mesh.nx + 1) * (cfg->mesh.ny + 1);
+  sz->nodes = (long)(cfg->mesh.nx + 1) * (cfg->mesh.ny + 1) * (dim3 ? cfg->mesh.nz + 1 : 1);
   sz->dt_stable = mpm_sim_stable_dt(cfg);
   int n_sub;
   mpm_sim_time_plan(cfg, &sz->dt, &n_sub);

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "bc/bc.h"
+#include "bc/bc3.h"
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
@@ -22,6 +23,7 @@
 #include "nonlocal/field.h"
 #include "nonlocal/nonlocal.h"
 #include "shape/shape.h"
+#include "shape/shape3.h"
 
 typedef struct mpm_sim {
   mpm_config cfg;                 /* resolved input (copy) */
@@ -49,6 +51,15 @@ typedef struct mpm_sim {
   double *nm;                     /* m_i */
   double (*nq)[4];                /* after point-to-grid ((mv)_x, (mv)_y, f_x, f_y),
                                    * after the grid update (v_x, v_y, a_x, a_y) */
+
+  /* A 3D run (dim = 3, mesh.nz > 0; step3.c): the box mesh, its faces'
+   * conditions and shape, and its nodal records; mesh, bc and shape above
+   * stay empty (the plane step never reads these). nm is shared. */
+  int dim;                        /* 2 or 3 */
+  mpm_mesh3 mesh3;
+  mpm_bc3 bc3;
+  const mpm_shape3_type *shape3;
+  double (*nq3)[6];               /* [mesh3.nnodes] ((mv), f), then (v, a) */
 
   /* constitutive substepping and the nonlocal fluidity (MODEL.md section 5) */
   int n_sub;                      /* constitutive substeps per step, L fixed */
@@ -128,11 +139,19 @@ typedef struct mpm_sim_size {
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
 
-/* Gravity vector at time t (linear ramp over t_ramp). */
+/* Gravity vector at time t (linear ramp over t_ramp): its plane
+ * components, or all three. */
 void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy);
+void mpm_sim_gravity3(const mpm_sim *s, double t, double g[3]);
 
 /* One explicit USL step of length s->dt. */
 int mpm_sim_step(mpm_sim *s, mpm_err *err);
+
+/* The 3D module (step3.c): mpm_sim_create's part for a 3D input (mesh,
+ * faces, shape, points and nodal records of s->cfg), and the step that
+ * mpm_sim_step takes for it. */
+int mpm_sim3_build(mpm_sim *s, mpm_err *err);
+int mpm_sim3_step(mpm_sim *s, mpm_err *err);
 
 /* Frame callback of the run driver, called at t = 0, every frame_dt and at the end. */
 typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);

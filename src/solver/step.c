@@ -57,10 +57,12 @@ static double stable_dt(const mpm_config *cfg, const mpm_material_params *par, d
   for (int f = 0; f < cfg->nfill; f++) {
     const mpm_fill_config *fc = &cfg->fill[f];
     if (fc->density > rho) rho = fc->density;
-    double v = hypot(fc->vx, fc->vy);
+    double v = hypot(hypot(fc->vx, fc->vy), fc->vz);
     if (v > vmax) vmax = v;
   }
   double h = fmin(cfg->mesh.dx, cfg->mesh.dy);
+  if (cfg->mesh.nz > 0)
+    h = fmin(h, cfg->mesh.dz);
   return cfl * h / (mpm_material_wave_speed(par, rho) + vmax);
 }
 
@@ -146,14 +148,11 @@ static int density_alloc(mpm_sim *s, mpm_err *err)
   return L_alloc(s, err);
 }
 
-int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
+/* mpm_sim_create's part for a plane input: mesh, edges, walls, shape,
+ * points, nodal records and the workspaces of the options. */
+static int build_plane(mpm_sim *s, mpm_err *err)
 {
-  *out = NULL;
-  mpm_sim *s = calloc(1, sizeof *s);
-  if (!s)
-    return mpm_err_set(err, MPM_ENOMEM, "simulation: out of memory");
-  s->cfg = *cfg;
-  s->scan = MPM_SIM_SCAN_ALL;
+  const mpm_config *cfg = &s->cfg;
   int rc = mpm_mesh_from_config(&s->mesh, cfg, err);
   if (rc == MPM_OK) {
     int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
@@ -167,12 +166,6 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
                             cfg->wall.kind, NULL, err);
   if (rc == MPM_OK && !(s->shape = mpm_shape_lookup(cfg->mesh.shape)))
     rc = mpm_err_set(err, MPM_EINPUT, "mesh.shape '%s' unknown", cfg->mesh.shape);
-  if (rc == MPM_OK && !(s->mat = mpm_material_lookup(cfg->material.model)))
-    rc = mpm_err_set(err, MPM_EINPUT, "material.model '%s' unknown", cfg->material.model);
-  if (rc == MPM_OK) {
-    mpm_material_params_from_config(&s->par, cfg);
-    rc = s->mat->check(&s->par, err);
-  }
   if (rc == MPM_OK && !(s->pts = mpm_points_alloc(1024)))
     rc = mpm_err_set(err, MPM_ENOMEM, "points: out of memory");
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++)
@@ -189,6 +182,29 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   if (rc == MPM_OK && cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
       !(s->usum = malloc(2 * (size_t)s->mesh.nx * (size_t)s->mesh.ny * sizeof *s->usum)))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
+  return rc;
+}
+
+int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
+{
+  *out = NULL;
+  mpm_sim *s = calloc(1, sizeof *s);
+  if (!s)
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: out of memory");
+  s->cfg = *cfg;
+  s->scan = MPM_SIM_SCAN_ALL;
+  s->dim = cfg->mesh.nz > 0 ? 3 : 2;
+  int rc = MPM_OK;
+  if (!(s->mat = mpm_material_lookup(cfg->material.model)))
+    rc = mpm_err_set(err, MPM_EINPUT, "material.model '%s' unknown", cfg->material.model);
+  if (rc == MPM_OK) {
+    mpm_material_params_from_config(&s->par, cfg);
+    rc = s->mat->check(&s->par, err);
+  }
+  if (rc == MPM_OK)
+    rc = s->dim == 3 ? mpm_sim3_build(s, err) : build_plane(s, err);
+  if (rc == MPM_OK && s->pts->n == 0)
+    rc = mpm_err_set(err, MPM_EINPUT, "the fills hold no point");
   if (rc != MPM_OK) {
     mpm_sim_free(s);
     return rc;
@@ -197,7 +213,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   for (size_t p = 0; p < s->pts->n; p++)
     s->mass0 += s->pts->mass[p];
   s->mtiny = 1e-12 * s->mass0 / (double)s->pts->n;          /* skip nodes lighter than this */
-  if (s->shape->at_point)                                    /* body force only below this */
+  if (s->dim == 3 ? s->shape3->at_point : s->shape->at_point)  /* body force only below this */
     s->mlight = 1e-3 * s->mass0 / (double)s->pts->n;
   *out = s;
   return MPM_OK;
@@ -208,6 +224,7 @@ void mpm_sim_free(mpm_sim *s)
   if (!s)
     return;
   mpm_bc_clear(&s->bc);
+  mpm_bc3_clear(&s->bc3);
   mpm_points_free(s->pts);
   mpm_shape_stencil_free(s->st);
   mpm_mesh_bands_free(s->bands);
@@ -228,15 +245,25 @@ void mpm_sim_free(mpm_sim *s)
   free(s->scratch);
   free(s->nm);
   free(s->nq);
+  free(s->nq3);
   free(s);
+}
+
+void mpm_sim_gravity3(const mpm_sim *s, double t, double g[3])
+{
+  double r = s->cfg.gravity.t_ramp;
+  double f = (r > 0.0 && t < r) ? t / r : 1.0;             /* linear ramp 0 -> 1 over t_ramp */
+  g[0] = f * s->cfg.gravity.gx;
+  g[1] = f * s->cfg.gravity.gy;
+  g[2] = f * s->cfg.gravity.gz;
 }
 
 void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy)
 {
-  double r = s->cfg.gravity.t_ramp;
-  double f = (r > 0.0 && t < r) ? t / r : 1.0;             /* linear ramp 0 -> 1 over t_ramp */
-  *gx = f * s->cfg.gravity.gx;
-  *gy = f * s->cfg.gravity.gy;
+  double g[3];
+  mpm_sim_gravity3(s, t, g);
+  *gx = g[0];
+  *gy = g[1];
 }
 
 /* ---- the step ------------------------------------------------------------ */
@@ -596,7 +623,7 @@ static int step(mpm_sim *s, mpm_err *err)
 
 int mpm_sim_step(mpm_sim *s, mpm_err *err)
 {
-  const int rc = step(s, err);
+  const int rc = s->dim == 3 ? mpm_sim3_step(s, err) : step(s, err);
   s->scan = MPM_SIM_SCAN_ALL;                /* outside a step nothing is known */
   return rc;
 }

@@ -160,7 +160,7 @@ int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
     reach = s->st->reach;
   }
   /* node rows j - reach .. j + 1 + reach of a point in unit row j */
-  return mpm_mesh_bands_sort(s->bands, &s->mesh, reach, reach + 1, P->n, row, err);
+  return mpm_mesh_bands_sort(s->bands, s->mesh.ny, s->mesh.periodic_y, reach, reach + 1, P->n, row, err);
 }
 
 /* ---- reordering ------------------------------------------------------------ */
@@ -195,7 +195,7 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
     double v;
     mpm_mesh_axis_locate(P->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y, &row[p], &v);
   }
-  int rc = mpm_mesh_bands_sort(s->bands, &s->mesh, 0, 0, n, row, err);  /* one row a band */
+  int rc = mpm_mesh_bands_sort(s->bands, s->mesh.ny, s->mesh.periodic_y, 0, 0, n, row, err);  /* one row a band */
   if (rc == MPM_OK)
     mpm_points_permute(P, s->bands->idx, s->scratch);
   return rc;
@@ -432,28 +432,50 @@ static void p2g_band_of(const mpm_sim *s, int k, int kind, double bx, double by)
 }
 
 /* Steps 2-3 in one parallel region: clear the nodes, each colour's bands in
- * parallel, the colours in turn, then the grid update by nodes. */
-void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
+ * parallel, the colours in turn, then the grid update by nodes; dim (a
+ * constant at each call) picks the plane or the 3D records and kernels. */
+static inline void grid_phase(mpm_sim *s, int dim, const double b[3])
 {
   const int kind = mpm_sim_in_kind(s);
-  const mpm_mesh_bands *b = s->bands;
-  const int nn = s->mesh.nnodes;
+  const mpm_mesh_bands *bd = s->bands;
+  const int nn = dim == 3 ? s->mesh3.nnodes : s->mesh.nnodes;
   const double idt = s->cfg.bc.wall_acceleration == MPM_WALL_ZERO ? 0.0 : 1.0 / s->dt;
 #pragma omp parallel
   {
 #pragma omp for schedule(static)
     for (int i = 0; i < nn; i++) {
       s->nm[i] = 0.0;
-      s->nq[i][0] = s->nq[i][1] = s->nq[i][2] = s->nq[i][3] = 0.0;
+      if (dim == 3)
+        memset(s->nq3[i], 0, sizeof s->nq3[i]);
+      else
+        s->nq[i][0] = s->nq[i][1] = s->nq[i][2] = s->nq[i][3] = 0.0;
     }
-    for (int col = 0; col < b->ncolour; col++) {
+    for (int col = 0; col < bd->ncolour; col++) {
 #pragma omp for schedule(dynamic, 1)
-      for (int k = col; k < b->nb; k += b->ncolour)
-        p2g_band_of(s, k, kind, bx, by);
+      for (int k = col; k < bd->nb; k += bd->ncolour) {
+        if (dim == 3)
+          mpm_sim_in_p2g_band3(s, k, b);
+        else
+          p2g_band_of(s, k, kind, b[0], b[1]);
+      }
     }
 #pragma omp for schedule(static)
-    for (int i = 0; i < nn; i++)
-      grid_node(s, i, bx, by, idt);
+    for (int i = 0; i < nn; i++) {
+      if (dim == 3)
+        mpm_sim_in_grid_node3(s, i, b, idt);
+      else
+        grid_node(s, i, b[0], b[1], idt);
+    }
   }
 }
 
+void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
+{
+  const double b[3] = {bx, by, 0.0};
+  grid_phase(s, 2, b);
+}
+
+void mpm_sim_in_grid3(mpm_sim *s, const double b[3])
+{
+  grid_phase(s, 3, b);
+}

@@ -251,4 +251,14 @@ void mpm_sim_in_unit_project(mpm_sim *s);
  * boundary conditions; body force (bx, by). */
 void mpm_sim_in_grid(mpm_sim *s, double bx, double by);
 
+/* The same for a 3D run (body force b), and its parts for one band of unit
+ * layers and one node (transfer3.c). */
+void mpm_sim_in_grid3(mpm_sim *s, const double b[3]);
+void mpm_sim_in_p2g_band3(const mpm_sim *s, int k, const double b[3]);
+void mpm_sim_in_grid_node3(mpm_sim *s, int i, const double b[3], double idt);
+
+/* Step 4 for point p of a 3D run (transfer.inc's gather): the grid velocity
+ * vg and acceleration ag at it, and L_p (row-major, L[3 i + j] = dv_i/dx_j). */
+void mpm_sim_in_gather3(const mpm_sim *s, size_t p, double vg[3], double ag[3], double L[9]);
+
 #endif
