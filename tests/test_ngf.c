@@ -503,16 +503,22 @@ START_TEST(t_check_and_table)
   ck_assert_int_eq(mpm_material_ngf.check(&par, &err), MPM_OK);
   /* A^2 d^2/t0 = 0.48^2 0.005^2 / 1e-3 = 5.76e-3 m^2/s; dx = dy = 1 mm:
    * 2/dx^2 + 2/dy^2 = 4e6 1/m^2; dt = 1e-4 s: 2.304 / n_sub */
-  double r = mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 1e-3, 1e-3);
+  double r = mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 1e-3, 1e-3, 0.0);
   ck_assert_double_eq_tol(r, 2.304, 1e-12);
-  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 3, 1e-3, 1e-3), 0.768,
+  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 3, 1e-3, 1e-3, 0.0), 0.768,
                           1e-12);
-  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 2e-3, 1e-3), 1.44,
+  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 2e-3, 1e-3, 0.0), 1.44,
                           1e-12);
-  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 3, 1e-3, 1e-3, &err), MPM_OK);
-  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 2, 1e-3, 1e-3, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 3, 1e-3, 1e-3, 0.0, &err), MPM_OK);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 2, 1e-3, 1e-3, 0.0, &err), MPM_EINPUT);
   ck_assert_msg(strstr(err.msg, "n_sub >= 3") != NULL, "%s", err.msg);
-  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 0, 1e-3, 1e-3, &err), MPM_EINPUT);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 0, 1e-3, 1e-3, 0.0, &err), MPM_EINPUT);
+  /* 3D, dz = 1 mm: 2/dx^2 + 2/dy^2 + 2/dz^2 = 6e6 1/m^2, 3.456 / n_sub */
+  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, 1e-4, 1, 1e-3, 1e-3, 1e-3), 3.456,
+                          1e-12);
+  ck_assert_int_eq(mpm_material_ngf_check_diffusion(&par, 1e-4, 3, 1e-3, 1e-3, 1e-3, &err),
+                   MPM_EINPUT);
+  ck_assert_msg(strstr(err.msg, "+ 2/dz^2") && strstr(err.msg, "n_sub >= 4"), "%s", err.msg);
   struct { const char *key; mpm_material_params par; } bad[] = {
     {"material.A", par}, {"material.t0", par}, {"material.t_seed", par},
     {"material.mu_2", par}, {"form", par},

@@ -386,9 +386,9 @@ static double checker_amplitude(double r_target, int steps)
   mpm_material_params par = {.A = 0.5, .d = 0.005, .t0 = 1e-3};
   mpm_mesh m = make_mesh(6, 4, 0.002, 0.003, 1, 1);
   int edge[4] = {MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_PERIODIC, MPM_BC_PERIODIC};
-  double r1 = mpm_material_ngf_diffusion_number(&par, 1.0, 1, m.dx, m.dy);
+  double r1 = mpm_material_ngf_diffusion_number(&par, 1.0, 1, m.dx, m.dy, 0.0);
   double dt = r_target / r1, k = dt / par.t0 * par.A * par.A * par.d * par.d;
-  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, dt, 1, m.dx, m.dy), r_target,
+  ck_assert_double_eq_tol(mpm_material_ngf_diffusion_number(&par, dt, 1, m.dx, m.dy, 0.0), r_target,
                           1e-12);
   enum { N = 24 };
   double x[N], y[N], ms[N], g[N];

@@ -13,3 +13,4 @@ include verification/V6-hourglass-slug/local.mk
 include verification/V8-vertical-chute/local.mk
 include verification/V9-steady-galerkin/local.mk
 include verification/V10-silo-jam/local.mk
+include verification/V11-3d/local.mk

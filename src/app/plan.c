@@ -270,7 +270,8 @@ void mpm_app_plan_warn(const mpm_app_plan *p)
   mpm_material_params par;
   mpm_material_params_from_config(&par, cfg);
   mpm_err err = {0};
-  if (mpm_material_ngf_check_diffusion(&par, dt, n_sub, cfg->mesh.dx, cfg->mesh.dy, &err) != MPM_OK)
+  if (mpm_material_ngf_check_diffusion(&par, dt, n_sub, cfg->mesh.dx, cfg->mesh.dy,
+                                       cfg->mesh.nz > 0 ? cfg->mesh.dz : 0.0, &err) != MPM_OK)
     fprintf(stderr, "granmpm: warning: %s: %s (key 'material.n_sub')\n", p->file, err.msg);
 }
 

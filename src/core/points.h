@@ -75,7 +75,25 @@ enum mpm_point_state {
   X(cyz,        "cyz",    "affine velocity matrix C, yz", "1/s", 3)             \
   X(czx,        "czx",    "affine velocity matrix C, zx", "1/s", 3)             \
   X(czy,        "czy",    "affine velocity matrix C, zy", "1/s", 3)             \
-  X(czz,        "czz",    "affine velocity matrix C, zz", "1/s", 3)
+  X(czz,        "czz",    "affine velocity matrix C, zz", "1/s", 3)             \
+  X(fxx,        "fxx",    "deformation gradient F (material.model = ngf_hyper), xx", "-", 3) \
+  X(fxy,        "fxy",    "F, xy", "-", 3)                                     \
+  X(fxz,        "fxz",    "F, xz", "-", 3)                                     \
+  X(fyx,        "fyx",    "F, yx", "-", 3)                                     \
+  X(fyy,        "fyy",    "F, yy", "-", 3)                                     \
+  X(fyz,        "fyz",    "F, yz", "-", 3)                                     \
+  X(fzx,        "fzx",    "F, zx", "-", 3)                                     \
+  X(fzy,        "fzy",    "F, zy", "-", 3)                                     \
+  X(fzz,        "fzz",    "F, zz", "-", 3)                                     \
+  X(fpxx,       "fpxx",   "plastic deformation gradient Fp (ngf_hyper), xx", "-", 3) \
+  X(fpxy,       "fpxy",   "Fp, xy", "-", 3)                                    \
+  X(fpxz,       "fpxz",   "Fp, xz", "-", 3)                                    \
+  X(fpyx,       "fpyx",   "Fp, yx", "-", 3)                                    \
+  X(fpyy,       "fpyy",   "Fp, yy", "-", 3)                                    \
+  X(fpyz,       "fpyz",   "Fp, yz", "-", 3)                                    \
+  X(fpzx,       "fpzx",   "Fp, zx", "-", 3)                                    \
+  X(fpzy,       "fpzy",   "Fp, zy", "-", 3)                                    \
+  X(fpzz,       "fpzz",   "Fp, zz", "-", 3)
 
 /* The stored fields of one kind: X(member, name, description, unit, dim). */
 #define MPM_POINT_SKIP_(f, nm, d, u, dim)

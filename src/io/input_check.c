@@ -456,6 +456,13 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
 static int check_dimension(in_ctx *c, const mpm_config *cfg)
 {
   const int knz = key_index(S_MESH, "nz");
+  const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
+  if (cfg->mesh.nz == 0 && t && t->hyper) {
+    const int k = key_index(S_MATERIAL, "model");
+    where w = blame(c, cfg, -1, k, k);
+    return mpm_io_in_fail_key(c, &w, "model \"%s\" runs in 3D only (allowed: with mesh.nz > "
+                              "0)", cfg->material.model);
+  }
   if (cfg->mesh.nz == 0) {
     for (int f = -1; f < cfg->nfill; f++)
       for (int k = 0; k < NKEYS; k++) {
@@ -472,8 +479,9 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   const int kdz = key_index(S_MESH, "dz");
   if (!(cfg->mesh.dz > 0.0)) {
     where w = blame(c, cfg, -1, kdz, knz);
-    return mpm_io_in_fail_key(c, &w, "nz = %d without dz (allowed: dz = %s with nz > 0)",
-                              cfg->mesh.nz, mpm_io_in_allowed_text(&mpm_io_in_keys[kdz]).s);
+    return mpm_io_in_fail_key(c, &w, "nz = %d without dz (allowed: dz in %s ... %s m with "
+                              "nz > 0)", cfg->mesh.nz, mpm_io_in_num(mpm_io_in_keys[kdz].lo).s,
+                              mpm_io_in_num(mpm_io_in_keys[kdz].hi).s);
   }
   if ((cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0) * (cfg->mesh.nz + 1.0) > MAX_NODES) {
     where w = blame(c, cfg, -1, knz, knz);
@@ -502,12 +510,26 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     return mpm_io_in_fail_key(c, &w, "not available in a 3D run (mesh.nz > 0) (allowed: %s)",
                               no3[i].allowed);
   }
-  const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
-  if (t && t->nonlocal) {
+  if (t && t->nonlocal && !t->hyper) {
     const int k = key_index(S_MATERIAL, "model");
     where w = blame(c, cfg, -1, k, knz);
     return mpm_io_in_fail_key(c, &w, "model \"%s\" is not available in a 3D run (allowed: "
-                              "\"elastic\", \"mu_i\")", cfg->material.model);
+                              "\"elastic\", \"mu_i\", \"ngf_hyper\")", cfg->material.model);
+  }
+  /* the fluidity field of a 3D run: explicit or implicit diffusion, unit
+   * sums by the points' centres, the point's own p^-1/2 */
+  struct { int on; const char *key, *allowed; } nl3[] = {
+    {cfg->material.diffusion == MPM_DIFFUSION_STEADY, "diffusion", "\"explicit\", \"implicit\""},
+    {cfg->material.g_average != MPM_NONLOCAL_CENTRE, "g_average", "\"centre\""},
+    {cfg->material.p_sample != MPM_NGF_P_POINT, "p_sample", "\"point\""},
+  };
+  for (size_t i = 0; t && t->hyper && i < sizeof nl3 / sizeof nl3[0]; i++) {
+    if (!nl3[i].on)
+      continue;
+    const int k = key_index(S_MATERIAL, nl3[i].key);
+    where w = blame(c, cfg, -1, k, knz);
+    return mpm_io_in_fail_key(c, &w, "not available in a 3D run (mesh.nz > 0) (allowed: %s)",
+                              nl3[i].allowed);
   }
   if (check_periodic_pair(c, cfg, "front", "back", cfg->bc.front, cfg->bc.back) != MPM_OK)
     return MPM_EINPUT;

@@ -336,3 +336,19 @@ mpm_material_hyper_point mpm_material_hyper_step(const mpm_material_params *par,
   pt.state = MPM_STATE_DENSE;
   return pt;
 }
+
+/* The parameters of the NGF model, checked as the plane NGF checks them. */
+static int ngf_hyper_check(const mpm_material_params *par, mpm_err *err)
+{
+  return mpm_material_ngf.check(par, err);
+}
+
+const mpm_material_type mpm_material_ngf_hyper = {
+  .name = "ngf_hyper",
+  .description = "hyperelastic nonlocal granular fluidity, F = Fe Fp with Hencky strain and "
+                 "Mandel stress, the NGF local solve and diffusion of g [HS21]; 3D runs only",
+  .check = ngf_hyper_check,
+  .nonlocal = 1,
+  .dense = mpm_material_ngf_dense,
+  .hyper = 1,
+};

@@ -3,10 +3,11 @@
  * eigen-decomposition, logarithm, exponential and polar decomposition it is
  * built on (hyper.c).
  *
- * A kernel of the 3D module to come: a point carries its total and plastic
- * deformation gradients F and Fp, which the plane-strain point store does
- * not, so the update is not a model of mpm_material_table. It reuses the
- * local NGF solve of section 5 (mpm_material_ngf_gstar,
+ * The model "ngf_hyper" of mpm_material_table (mpm_material_ngf_hyper,
+ * hyper = 1): a point carries its total and plastic deformation gradients F
+ * and Fp, which only a 3D store holds, so the 3D step calls
+ * mpm_material_hyper_step itself instead of the table's plane updates. It
+ * reuses the local NGF solve of section 5 (mpm_material_ngf_gstar,
  * mpm_material_ngf_fluidity) and the parameters of mpm_material_params. */
 #ifndef MPM_MATERIAL_HYPER_H
 #define MPM_MATERIAL_HYPER_H

@@ -12,6 +12,7 @@ const mpm_material_type *const mpm_material_table[] = {
   &mpm_material_elastic,
   &mpm_material_mu_i,
   &mpm_material_ngf,
+  &mpm_material_ngf_hyper,
   NULL
 };
 

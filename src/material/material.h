@@ -209,6 +209,10 @@ typedef struct mpm_material_type {
   mpm_material_update_fn update_steady;
   void (*update_steady_plane)(const mpm_material_params *par, double dt, int nsub,
                               const mpm_material_batch *b);   /* as update_plane */
+  /* 1 for the hyperelastic NGF of [HS21] (material/hyper.h): a point carries
+   * F and Fp, which only a 3D store has; 3D runs only, update and
+   * update_plane NULL (the 3D step calls mpm_material_hyper_step). */
+  int hyper;
 } mpm_material_type;
 
 /* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):
@@ -225,6 +229,7 @@ static inline mpm_sym3 mpm_material_trial(const mpm_material_params *par, mpm_sy
 extern const mpm_material_type mpm_material_elastic;  /* Jaumann hypoelastic */
 extern const mpm_material_type mpm_material_mu_i;     /* trans-phase mu(I) [DK15] */
 extern const mpm_material_type mpm_material_ngf;      /* trans-phase NGF [DK-silo] */
+extern const mpm_material_type mpm_material_ngf_hyper;  /* hyperelastic NGF [HS21], 3D */
 extern const mpm_material_type *const mpm_material_table[];
 
 /* Model by name, NULL if unknown. */
@@ -301,14 +306,15 @@ double mpm_material_ngf_seed(mpm_sym3 sigma, double gdp);
 /* c = (dt/t0) A^2 d^2 [m^2]: a step dt diffuses g by c lap(g) (MODEL.md section 5). */
 double mpm_material_ngf_diffusivity(const mpm_material_params *par, double dt);
 
-/* Explicit-diffusion number (dt/n_sub) A^2 d^2 / t0 (2/dx^2 + 2/dy^2); the
- * update is stable when it is <= 1. */
+/* Explicit-diffusion number (dt/n_sub) A^2 d^2 / t0 (2/dx^2 + 2/dy^2
+ * [+ 2/dz^2 in 3D: dz > 0; a plane run passes dz = 0]); the update is
+ * stable when it is <= 1. */
 double mpm_material_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
-                                         double dx, double dy);
+                                         double dx, double dy, double dz);
 
 /* MPM_OK if the diffusion number is <= 1, else MPM_EINPUT with the smallest
  * n_sub that satisfies it. */
 int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub,
-                                     double dx, double dy, mpm_err *err);
+                                     double dx, double dy, double dz, mpm_err *err);
 
 #endif

@@ -303,23 +303,25 @@ static int ngf_check(const mpm_material_params *par, mpm_err *err)
 }
 
 double mpm_material_ngf_diffusion_number(const mpm_material_params *par, double dt, int n_sub,
-                                         double dx, double dy)
+                                         double dx, double dy, double dz)
 {
-  return mpm_material_ngf_diffusivity(par, dt / n_sub) * (2.0 / (dx * dx) + 2.0 / (dy * dy));
+  const double z = dz > 0.0 ? 2.0 / (dz * dz) : 0.0;
+  return mpm_material_ngf_diffusivity(par, dt / n_sub) * (2.0 / (dx * dx) + 2.0 / (dy * dy) + z);
 }
 
 int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, int n_sub,
-                                     double dx, double dy, mpm_err *err)
+                                     double dx, double dy, double dz, mpm_err *err)
 {
   if (n_sub < 1)
     return mpm_err_set(err, MPM_EINPUT, "NGF substeps n_sub = %d: must be >= 1", n_sub);
-  double r = mpm_material_ngf_diffusion_number(par, dt, n_sub, dx, dy);
+  double r = mpm_material_ngf_diffusion_number(par, dt, n_sub, dx, dy, dz);
   if (r <= 1.0)
     return MPM_OK;
-  double need = ceil(mpm_material_ngf_diffusion_number(par, dt, 1, dx, dy));
+  double need = ceil(mpm_material_ngf_diffusion_number(par, dt, 1, dx, dy, dz));
   return mpm_err_set(err, MPM_EINPUT,
-                     "NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2)"
-                     " = %.4g > 1 with dt = %g s, n_sub = %d; needs n_sub >= %.0f", r, dt,
+                     "NGF explicit diffusion unstable: (dt/n_sub) A^2 d^2/t0 (2/dx^2 + 2/dy^2%s)"
+                     " = %.4g > 1 with dt = %g s, n_sub = %d; needs n_sub >= %.0f",
+                     dz > 0.0 ? " + 2/dz^2" : "", r, dt,
                      n_sub, need);
 }
 

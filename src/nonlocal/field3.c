@@ -76,3 +76,27 @@ mpm_linalg_stats mpm_nonlocal3_stats(const mpm_nonlocal3 *ws)
     return (mpm_linalg_stats){.failed_col = -1};
   return mpm_nonlocal_implicit_stats(ws->im);
 }
+
+void mpm_nonlocal3_average(mpm_nonlocal3 *ws, size_t n, const int *unit, const double *mass,
+                           const double *g, const unsigned char *dense)
+{
+  const size_t nu = ws->grid.nu;
+  for (size_t e = 0; e < nu; e++)
+    ws->sm[e] = ws->ge[e] = 0.0;            /* ge holds sum m g until the division */
+  for (size_t p = 0; p < n; p++) {
+    if (!dense[p])
+      continue;
+    ws->sm[unit[p]] += mass[p];             /* sum m */
+    ws->ge[unit[p]] += mass[p] * g[p];      /* sum m g */
+  }
+  for (size_t e = 0; e < nu; e++)
+    ws->ge[e] = ws->sm[e] > 0.0 ? ws->ge[e] / ws->sm[e] : 0.0;
+}
+
+int mpm_nonlocal3_filled(const mpm_nonlocal3 *ws)
+{
+  for (size_t e = 0; e < ws->grid.nu; e++)
+    if (ws->sm[e] > 0.0)
+      return 1;
+  return 0;
+}

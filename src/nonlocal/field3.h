@@ -17,8 +17,10 @@
  * analysis kept while the filled set holds, the factor while c and the
  * rules do too), and gives lap_e = (g*_e - g_e)/c.
  *
- * Not here yet: the sums of points into units (g_e = sum w m g / sum w m)
- * and the unit pressures, which need the 3D point store. */
+ * The points enter by their centres (mpm_nonlocal3_average): g_e is the
+ * mass-weighted mean g of the dense points whose centre lies in unit e (the
+ * plane's "centre" rule); the plane's extent rule and unit pressures have
+ * no 3D counterpart yet. */
 #ifndef MPM_NONLOCAL_FIELD3_H
 #define MPM_NONLOCAL_FIELD3_H
 
@@ -63,6 +65,15 @@ int mpm_nonlocal3_implicit(mpm_nonlocal3 *ws, double c, mpm_err *err);
 /* g*_e of the last implicit solve ([nu], 0 on units empty then); NULL before
  * the first. */
 const double *mpm_nonlocal3_gstar(const mpm_nonlocal3 *ws);
+
+/* sm_e = sum m_p and g_e = sum m_p g_p / sm_e over the dense points p of
+ * [0, n) with unit[p] = e (in point order, so thread-count free); 0 on the
+ * other units. */
+void mpm_nonlocal3_average(mpm_nonlocal3 *ws, size_t n, const int *unit, const double *mass,
+                           const double *g, const unsigned char *dense);
+
+/* 1 if some unit is filled (sm_e > 0). */
+int mpm_nonlocal3_filled(const mpm_nonlocal3 *ws);
 
 /* The implicit solver's counters (zero before its first use). */
 mpm_linalg_stats mpm_nonlocal3_stats(const mpm_nonlocal3 *ws);

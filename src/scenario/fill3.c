@@ -145,6 +145,8 @@ static size_t visit(const mpm_fill3_region *f, const mpm_mesh3 *m, mpm_points *p
         pts->r2y[p] = 0.5 * hy;
         pts->r3z[p] = 0.5 * hz;
         pts->state[p] = MPM_STATE_DENSE;
+        pts->fxx[p] = pts->fyy[p] = pts->fzz[p] = 1.0;      /* F = Fp = I: the fill's */
+        pts->fpxx[p] = pts->fpyy[p] = pts->fpzz[p] = 1.0;   /* natural state */
       }
   return count;
 }

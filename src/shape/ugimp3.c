@@ -13,7 +13,9 @@
  * unit), listed layer by layer, row by row; corners spanning more than
  * BLOCK - 2 units (wide extents) add node by node to the list instead (at
  * most 8 corners x 8 nodes). Not finite: a point, an extent, or a corner
- * geometry that overflows, reported as outside (-1). */
+ * geometry that overflows, reported as outside (-1). An extent along the
+ * axes (every uGIMP extent as filled) takes the factorised form of the same
+ * rule (ugimp3_box). */
 #include "shape/shape3.h"
 
 #include <limits.h>
@@ -25,6 +27,84 @@
 /* Block side (nodes along each axis): slot a + BLOCK b + BLOCK^2 c. */
 enum { BLOCK = 4 };
 
+/* An extent along the axes, r_k = h_k e_k (uGIMP as filled): the corner
+ * rule factorises. Along axis d the two corner coordinates x_d -+ |h_d|
+ * (clamped and wrapped as in the general rule) give the hat values phi_n
+ * of the nodes n they touch, and with A_n = (phi_n(-) + phi_n(+))/2,
+ * B_n = (phi_n(+) - phi_n(-))/(2 |h_d|):
+ *   S = A_x A_y A_z,  gradS = (B_x A_y A_z, A_x B_y A_z, A_x A_y B_z),
+ * the general rule's sums regrouped (w_c = R^-T s_c / 8 = (s_c / h) / 8),
+ * on the same nodes in the same order (nodes that a short periodic axis
+ * aliases merged per axis, before the products); a few times fewer
+ * operations. Returns the count, -1 outside, or -2 when a corner pair spans
+ * more than the block (the general rule takes it). */
+static int ugimp3_box(const mpm_mesh3 *m, const double x[3], const int uc[3], const double h[3],
+                      int *node, double *S, double *dSx, double *dSy, double *dSz)
+{
+  const double o[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
+  const double ih[3] = {m->idx, m->idy, m->idz};
+  const int nu[3] = {m->nx, m->ny, m->nz};
+  const int per[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
+  double A[3][BLOCK], B[3][BLOCK];
+  int sn[3][BLOCK], bs[3];                     /* per axis: stored node index, count */
+  for (int d = 0; d < 3; d++) {
+    const double s[2] = {x[d] - h[d], x[d] + h[d]};
+    int ck[2], dk[2];
+    double cl[2];
+    if (mpm_shape_in_corners_axis(2, s, o[d], len[d], ih[d], nu[d], per[d], ck, cl))
+      return -1;
+    for (int c = 0; c < 2; c++)
+      dk[c] = mpm_mesh_axis_offset(ck[c] - uc[d], nu[d], per[d]);
+    const int lo = dk[0] < dk[1] ? dk[0] : dk[1];
+    bs[d] = (dk[0] < dk[1] ? dk[1] : dk[0]) - lo + 2;
+    if (bs[d] > BLOCK)
+      return -2;
+    for (int n = 0; n < BLOCK; n++)
+      A[d][n] = B[d][n] = 0.0;
+    const double ib = 0.5 / h[d];
+    for (int c = 0; c < 2; c++) {              /* corner -h (c = 0), +h (c = 1) */
+      const int at = dk[c] - lo;
+      const double phi[2] = {1.0 - cl[c], cl[c]}, sg = c ? ib : -ib;
+      for (int a = 0; a < 2; a++) {
+        A[d][at + a] += 0.5 * phi[a];
+        B[d][at + a] += sg * phi[a];
+      }
+    }
+    int cnt = 0;                               /* stored nodes; on a periodic axis of */
+    for (int n = 0; n < bs[d]; n++) {          /* few units one can come twice: merged */
+      const int id = mpm_mesh_axis_node(uc[d] + lo + n, nu[d], per[d]);
+      int q = 0;
+      while (q < cnt && sn[d][q] != id)
+        q++;
+      if (q == cnt) {
+        sn[d][cnt] = id;
+        A[d][cnt] = A[d][n];
+        B[d][cnt] = B[d][n];
+        cnt++;
+      } else {
+        A[d][q] += A[d][n];
+        B[d][q] += B[d][n];
+      }
+    }
+    bs[d] = cnt;
+  }
+  int cnt = 0;
+  for (int k = 0; k < bs[2]; k++)
+    for (int j = 0; j < bs[1]; j++) {
+      const double ayz = A[1][j] * A[2][k], byz = B[1][j] * A[2][k], azb = A[1][j] * B[2][k];
+      const int row = (sn[2][k] * m->sny + sn[1][j]) * m->snx;
+      for (int i = 0; i < bs[0]; i++) {
+        node[cnt] = row + sn[0][i];
+        S[cnt] = A[0][i] * ayz;
+        dSx[cnt] = B[0][i] * ayz;
+        dSy[cnt] = A[0][i] * byz;
+        dSz[cnt] = A[0][i] * azb;
+        cnt++;
+      }
+    }
+  return cnt;
+}
+
 static int ugimp3_eval(const mpm_mesh3 *m, const double x[3], const double r[9], int *node,
                        double *S, double *dSx, double *dSy, double *dSz)
 {
@@ -32,6 +112,16 @@ static int ugimp3_eval(const mpm_mesh3 *m, const double x[3], const double r[9],
   double lc[3];
   if (mpm_mesh3_locate(m, x, uc, lc))
     return -1;                               /* the centre decides */
+  if (r[1] == 0.0 && r[2] == 0.0 && r[3] == 0.0 && r[5] == 0.0 && r[6] == 0.0 && r[7] == 0.0 &&
+      r[0] != 0.0 && r[4] != 0.0 && r[8] != 0.0) {        /* along the axes: a box */
+    const double h[3] = {fabs(r[0]), fabs(r[4]), fabs(r[8])};
+    /* the general rule's volume and cofactors finite, or it reports -1 */
+    if (isfinite(h[0] * h[1] * h[2]) && isfinite(h[0] * h[1] + h[1] * h[2] + h[0] * h[2])) {
+      const int c = ugimp3_box(m, x, uc, h, node, S, dSx, dSy, dSz);
+      if (c != -2)
+        return c;
+    }
+  }
   double co[24], wg[24];                     /* offsets x_c - x_p, weights w_c */
   const double A = mpm_shape_in_corner_rule(3, r, co, wg);
   if (!isfinite(A))

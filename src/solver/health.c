@@ -29,6 +29,7 @@ static void likely_cause(const mpm_sim *s, char *buf, size_t len)
              "(key 'time.dt', allowed only with time.dt_unstable_ok)", s->dt, s->dt / st, st);
   else if (d && d->stability_limited &&
            mpm_material_ngf_check_diffusion(&s->par, s->dt, s->n_sub, s->mesh.dx, s->mesh.dy,
+                                            s->dim == 3 ? s->mesh3.dz : 0.0,
                                             &e) != MPM_OK)
     snprintf(buf, len, "the diffusion of g: %.200s (key 'material.n_sub')", e.msg);
   else

@@ -60,6 +60,7 @@ typedef struct mpm_sim {
   mpm_bc3 bc3;
   const mpm_shape3_type *shape3;
   double (*nq3)[6];               /* [mesh3.nnodes] ((mv), f), then (v, a) */
+  struct mpm_sim3_work *w3;       /* a nonlocal model's workspace (step3.c), else NULL */
 
   /* constitutive substepping and the nonlocal fluidity (MODEL.md section 5) */
   int n_sub;                      /* constitutive substeps per step, L fixed */
@@ -152,6 +153,8 @@ int mpm_sim_step(mpm_sim *s, mpm_err *err);
  * mpm_sim_step takes for it. */
 int mpm_sim3_build(mpm_sim *s, mpm_err *err);
 int mpm_sim3_step(mpm_sim *s, mpm_err *err);
+typedef struct mpm_sim3_work mpm_sim3_work;
+void mpm_sim3_work_free(mpm_sim3_work *w);   /* accepts NULL */
 
 /* Frame callback of the run driver, called at t = 0, every frame_dt and at the end. */
 typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);

@@ -153,6 +153,9 @@ static int density_alloc(mpm_sim *s, mpm_err *err)
 static int build_plane(mpm_sim *s, mpm_err *err)
 {
   const mpm_config *cfg = &s->cfg;
+  if (s->mat->hyper)
+    return mpm_err_set(err, MPM_EINPUT, "material.model '%s' runs in 3D runs only (mesh.nz > 0)",
+                       s->mat->name);
   int rc = mpm_mesh_from_config(&s->mesh, cfg, err);
   if (rc == MPM_OK) {
     int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
@@ -246,6 +249,7 @@ void mpm_sim_free(mpm_sim *s)
   free(s->nm);
   free(s->nq);
   free(s->nq3);
+  mpm_sim3_work_free(s->w3);
   free(s);
 }
 

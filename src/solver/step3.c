@@ -17,10 +17,70 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "material/hyper.h"
+#include "nonlocal/field3.h"
 #include "scenario/scenario.h"
 #include "solver/transfer.h"
 
 /* ---- set-up -------------------------------------------------------------- */
+
+/* The nonlocal workspace of a 3D run: the unit field, and per point its L
+ * (row-major, kept over the substeps), unit and dense flag. */
+struct mpm_sim3_work {
+  mpm_nonlocal3 *nl;
+  double *L;                 /* [9 cap] */
+  int *unit;                 /* [cap] */
+  unsigned char *dense;      /* [cap] */
+  size_t cap;
+};
+
+void mpm_sim3_work_free(mpm_sim3_work *w)
+{
+  if (!w)
+    return;
+  mpm_nonlocal3_free(w->nl);
+  free(w->L);
+  free(w->unit);
+  free(w->dense);
+  free(w);
+}
+
+/* The unit field of a nonlocal model, with the ghost rules of the faces
+ * (no-slip: g = 0 unless material.g_wall = "neumann"). */
+static int work_alloc(mpm_sim *s, mpm_err *err)
+{
+  const int *face = s->bc3.face;
+  int ghost[6];
+  for (int f = 0; f < 6; f++) {
+    ghost[f] = mpm_nonlocal_ghost_of_bc(face[f]);
+    if (ghost[f] == MPM_GHOST_DIRICHLET && s->cfg.material.g_wall == MPM_NONLOCAL_WALL_NEUMANN)
+      ghost[f] = MPM_GHOST_NEUMANN;
+  }
+  if (!(s->w3 = calloc(1, sizeof *s->w3)))
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the nonlocal workspace");
+  return mpm_nonlocal3_alloc(&s->w3->nl, &s->mesh3, ghost, err);
+}
+
+/* Room for the per-point arrays of n points. */
+static int work_reserve(mpm_sim3_work *w, size_t n, mpm_err *err)
+{
+  if (n <= w->cap && w->L)
+    return MPM_OK;
+  n = n ? n : 1;
+  double *L = realloc(w->L, 9 * n * sizeof *L);
+  if (L)
+    w->L = L;
+  int *u = realloc(w->unit, n * sizeof *u);
+  if (u)
+    w->unit = u;
+  unsigned char *d = realloc(w->dense, n);
+  if (d)
+    w->dense = d;
+  if (!L || !u || !d)
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu points' gradients", n);
+  w->cap = n;
+  return MPM_OK;
+}
 
 int mpm_sim3_build(mpm_sim *s, mpm_err *err)
 {
@@ -47,7 +107,7 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
   if (!(s->nm = calloc(nn, sizeof *s->nm)) || !(s->nq3 = calloc(nn, sizeof *s->nq3)) ||
       !(s->st = mpm_shape_stencil_alloc(0)) || !(s->bands = mpm_mesh_bands_alloc()))
     return mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
-  return MPM_OK;
+  return s->mat->nonlocal ? work_alloc(s, err) : MPM_OK;
 }
 
 /* ---- the step ------------------------------------------------------------ */
@@ -68,14 +128,13 @@ static inline void stress_set(mpm_points *P, size_t p, mpm_sym3 s)
   P->szx[p] = s.zx;
 }
 
-/* Steps 4-6 for point p: gather, move, volume, extent, constitutive update
- * in n_sub substeps of h with L fixed. Returns 0 if its stress became
- * non-finite. The grid velocity that moved it goes to vg. */
-static int advance_point(mpm_sim *s, size_t p, double fl, double h, double vg[3])
+/* Steps 4-5 for point p: gather, FLIP/PIC velocity, x += dt v_grid, volume,
+ * CPDI1 extent. L_p to L (row-major), the grid velocity that moved it to vg. */
+static void move_point(mpm_sim *s, size_t p, double fl, double L[9], double vg[3])
 {
   mpm_points *P = s->pts;
   const double dt = s->dt;
-  double ag[3], L[9];
+  double ag[3];
   mpm_sim_in_gather3(s, p, vg, ag, L);
   double *const x[3] = {&P->x[p], &P->y[p], &P->z[p]};
   double *const v[3] = {&P->vx[p], &P->vy[p], &P->vz[p]};
@@ -95,10 +154,28 @@ static int advance_point(mpm_sim *s, size_t p, double fl, double h, double vg[3]
     for (int k = 0; k < 9; k++)
       *rp[k] = r[k];
   }
-  mpm_mat3 Lm;
+}
+
+static mpm_mat3 mat3_of(const double L[9])
+{
+  mpm_mat3 m;
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
-      Lm.m[i][j] = L[3 * i + j];
+      m.m[i][j] = L[3 * i + j];
+  return m;
+}
+
+static int finite_stress(mpm_sym3 s)
+{
+  return isfinite(s.xx + s.yy + s.zz + s.xy + s.yz + s.zx);
+}
+
+/* Step 6 of a local model for point p: n_sub substeps of h with L fixed,
+ * rho = m / V_{n+1}. Returns 0 if its stress became non-finite. */
+static int update_local(mpm_sim *s, size_t p, const double L[9], double h)
+{
+  mpm_points *P = s->pts;
+  const mpm_mat3 Lm = mat3_of(L);
   mpm_mpoint pt = {.sigma = stress_of(P, p), .rho = P->mass[p] / P->vol[p], .g = P->g[p],
                    .gdp = P->gdp[p], .state = P->state[p]};
   for (int k = 0; k < s->n_sub; k++)
@@ -107,8 +184,35 @@ static int advance_point(mpm_sim *s, size_t p, double fl, double h, double vg[3]
   P->g[p] = pt.g;
   P->gdp[p] = pt.gdp;
   P->state[p] = pt.state;
-  return isfinite(pt.sigma.xx + pt.sigma.yy + pt.sigma.zz + pt.sigma.xy + pt.sigma.yz +
-                  pt.sigma.zx);
+  return finite_stress(pt.sigma);
+}
+
+/* One substep h of the hyperelastic NGF update of point p (L fixed, lap the
+ * Laplacian of g of its unit). Returns 0 if its stress became non-finite. */
+static int update_hyper(mpm_sim *s, size_t p, const double L[9], double h, double lap)
+{
+  mpm_points *P = s->pts;
+  const mpm_mat3 Lm = mat3_of(L);
+  mpm_material_hyper_point hp = {
+    .F = {{{P->fxx[p], P->fxy[p], P->fxz[p]}, {P->fyx[p], P->fyy[p], P->fyz[p]},
+           {P->fzx[p], P->fzy[p], P->fzz[p]}}},
+    .Fp = {{{P->fpxx[p], P->fpxy[p], P->fpxz[p]}, {P->fpyx[p], P->fpyy[p], P->fpyz[p]},
+            {P->fpzx[p], P->fpzy[p], P->fpzz[p]}}},
+    .sigma = stress_of(P, p), .rho = P->mass[p] / P->vol[p], .g = P->g[p], .lap = lap,
+    .isp = 0.0, .gdp = P->gdp[p], .state = P->state[p]};
+  hp = mpm_material_hyper_step(&s->par, &Lm, h, hp);
+  double *const F[9] = {P->fxx, P->fxy, P->fxz, P->fyx, P->fyy, P->fyz, P->fzx, P->fzy, P->fzz};
+  double *const Fp[9] = {P->fpxx, P->fpxy, P->fpxz, P->fpyx, P->fpyy, P->fpyz,
+                         P->fpzx, P->fpzy, P->fpzz};
+  for (int k = 0; k < 9; k++) {
+    F[k][p] = hp.F.m[k / 3][k % 3];
+    Fp[k][p] = hp.Fp.m[k / 3][k % 3];
+  }
+  stress_set(P, p, hp.sigma);
+  P->g[p] = hp.g;
+  P->gdp[p] = hp.gdp;
+  P->state[p] = hp.state;
+  return finite_stress(hp.sigma);
 }
 
 /* Step 7 for point p moved by the grid velocity vg: the walls hold it (a
@@ -138,6 +242,97 @@ static void bookkeeping(mpm_sim *s, size_t p, const double vg[3])
 
 enum { CHUNK3 = 64 };
 
+/* Steps 4-7 of a local model, point by point on chunks; returns the largest
+ * index of a point whose stress became non-finite, or -1. */
+static long local_phase(mpm_sim *s)
+{
+  const double fl = s->cfg.time.flip, h = s->dt / s->n_sub;
+  const size_t n = s->pts->n, nc = (n + CHUNK3 - 1) / CHUNK3;
+  long bad = -1;
+  unsigned scan = 0;
+#pragma omp parallel for schedule(static) reduction(max : bad) reduction(| : scan)
+  for (size_t c = 0; c < nc; c++) {
+    const size_t a = c * CHUNK3, e = a + CHUNK3 < n ? a + CHUNK3 : n;
+    for (size_t p = a; p < e; p++) {
+      double L[9], vg[3];
+      move_point(s, p, fl, L, vg);
+      if (!update_local(s, p, L, h))
+        bad = (long)p > bad ? (long)p : bad;
+      bookkeeping(s, p, vg);
+    }
+    scan |= mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u;
+  }
+  s->scan = scan;
+  return bad;
+}
+
+/* Steps 4-7 of the hyperelastic NGF: every point moves first (its L kept,
+ * walls and wraps applied), then per substep the unit field of the dense
+ * points (g_e, and lap_e by the diffusion of material.diffusion; lap = 0
+ * while t < t_seed: the local model, [DK-silo] section 6) and the update of
+ * every point. Returns as local_phase; *rc an error of the field. */
+static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
+{
+  mpm_points *P = s->pts;
+  mpm_sim3_work *w = s->w3;
+  const size_t n = P->n, nc = (n + CHUNK3 - 1) / CHUNK3;
+  if ((*rc = work_reserve(w, n, err)) != MPM_OK)
+    return -1;
+  const double fl = s->cfg.time.flip, h = s->dt / s->n_sub;
+  unsigned scan = 0;
+#pragma omp parallel for schedule(static) reduction(| : scan)
+  for (size_t c = 0; c < nc; c++) {
+    const size_t a = c * CHUNK3, e = a + CHUNK3 < n ? a + CHUNK3 : n;
+    for (size_t p = a; p < e; p++) {
+      double vg[3];
+      move_point(s, p, fl, w->L + 9 * p, vg);
+      bookkeeping(s, p, vg);
+    }
+    scan |= mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u;
+  }
+  s->scan = scan;
+  for (size_t p = 0; p < n; p++) {          /* the units of x_{n+1} */
+    const double x[3] = {P->x[p], P->y[p], P->z[p]};
+    int u[3];
+    double l[3];
+    if (mpm_mesh3_locate(&s->mesh3, x, u, l) != 0) {
+      if (mpm_sim_check_state(s, s->t + s->dt, err) != MPM_OK)
+        *rc = MPM_ENONFINITE;
+      else
+        *rc = mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g, %.6g) m, "
+                          "t = %.6g s", P->id[p], x[0], x[1], x[2], s->t + s->dt);
+      return -1;
+    }
+    w->unit[p] = (int)mpm_nonlocal3_unit(w->nl, u[0], u[1], u[2]);
+  }
+  const int local = s->t < s->par.t_seed - 1e-9 * s->dt;
+  const int implicit = s->cfg.material.diffusion == MPM_DIFFUSION_IMPLICIT;
+  long bad = -1;
+  for (int k = 0; k < s->n_sub; k++) {
+#pragma omp parallel for schedule(static)
+    for (size_t p = 0; p < n; p++)
+      w->dense[p] = (unsigned char)s->mat->dense(&s->par, stress_of(P, p),
+                                                 P->mass[p] / P->vol[p]);
+    mpm_nonlocal3_average(w->nl, n, w->unit, P->mass, P->g, w->dense);
+    if (local)
+      memset(w->nl->lap, 0, w->nl->grid.nu * sizeof *w->nl->lap);
+    else if (implicit && mpm_nonlocal3_filled(w->nl))
+      *rc = mpm_nonlocal3_implicit(w->nl, mpm_material_ngf_diffusivity(&s->par, h), err);
+    else
+      mpm_nonlocal3_laplacian(w->nl);
+    if (*rc != MPM_OK) {
+      mpm_err_prefix(err, *rc, "step %ld, t = %.6g s", s->step + 1, s->t + s->dt);
+      return -1;
+    }
+    const double *lap = w->nl->lap;
+#pragma omp parallel for schedule(static) reduction(max : bad)
+    for (size_t p = 0; p < n; p++)
+      if (!update_hyper(s, p, w->L + 9 * p, h, lap[w->unit[p]]))
+        bad = (long)p > bad ? (long)p : bad;
+  }
+  return bad;
+}
+
 int mpm_sim3_step(mpm_sim *s, mpm_err *err)
 {
   mpm_points *P = s->pts;
@@ -153,24 +348,11 @@ int mpm_sim3_step(mpm_sim *s, mpm_err *err)
   double b[3];
   mpm_sim_gravity3(s, s->t, b);
   mpm_sim_in_grid3(s, b);
-  const double fl = s->cfg.time.flip, h = s->dt / s->n_sub;
-  const size_t n = P->n, nc = (n + CHUNK3 - 1) / CHUNK3;
-  long bad = -1;
-  unsigned scan = 0;
-#pragma omp parallel for schedule(static) reduction(max : bad) reduction(| : scan)
-  for (size_t c = 0; c < nc; c++) {
-    const size_t a = c * CHUNK3, e = a + CHUNK3 < n ? a + CHUNK3 : n;
-    for (size_t p = a; p < e; p++) {
-      double vg[3];
-      if (!advance_point(s, p, fl, h, vg))
-        bad = (long)p > bad ? (long)p : bad;
-      bookkeeping(s, p, vg);
-    }
-    scan |= mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u;
-  }
+  const long bad = s->w3 ? nonlocal_phase(s, &rc, err) : local_phase(s);
+  if (rc != MPM_OK)
+    return rc;
   if (bad >= 0)                           /* a non-finite stress: what, where, why */
     return mpm_sim_check_state(s, s->t + s->dt, err);
-  s->scan = scan;
   s->t += s->dt;
   s->step++;
   return mpm_sim_check_speeds(s, s->t, err);

@@ -1,0 +1,2 @@
+VERIFY_CASES += verification/V11-3d
+TESTS += verification/V11-3d/check
