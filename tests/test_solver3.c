@@ -233,6 +233,40 @@ START_TEST(t_plane)
 }
 END_TEST
 
+/* A box draining through a square orifice in its floor (a disc with
+ * _i = 1): points leave only through it, and the mass in the box plus the
+ * mass removed stays the initial mass. */
+START_TEST(t_outlet)
+{
+  mpm_config c;
+  box_config(&c, "ugimp", 6, 6, 6);
+  sim_config_material(&c, "mu_i", 1e6);
+  c.bc.left = c.bc.right = c.bc.bottom = c.bc.front = c.bc.back = MPM_BC_NOSLIP;
+  c.bc.top = MPM_BC_FREE;
+  c.gravity.gy = -9.8;
+  c.fill[0].ymax = 0.04;
+  c.outlet.edge = MPM_OUTLET_BOTTOM;
+  c.outlet.closed = MPM_BC_NOSLIP;
+  c.outlet.from = c.outlet.from2 = 0.02;
+  c.outlet.to = c.outlet.to2 = 0.04;
+  c.outlet.shape = _i ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
+  mpm_sim *s = make(&c);
+  const double m0 = s->mass0;
+  steps(s, 300);
+  const mpm_points *P = s->pts;
+  ck_assert_int_gt(s->nremoved, 10);
+  double m = 0.0;
+  for (size_t p = 0; p < P->n; p++) {
+    m += P->mass[p];
+    ck_assert(P->y[p] >= 0.0 && P->x[p] >= 0.0 && P->x[p] <= 0.06 && P->z[p] >= 0.0 &&
+              P->z[p] <= 0.06);
+  }
+  ck_assert_uint_eq(P->n + (size_t)s->nremoved, 6 * 4 * 6 * 8);
+  ck_assert_double_eq_tol(m + s->mass_removed, m0, 1e-13 * m0);
+  mpm_sim_free(s);
+}
+END_TEST
+
 #ifdef _OPENMP
 START_TEST(t_threads)
 {
@@ -269,6 +303,7 @@ int main(void)
   tcase_add_loop_test(tc, t_free_fall, 0, 3);
   tcase_add_loop_test(tc, t_momentum, 0, 3);
   tcase_add_loop_test(tc, t_plane, 0, 3);
+  tcase_add_loop_test(tc, t_outlet, 0, 2);
 #ifdef _OPENMP
   tcase_add_loop_test(tc, t_threads, 0, 3);
 #endif

@@ -170,3 +170,17 @@ void mpm_bc3_open_outlet(mpm_bc3 *bc)
     bc->fix = bc->mask[1];
   }
 }
+
+int mpm_bc3_left_through_outlet(const mpm_bc3 *bc, const mpm_mesh3 *m, const double x[3])
+{
+  if (!bc->open || bc->out_face < 0)
+    return 0;
+  const int f = bc->out_face, d = f / 2;
+  const double lo[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
+  if (f % 2 ? !(x[d] > lo[d] + len[d]) : !(x[d] < lo[d]))
+    return 0;                                  /* not beyond the outlet's face */
+  int ax[2];
+  mpm_bc3_face_axes(f, ax);
+  const double s[2] = {x[ax[0]], x[ax[1]]};
+  return in_outlet(bc, s, 0.0);
+}

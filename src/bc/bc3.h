@@ -60,6 +60,10 @@ int mpm_bc3_set_outlet_disc(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double
                             double r, int closed, mpm_err *err);
 void mpm_bc3_open_outlet(mpm_bc3 *bc);
 
+/* 1 if a point at x beyond the outlet's face left through the open outlet
+ * (its coordinates in the face's axes in the rectangle or disc). */
+int mpm_bc3_left_through_outlet(const mpm_bc3 *bc, const mpm_mesh3 *m, const double x[3]);
+
 /* Zero the constrained components of the vector v (momentum or force) of
  * node i (inline: the grid update applies it node by node). */
 static inline void mpm_bc3_apply_node(const mpm_bc3 *bc, int i, double v[3])

@@ -23,8 +23,12 @@ enum mpm_bc_kind {
 
 /* Mesh edge carrying an outlet. */
 enum mpm_outlet_edge {
-  MPM_OUTLET_NONE = 0, MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT, MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP
+  MPM_OUTLET_NONE = 0, MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT, MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP,
+  MPM_OUTLET_FRONT, MPM_OUTLET_BACK    /* 3D: the z faces */
 };
+
+/* The shape of a 3D outlet on its face. */
+enum mpm_outlet_shape { MPM_OUTLET_RECTANGLE = 0, MPM_OUTLET_DISC };
 
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
@@ -148,7 +152,12 @@ typedef struct mpm_config {
   struct {
     int edge;                  /* enum mpm_outlet_edge; MPM_OUTLET_NONE: no outlet */
     double from, to;           /* extent along the edge (x on bottom/top, y on
-                                  left/right) [m] */
+                                  left/right) [m]; 3D: along the face's first axis
+                                  (x on bottom/top/front/back, y on left/right) */
+    double from2, to2;         /* 3D: extent along the face's second axis (z on
+                                  left/right/bottom/top, y on front/back) [m] */
+    int shape;                 /* 3D: enum mpm_outlet_shape; a disc is the one
+                                  inscribed in the square [from, to] x [from2, to2] */
     double t_open;             /* closed before, open from this time on [s] */
     int closed;                /* enum mpm_bc_kind while closed (noslip, frictionless) */
   } outlet;

@@ -370,7 +370,34 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
                             e.msg);
 }
 
-/* Outlet: an extent on a non-periodic edge, inside it; closed by a wall. */
+/* One extent of an outlet, lo ... hi (keys klo, khi), inside the mesh along
+ * axis a (0 x, 1 y, 2 z) of the face of edge e. */
+static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int klo, int khi,
+                             double lo, double hi)
+{
+  const double d[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
+  const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
+  const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
+  const double m0 = o[a], m1 = m0 + n[a] * d[a], tol = GEOM_TOL * d[a];
+  if (!(hi > lo)) {
+    where w = blame(c, cfg, -1, khi, klo);
+    return mpm_io_in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)",
+                              mpm_io_in_keys[khi].name, mpm_io_in_num(hi).s,
+                              mpm_io_in_keys[klo].name, mpm_io_in_num(lo).s,
+                              mpm_io_in_keys[khi].name, mpm_io_in_keys[klo].name);
+  }
+  if (lo < m0 - tol || hi > m1 + tol) {
+    where w = blame(c, cfg, -1, khi, klo);
+    return mpm_io_in_fail_key(
+        c, &w, "the outlet spans %c %s ... %s, outside the %s %s (allowed: %s ... %s m)",
+        "xyz"[a], mpm_io_in_approx(lo).s, mpm_io_in_approx(hi).s, mpm_io_in_name_at(NK_EDGE, e),
+        cfg->mesh.nz > 0 ? "face" : "edge", mpm_io_in_approx(m0).s, mpm_io_in_approx(m1).s);
+  }
+  return MPM_OK;
+}
+
+/* Outlet: an extent on a non-periodic edge (a rectangle or disc on a face
+ * in 3D), inside it; closed by a wall. */
 static int check_outlet(in_ctx *c, const mpm_config *cfg)
 {
   const int e = cfg->outlet.edge;
@@ -378,32 +405,42 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
     return MPM_OK;
   const int kf = key_index(S_OUTLET, "from"), kt = key_index(S_OUTLET, "to");
   const int ke = key_index(S_OUTLET, "edge"), kc = key_index(S_OUTLET, "closed");
+  const int dim3 = cfg->mesh.nz > 0;
   if (cfg->outlet.closed != MPM_BC_NOSLIP && cfg->outlet.closed != MPM_BC_FRICTIONLESS) {
     where w = blame(c, cfg, -1, kc, kc);
     return mpm_io_in_fail_key(c, &w, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
                               mpm_bc_kind_name(cfg->outlet.closed));
   }
-  const int kinds[] = {0, cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
-  if (kinds[e] == MPM_BC_PERIODIC) {
+  if (!dim3 && (e == MPM_OUTLET_FRONT || e == MPM_OUTLET_BACK)) {
     where w = blame(c, cfg, -1, ke, ke);
-    return mpm_io_in_fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic edge)",
+    return mpm_io_in_fail_key(c, &w, "\"%s\" is a face of 3D runs (allowed in a plane run: "
+                              "\"none\", \"left\", \"right\", \"bottom\", \"top\")",
                               mpm_io_in_name_at(NK_EDGE, e));
   }
-  const int vert = e == MPM_OUTLET_LEFT || e == MPM_OUTLET_RIGHT;
-  const double d = vert ? cfg->mesh.dy : cfg->mesh.dx;
-  const double m0 = vert ? cfg->mesh.y0 : cfg->mesh.x0;
-  const double m1 = m0 + (vert ? cfg->mesh.ny : cfg->mesh.nx) * d, tol = GEOM_TOL * d;
-  if (!(cfg->outlet.to > cfg->outlet.from)) {
-    where w = blame(c, cfg, -1, kt, kf);
-    return mpm_io_in_fail_key(c, &w, "to = %s <= from = %s (allowed: to > from)",
-                              mpm_io_in_num(cfg->outlet.to).s, mpm_io_in_num(cfg->outlet.from).s);
+  const int kinds[] = {0, cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top,
+                       cfg->bc.front, cfg->bc.back};
+  if (kinds[e] == MPM_BC_PERIODIC) {
+    where w = blame(c, cfg, -1, ke, ke);
+    return mpm_io_in_fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic %s)",
+                              mpm_io_in_name_at(NK_EDGE, e), dim3 ? "face" : "edge");
   }
-  if (cfg->outlet.from < m0 - tol || cfg->outlet.to > m1 + tol) {
-    where w = blame(c, cfg, -1, kt, kf);
-    return mpm_io_in_fail_key(
-        c, &w, "the outlet spans %s ... %s, outside the %s edge (allowed: %s ... %s m)",
-        mpm_io_in_approx(cfg->outlet.from).s, mpm_io_in_approx(cfg->outlet.to).s,
-        mpm_io_in_name_at(NK_EDGE, e), mpm_io_in_approx(m0).s, mpm_io_in_approx(m1).s);
+  /* the face's axes: y (z) on left and right, x (z) on bottom and top, x, y
+   * on front and back */
+  const int a0 = e == MPM_OUTLET_LEFT || e == MPM_OUTLET_RIGHT ? 1 : 0;
+  const int a1 = e == MPM_OUTLET_FRONT || e == MPM_OUTLET_BACK ? 1 : 2;
+  if (check_outlet_span(c, cfg, e, a0, kf, kt, cfg->outlet.from, cfg->outlet.to) != MPM_OK)
+    return MPM_EINPUT;
+  if (!dim3)
+    return MPM_OK;
+  const int kf2 = key_index(S_OUTLET, "from2"), kt2 = key_index(S_OUTLET, "to2");
+  if (check_outlet_span(c, cfg, e, a1, kf2, kt2, cfg->outlet.from2, cfg->outlet.to2) != MPM_OK)
+    return MPM_EINPUT;
+  const double w0 = cfg->outlet.to - cfg->outlet.from, w1 = cfg->outlet.to2 - cfg->outlet.from2;
+  if (cfg->outlet.shape == MPM_OUTLET_DISC && fabs(w0 - w1) > 1e-9 * (w0 > w1 ? w0 : w1)) {
+    where w = blame(c, cfg, -1, key_index(S_OUTLET, "shape"), kt2);
+    return mpm_io_in_fail_key(c, &w, "shape = \"disc\" on %s x %s m (allowed: a square, "
+                              "to - from = to2 - from2: the disc is the inscribed one)",
+                              mpm_io_in_approx(w0).s, mpm_io_in_approx(w1).s);
   }
   return MPM_OK;
 }
@@ -495,12 +532,11 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     {cfg->mesh.dilatation != MPM_DILATATION_POINT, S_MESH, "dilatation", "\"point\""},
     {cfg->time.transfer != MPM_TRANSFER_FLIP, S_TIME, "transfer", "\"flip\""},
     {cfg->material.state_density != 0, S_MATERIAL, "state_density", "\"point\""},
-    {cfg->outlet.edge != MPM_OUTLET_NONE, S_OUTLET, "edge", "\"none\""},
     {c->wall_nlist[0] > 0, S_WALL, "x", "no wall polygon"},
     {cfg->absorb.above < 1e9, S_ABSORB, "above", "no absorbing layer"},
-    {cfg->remove.free_edges || cfg->remove.below > -1e9, S_REMOVE,
-     cfg->remove.free_edges ? "free_edges" : "below", "no removal"},
     {cfg->stop.mass > 0.0, S_STOP, "mass", "0"},
+    {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE, S_OUTLET, "edge",
+     "\"none\" with model \"ngf_hyper\": the fluidity field has no open face yet"},
   };
   for (size_t i = 0; i < sizeof no3 / sizeof no3[0]; i++) {
     if (!no3[i].on)

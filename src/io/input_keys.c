@@ -135,6 +135,10 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_OUTLET, KT_ENUM, "edge", C_(outlet.edge), NK_EDGE, "none"),
     NUM(S_OUTLET, KT_REAL, "from", C_(outlet.from), 0, -1e9, 1e9, 0, "m"),
     NUM(S_OUTLET, KT_REAL, "to", C_(outlet.to), 0, -1e9, 1e9, 0, "m"),
+    NUM(S_OUTLET, KT_REAL, "from2", C_(outlet.from2), 0, -1e9, 1e9, KF_3D, "m"),
+    NUM(S_OUTLET, KT_REAL, "to2", C_(outlet.to2), 0, -1e9, 1e9, KF_3D, "m"),
+    {.name = "shape", .sec = S_OUTLET, .type = KT_ENUM, .off = C_(outlet.shape),
+     .kind = NK_OUTLET_SHAPE, .sdef = "rectangle", .flags = KF_3D},
     NUM(S_OUTLET, KT_REAL, "t_open", C_(outlet.t_open), 0, 0, 1e9, 0, "s"),
     NAMED(S_OUTLET, KT_ENUM, "closed", C_(outlet.closed), NK_BC, "noslip"),
 
@@ -180,7 +184,12 @@ static const char *const fill_shape_names[] = {
 
 static const char *const edge_names[] = {
   [MPM_OUTLET_NONE] = "none", [MPM_OUTLET_LEFT] = "left", [MPM_OUTLET_RIGHT] = "right",
-  [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top",
+  [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top", [MPM_OUTLET_FRONT] = "front",
+  [MPM_OUTLET_BACK] = "back",
+};
+
+static const char *const outlet_shape_names[] = {
+  [MPM_OUTLET_RECTANGLE] = "rectangle", [MPM_OUTLET_DISC] = "disc",
 };
 
 static const char *const dilatation_names[] = {
@@ -204,6 +213,7 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_DIAGONAL: return mpm_mesh_diagonal_name(i);
   case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
   case NK_EDGE: return NAME_AT(edge_names, i);
+  case NK_OUTLET_SHAPE: return NAME_AT(outlet_shape_names, i);
   case NK_DILATATION: return NAME_AT(dilatation_names, i);
   case NK_TRANSFER: return NAME_AT(transfer_names, i);
   case NK_BC: return mpm_bc_kind_name(i);
@@ -249,6 +259,7 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_G_SAMPLE: return mpm_nonlocal_steady_sample_from_name(s);
   case NK_G_MASS: return mpm_nonlocal_steady_mass_from_name(s);
   case NK_EDGE: return NAME_INDEX(edge_names, s);
+  case NK_OUTLET_SHAPE: return NAME_INDEX(outlet_shape_names, s);
   case NK_DILATATION: return NAME_INDEX(dilatation_names, s);
   case NK_TRANSFER: return NAME_INDEX(transfer_names, s);
   default: return -1;

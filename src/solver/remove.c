@@ -9,11 +9,40 @@
 
 #include "diag/region.h"
 
-/* 0: stays; 1: removed; -1: outside the mesh where nothing lets it leave. */
-static int fate(const mpm_sim *s, double x, double y)
+/* fate of point p of a 3D run (see fate). */
+static int fate3(const mpm_sim *s, size_t p)
 {
+  const mpm_mesh3 *m = &s->mesh3;
+  const mpm_points *P = s->pts;
+  const double x[3] = {P->x[p], P->y[p], P->z[p]};
+  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
+    return -1;
+  if (x[1] < s->cfg.remove.below)
+    return 1;
+  const double lo[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
+  const int per[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
+  int out = 0, blocked = 0;
+  for (int d = 0; d < 3; d++) {
+    const int below = !per[d] && x[d] < lo[d], above = !per[d] && x[d] > lo[d] + len[d];
+    out |= below | above;
+    blocked |= (below && s->bc3.face[2 * d] != MPM_BC_FREE) ||
+               (above && s->bc3.face[2 * d + 1] != MPM_BC_FREE);
+  }
+  if (!out)
+    return 0;
+  if (mpm_bc3_left_through_outlet(&s->bc3, m, x))
+    return 1;
+  return s->cfg.remove.free_edges && !blocked ? 1 : -1;
+}
+
+/* 0: stays; 1: removed; -1: outside the mesh where nothing lets it leave. */
+static int fate(const mpm_sim *s, size_t p)
+{
+  if (s->dim == 3)
+    return fate3(s, p);
   const mpm_mesh *m = &s->mesh;
   const mpm_config *c = &s->cfg;
+  const double x = s->pts->x[p], y = s->pts->y[p];
   if (!isfinite(x) || !isfinite(y))
     return -1;                                   /* nowhere: said by mpm_sim_check_state */
   if (y < c->remove.below)
@@ -43,8 +72,30 @@ static void compact_values(double *a, const unsigned char *keep, size_t n)
       a[q++] = a[p];
 }
 
+/* mpm_sim_may_leave for a 3D run. */
+static int may_leave3(const mpm_sim *s, size_t a, size_t b)
+{
+  const mpm_mesh3 *m = &s->mesh3;
+  const mpm_points *P = s->pts;
+  const double lo[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
+  const int per[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
+  const double *const x[3] = {P->x, P->y, P->z};
+  int any = 0;
+  for (int d = 0; d < 3; d++) {
+    double l = per[d] ? -INFINITY : lo[d];
+    const double h = per[d] ? INFINITY : lo[d] + len[d];
+    if (d == 1 && s->cfg.remove.below > l)
+      l = s->cfg.remove.below;
+    for (size_t p = a; p < b; p++)
+      any |= !(x[d][p] >= l) | !(x[d][p] <= h);
+  }
+  return any;
+}
+
 int mpm_sim_may_leave(const mpm_sim *s, size_t a, size_t b)
 {
+  if (s->dim == 3)
+    return may_leave3(s, a, b);
   const mpm_mesh *m = &s->mesh;
   const mpm_points *P = s->pts;
   const double xlo = m->periodic_x ? -INFINITY : m->x0;
@@ -66,13 +117,14 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
     return MPM_OK;
   size_t first = P->n;
   for (size_t p = 0; p < P->n; p++) {
-    const int f = fate(s, P->x[p], P->y[p]);
+    const int f = fate(s, p);
     if (f < 0 && mpm_sim_check_state(s, t, err) != MPM_OK)
       return err ? err->code : MPM_ENONFINITE;   /* a blow-up, not a point gone astray */
     if (f < 0)
       return mpm_err_set(err, MPM_EOUTSIDE,
-                         "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s, not through "
-                         "an open outlet or a removing edge", P->id[p], P->x[p], P->y[p], t);
+                         "point %d left the mesh at (%.6g, %.6g%s%.6g) m, t = %.6g s, not "
+                         "through an open outlet or a removing edge", P->id[p], P->x[p],
+                         P->y[p], P->z ? ", " : "", P->z ? P->z[p] : 0.0, t);
     if (f > 0 && first == P->n)
       first = p;
   }
@@ -82,7 +134,7 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
   if (!keep)
     return mpm_err_set(err, MPM_ENOMEM, "point removal: out of memory");
   for (size_t p = 0; p < P->n; p++) {
-    keep[p] = p < first || fate(s, P->x[p], P->y[p]) == 0;
+    keep[p] = p < first || fate(s, p) == 0;
     if (!keep[p]) {
       s->mass_removed += P->mass[p];
       s->nremoved++;

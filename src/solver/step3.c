@@ -92,6 +92,20 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
                          cfg->bc.top,    cfg->bc.front, cfg->bc.back};
     rc = mpm_bc3_setup(&s->bc3, m, face, err);
   }
+  const int e = cfg->outlet.edge;
+  if (rc == MPM_OK && e != MPM_OUTLET_NONE) {
+    /* edges left, right, bottom, top, front, back are the faces -x ... +z */
+    const int f = e - MPM_OUTLET_LEFT + MPM_FACE_XLO;
+    const double lo[2] = {cfg->outlet.from, cfg->outlet.from2};
+    const double hi[2] = {cfg->outlet.to, cfg->outlet.to2};
+    if (cfg->outlet.shape == MPM_OUTLET_DISC) {
+      const double c[2] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
+      rc = mpm_bc3_set_outlet_disc(&s->bc3, m, f, c, 0.5 * (hi[0] - lo[0]), cfg->outlet.closed,
+                                   err);
+    } else {
+      rc = mpm_bc3_set_outlet_rectangle(&s->bc3, m, f, lo, hi, cfg->outlet.closed, err);
+    }
+  }
   if (rc == MPM_OK && !(s->shape3 = mpm_shape3_lookup(cfg->mesh.shape)))
     rc = mpm_err_set(err, MPM_EINPUT, "mesh.shape '%s' unknown in 3D", cfg->mesh.shape);
   if (rc == MPM_OK && !(s->pts = mpm_points_alloc_dim(1024, 3)))
@@ -227,6 +241,9 @@ static void bookkeeping(mpm_sim *s, size_t p, const double vg[3])
   double *const v[3] = {&P->vx[p], &P->vy[p], &P->vz[p]};
   const double lo[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
   const int periodic[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
+  const double xp[3] = {*x[0], *x[1], *x[2]};
+  if (mpm_bc3_left_through_outlet(&s->bc3, m, xp))
+    return;                                /* leaves through the open outlet */
   for (int d = 0; d < 3; d++) {
     if (periodic[d]) {
       mpm_mesh_axis_wrap_coord(x[d], lo[d], len[d]);
@@ -260,7 +277,8 @@ static long local_phase(mpm_sim *s)
         bad = (long)p > bad ? (long)p : bad;
       bookkeeping(s, p, vg);
     }
-    scan |= mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u;
+    scan |= (mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u) |
+            (mpm_sim_may_leave(s, a, e) ? MPM_SIM_SCAN_LEAVE : 0u);
   }
   s->scan = scan;
   return bad;
@@ -290,7 +308,7 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
     }
     scan |= mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u;
   }
-  s->scan = scan;
+  s->scan = scan | MPM_SIM_SCAN_LEAVE;
   for (size_t p = 0; p < n; p++) {          /* the units of x_{n+1} */
     const double x[3] = {P->x[p], P->y[p], P->z[p]};
     int u[3];
@@ -336,6 +354,9 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
 int mpm_sim3_step(mpm_sim *s, mpm_err *err)
 {
   mpm_points *P = s->pts;
+  if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc3.open &&
+      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt)
+    mpm_bc3_open_outlet(&s->bc3);         /* the orifice opens */
   int rc = mpm_shape3_stencil_compute(s->st, s->shape3, &s->mesh3, P, s->t, err);
   if (rc == MPM_EOUTSIDE && mpm_sim_check_state(s, s->t, err) != MPM_OK)
     return MPM_ENONFINITE;                /* "outside" at a non-finite position: say that */
@@ -355,5 +376,7 @@ int mpm_sim3_step(mpm_sim *s, mpm_err *err)
     return mpm_sim_check_state(s, s->t + s->dt, err);
   s->t += s->dt;
   s->step++;
-  return mpm_sim_check_speeds(s, s->t, err);
+  if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)
+    return rc;
+  return mpm_sim_remove_points(s, s->t, err);
 }

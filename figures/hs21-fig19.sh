@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# [HS21] Fig. 19 analogue: a slice through the middle of the draining 3D silo
+# (inputs/silo3d.conf, mu(I); about 3 minutes on 2 cores), at 0.6, 1.2 and
+# 2.4 s: points with 0.15 <= z <= 0.17 m coloured by speed (top row) and by
+# plastic shear rate (bottom row).
+#   figures/hs21-fig19.sh OUTDIR
+set -euo pipefail
+src=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
+granmpm=${GRANMPM:-$src/src/app/granmpm}
+out=${1:?usage: hs21-fig19.sh OUTDIR}
+work=$out/hs21-fig19.d
+mkdir -p "$work"
+run=$work/silo3d
+[ -s "$run/diagnostics.csv" ] && grep -q '^2\.4' "$run/diagnostics.csv" ||
+  "$granmpm" run "$src/inputs/silo3d.conf" --quiet --force --output "$run" \
+    --set time.t_end=2.4 --set time.frame_dt=0.05
+speed= gdp= titles=
+for t in 0.6 1.2 2.4; do
+  f=$(awk -v t="$t" 'BEGIN { printf "%d", t / 0.05 + 0.5 }')
+  "$granmpm" extract "$run" --frame "$f" --z-range 0.15:0.17 --fields x,y,vx,vy,vz,gdot_p |
+    awk -F, -v a="$work/speed-$t.csv" -v b="$work/gdp-$t.csv" '
+      NR == 1 { print "x,y,speed" > a; print "x,y,gdot_p" > b; next }
+      { printf "%s,%s,%.6g\n", $1, $2, sqrt($3 * $3 + $4 * $4 + $5 * $5) > a
+        printf "%s,%s,%s\n", $1, $2, $6 > b }'
+  speed="$speed $work/speed-$t.csv"
+  gdp="$gdp $work/gdp-$t.csv"
+  titles="$titles${titles:+|}t = $t s"
+done
+gnuplot -e "files='$speed'; titles='$titles'; layout='1 3'; cblabel='speed [m/s]'; \
+  cbmin=0; cbmax=0.6; xmin=0; xmax=0.32; ymin=-0.04; ymax=0.18; width=1500; height=450; \
+  psize=0.6; outfile='$work/speed.png'; suptitle='3D silo, slice 0.15 <= z <= 0.17 m: speed'" \
+  "$src/figures/snapshots.gp"
+gnuplot -e "files='$gdp'; titles='$titles'; layout='1 3'; cblabel='plastic shear rate [1/s]'; \
+  cbmin=0; cbmax=20; xmin=0; xmax=0.32; ymin=-0.04; ymax=0.18; width=1500; height=450; \
+  psize=0.6; outfile='$work/gdp.png'; suptitle='3D silo, slice 0.15 <= z <= 0.17 m: plastic shear rate'" \
+  "$src/figures/snapshots.gp"
+# the two rows in one picture
+gnuplot -e "set terminal pngcairo size 1500,900; set output '$out/hs21-fig19.png'; \
+  set multiplot layout 2,1; unset border; unset tics; set xrange [0:1500]; set yrange [0:450]; \
+  set size ratio -1; plot '$work/speed.png' binary filetype=png with rgbimage notitle; \
+  plot '$work/gdp.png' binary filetype=png with rgbimage notitle; unset multiplot"
