@@ -247,7 +247,8 @@ static void check_3d_arrays(const mpm_points *pts, int want_null)
   MPM_POINT_REAL_FIELDS(NULL_)
   MPM_POINT_INT_FIELDS(NULL_)
 #undef NULL_
-  ck_assert_int_eq(n3, 14);   /* z, vz, syz, szx, r1z, r2z, r3x..r3z; C: xz, yz, zx, zy, zz */
+  /* z, vz, syz, szx, r1z, r2z, r3x..r3z; C: xz, yz, zx, zy, zz; F and Fp (9 each) */
+  ck_assert_int_eq(n3, 32);
 }
 
 /* Point i of pts holds the values of point `tag` of frame f, every field. */

@@ -5,6 +5,7 @@
 #include "solver/solver.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "diag/region.h"
@@ -120,11 +121,14 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
     const int f = fate(s, p);
     if (f < 0 && mpm_sim_check_state(s, t, err) != MPM_OK)
       return err ? err->code : MPM_ENONFINITE;   /* a blow-up, not a point gone astray */
-    if (f < 0)
+    if (f < 0) {
+      char z[40] = "";
+      if (P->z)
+        snprintf(z, sizeof z, ", %.6g", P->z[p]);
       return mpm_err_set(err, MPM_EOUTSIDE,
-                         "point %d left the mesh at (%.6g, %.6g%s%.6g) m, t = %.6g s, not "
-                         "through an open outlet or a removing edge", P->id[p], P->x[p],
-                         P->y[p], P->z ? ", " : "", P->z ? P->z[p] : 0.0, t);
+                         "point %d left the mesh at (%.6g, %.6g%s) m, t = %.6g s, not through "
+                         "an open outlet or a removing edge", P->id[p], P->x[p], P->y[p], z, t);
+    }
     if (f > 0 && first == P->n)
       first = p;
   }
