@@ -267,6 +267,60 @@ START_TEST(t_outlet)
 }
 END_TEST
 
+/* The unit options (material.state_density = "unit", mesh.dilatation =
+ * "unit": B-bar with one mean stress per box): a settling column keeps its
+ * momentum balance (the modified stress is still an internal force: the box
+ * falls with g while nothing touches the floor) and after every step the
+ * dense points of a box share one mean stress (sxx + syy + szz)/3. */
+START_TEST(t_unit_options)
+{
+  mpm_config c;
+  column_config(&c, "ugimp", 2, "mu_i");
+  c.material.state_density = MPM_DENSITY_UNIT;
+  c.mesh.dilatation = MPM_DILATATION_UNIT;
+  mpm_sim *s = make(&c);
+  const mpm_points *P = s->pts;
+  const mpm_mesh3 *m = &s->mesh3;
+  const size_t nu = (size_t)m->nx * m->ny * m->nz;
+  double *first = malloc(nu * sizeof *first);
+  for (int k = 0; k < 60; k++) {
+    steps(s, 1);
+    for (size_t e = 0; e < nu; e++)
+      first[e] = NAN;
+    double pmax = 0.0, dev = 0.0;
+    int shared = 0;
+    for (size_t p = 0; p < P->n; p++) {
+      if (P->state[p] != MPM_STATE_DENSE)
+        continue;
+      const double x[3] = {P->x[p], P->y[p], P->z[p]};
+      int u[3];
+      double l[3];
+      ck_assert_int_eq(mpm_mesh3_locate(m, x, u, l), 0);
+      const size_t e = (size_t)u[0] + (size_t)m->nx * (u[1] + (size_t)m->ny * u[2]);
+      const double sm = (P->sxx[p] + P->syy[p] + P->szz[p]) / 3.0;
+      pmax = fmax(pmax, fabs(sm));
+      if (isnan(first[e]))
+        first[e] = sm;
+      else {
+        dev = fmax(dev, fabs(sm - first[e]));
+        shared++;
+      }
+    }
+    if (k == 59)                /* settled: most points dense, several a box */
+      ck_assert_int_gt(shared, 100);
+    ck_assert_double_le(dev, 1e-12 * pmax);
+  }
+  double pz = 0.0, mtot = 0.0;
+  for (size_t p = 0; p < P->n; p++) {
+    pz += P->mass[p] * P->vz[p];
+    mtot += P->mass[p];
+  }
+  ck_assert_double_le(fabs(pz), 1e-12 * mtot);  /* nothing pushes along the periodic z */
+  free(first);
+  mpm_sim_free(s);
+}
+END_TEST
+
 #ifdef _OPENMP
 START_TEST(t_threads)
 {
@@ -304,6 +358,7 @@ int main(void)
   tcase_add_loop_test(tc, t_momentum, 0, 3);
   tcase_add_loop_test(tc, t_plane, 0, 3);
   tcase_add_loop_test(tc, t_outlet, 0, 2);
+  tcase_add_test(tc, t_unit_options);
 #ifdef _OPENMP
   tcase_add_loop_test(tc, t_threads, 0, 3);
 #endif

@@ -9,6 +9,7 @@
 
 #include "bc/bc.h"
 #include "io/input_internal.h"
+#include "material/density.h"
 #include "material/material.h"
 #include "nonlocal/field.h"
 #include "shape/shape.h"
@@ -529,9 +530,10 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   /* what the plane run has and the 3D one has not (yet): named, not ignored */
   struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
     {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
-    {cfg->mesh.dilatation != MPM_DILATATION_POINT, S_MESH, "dilatation", "\"point\""},
     {cfg->time.transfer != MPM_TRANSFER_FLIP, S_TIME, "transfer", "\"flip\""},
-    {cfg->material.state_density != 0, S_MATERIAL, "state_density", "\"point\""},
+    {cfg->material.state_density != MPM_DENSITY_POINT &&
+         cfg->material.state_density != MPM_DENSITY_UNIT,
+     S_MATERIAL, "state_density", "\"point\", \"unit\""},
     {c->wall_nlist[0] > 0, S_WALL, "x", "no wall polygon"},
     {cfg->absorb.above < 1e9, S_ABSORB, "above", "no absorbing layer"},
     {cfg->stop.mass > 0.0, S_STOP, "mass", "0"},

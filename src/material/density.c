@@ -21,6 +21,7 @@
  * order on one thread, so the result does not depend on the thread count. */
 #include "material/density.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -57,12 +58,26 @@ int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mp
   *out = NULL;
   if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
     return mpm_err_set(err, MPM_EINVAL, "density: mesh not set up (%d x %d units)", m->nx, m->ny);
+  int rc = mpm_material_density_alloc_units(out, (size_t)m->nx * (size_t)m->ny, m->dx * m->dy,
+                                            err);
+  if (rc == MPM_OK) {
+    (*out)->nx = m->nx;
+    (*out)->ny = m->ny;
+  }
+  return rc;
+}
+
+int mpm_material_density_alloc_units(mpm_material_density **out, size_t nu, double volume,
+                                     mpm_err *err)
+{
+  *out = NULL;
+  if (nu < 1 || nu > (size_t)INT_MAX || !(volume > 0.0))
+    return mpm_err_set(err, MPM_EINVAL, "density: %zu units of volume %g", nu, volume);
   mpm_material_density *ws = calloc(1, sizeof *ws);
-  size_t nu = (size_t)m->nx * (size_t)m->ny;
   if (ws) {
-    ws->nx = m->nx;
-    ws->ny = m->ny;
-    ws->area = m->dx * m->dy;
+    ws->nx = (int)nu;
+    ws->ny = 1;
+    ws->area = volume;
     ws->sm = calloc(nu, sizeof *ws->sm);
     ws->sv = calloc(nu, sizeof *ws->sv);
     ws->count = calloc(nu, sizeof *ws->count);

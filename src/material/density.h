@@ -35,6 +35,12 @@ typedef struct mpm_material_density {
 
 /* Workspace for mesh m (set up). */
 int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mpm_err *err);
+
+/* Workspace for nu units of volume `volume` in a row (nx = nu, ny = 1), for
+ * a caller that gives every point's unit (the 3D step's boxes): the point
+ * and unit rules only (the element and hybrid rules need the plane mesh). */
+int mpm_material_density_alloc_units(mpm_material_density **out, size_t nu, double volume,
+                                     mpm_err *err);
 void mpm_material_density_free(mpm_material_density *ws);  /* accepts NULL */
 
 /* rho[p] for the n points at (x, y) with mass and volume vol, by rule (enum

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "material/density.h"
 #include "material/hyper.h"
 #include "nonlocal/field3.h"
 #include "scenario/scenario.h"
@@ -24,13 +25,17 @@
 
 /* ---- set-up -------------------------------------------------------------- */
 
-/* The nonlocal workspace of a 3D run: the unit field, and per point its L
- * (row-major, kept over the substeps), unit and dense flag. */
+/* The workspace of a 3D run whose points all move before any update: a
+ * nonlocal model (its unit field) or the unit density (its unit sums), and
+ * per point its L (row-major, kept over the substeps), unit, dense flag and
+ * density. */
 struct mpm_sim3_work {
-  mpm_nonlocal3 *nl;
+  mpm_nonlocal3 *nl;         /* NULL for a local model */
+  mpm_material_density *dens;  /* material.state_density = "unit", else NULL */
   double *L;                 /* [9 cap] */
   int *unit;                 /* [cap] */
   unsigned char *dense;      /* [cap] */
+  double *rho;               /* [cap] rho_{n+1} of the state decision */
   size_t cap;
 };
 
@@ -39,16 +44,30 @@ void mpm_sim3_work_free(mpm_sim3_work *w)
   if (!w)
     return;
   mpm_nonlocal3_free(w->nl);
+  mpm_material_density_free(w->dens);
   free(w->L);
   free(w->unit);
   free(w->dense);
+  free(w->rho);
   free(w);
 }
 
-/* The unit field of a nonlocal model, with the ghost rules of the faces
- * (no-slip: g = 0 unless material.g_wall = "neumann"). */
+/* The workspace: the unit field of a nonlocal model, with the ghost rules
+ * of the faces (no-slip: g = 0 unless material.g_wall = "neumann"), and the
+ * unit sums of the unit density. */
 static int work_alloc(mpm_sim *s, mpm_err *err)
 {
+  if (!(s->w3 = calloc(1, sizeof *s->w3)))
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the 3D workspace");
+  const mpm_mesh3 *m = &s->mesh3;
+  if (s->cfg.material.state_density == MPM_DENSITY_UNIT) {
+    const size_t nu = (size_t)m->nx * (size_t)m->ny * (size_t)m->nz;
+    const int rc = mpm_material_density_alloc_units(&s->w3->dens, nu, m->dx * m->dy * m->dz, err);
+    if (rc != MPM_OK)
+      return rc;
+  }
+  if (!s->mat->nonlocal)
+    return MPM_OK;
   const int *face = s->bc3.face;
   int ghost[6];
   for (int f = 0; f < 6; f++) {
@@ -56,9 +75,7 @@ static int work_alloc(mpm_sim *s, mpm_err *err)
     if (ghost[f] == MPM_GHOST_DIRICHLET && s->cfg.material.g_wall == MPM_NONLOCAL_WALL_NEUMANN)
       ghost[f] = MPM_GHOST_NEUMANN;
   }
-  if (!(s->w3 = calloc(1, sizeof *s->w3)))
-    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the nonlocal workspace");
-  return mpm_nonlocal3_alloc(&s->w3->nl, &s->mesh3, ghost, err);
+  return mpm_nonlocal3_alloc(&s->w3->nl, m, ghost, err);
 }
 
 /* Room for the per-point arrays of n points. */
@@ -76,7 +93,10 @@ static int work_reserve(mpm_sim3_work *w, size_t n, mpm_err *err)
   unsigned char *d = realloc(w->dense, n);
   if (d)
     w->dense = d;
-  if (!L || !u || !d)
+  double *r = realloc(w->rho, n * sizeof *r);
+  if (r)
+    w->rho = r;
+  if (!L || !u || !d || !r)
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu points' gradients", n);
   w->cap = n;
   return MPM_OK;
@@ -121,7 +141,16 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
   if (!(s->nm = calloc(nn, sizeof *s->nm)) || !(s->nq3 = calloc(nn, sizeof *s->nq3)) ||
       !(s->st = mpm_shape_stencil_alloc(0)) || !(s->bands = mpm_mesh_bands_alloc()))
     return mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
-  return s->mat->nonlocal ? work_alloc(s, err) : MPM_OK;
+  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
+      !(s->usum = malloc(2 * (size_t)m->nx * (size_t)m->ny * (size_t)m->nz * sizeof *s->usum)))
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
+  return s->mat->nonlocal || s->cfg.material.state_density == MPM_DENSITY_UNIT || s->usum
+             ? work_alloc(s, err) : MPM_OK;
+}
+
+double *mpm_sim_in_l3(const mpm_sim *s)
+{
+  return s->w3->L;
 }
 
 /* ---- the step ------------------------------------------------------------ */
@@ -157,7 +186,8 @@ static void move_point(mpm_sim *s, size_t p, double fl, double L[9], double vg[3
     *v[d] = fl == 1.0 ? fv : fl * fv + (1.0 - fl) * vg[d];
     *x[d] += dt * vg[d];
   }
-  P->vol[p] *= mpm_sim_volume_ratio(dt * (L[0] + L[4] + L[8]));   /* V *= exp(dt tr L) */
+  if (!s->usum)              /* (with B-bar later, by mpm_sim_in_unit_dilatation) */
+    P->vol[p] *= mpm_sim_volume_ratio(dt * (L[0] + L[4] + L[8]));   /* V *= exp(dt tr L) */
   if (s->shape3->convect) {                               /* CPDI1: r_k <- (I + dt L) r_k */
     double *const rp[9] = {&P->r1x[p], &P->r1y[p], &P->r1z[p], &P->r2x[p], &P->r2y[p],
                            &P->r2z[p], &P->r3x[p], &P->r3y[p], &P->r3z[p]};
@@ -184,13 +214,14 @@ static int finite_stress(mpm_sym3 s)
   return isfinite(s.xx + s.yy + s.zz + s.xy + s.yz + s.zx);
 }
 
-/* Step 6 of a local model for point p: n_sub substeps of h with L fixed,
- * rho = m / V_{n+1}. Returns 0 if its stress became non-finite. */
-static int update_local(mpm_sim *s, size_t p, const double L[9], double h)
+/* Step 6 of a local model for point p: n_sub substeps of h with L fixed and
+ * the density rho_{n+1} of the state decision. Returns 0 if its stress
+ * became non-finite. */
+static int update_local(mpm_sim *s, size_t p, const double L[9], double h, double rho)
 {
   mpm_points *P = s->pts;
   const mpm_mat3 Lm = mat3_of(L);
-  mpm_mpoint pt = {.sigma = stress_of(P, p), .rho = P->mass[p] / P->vol[p], .g = P->g[p],
+  mpm_mpoint pt = {.sigma = stress_of(P, p), .rho = rho, .g = P->g[p],
                    .gdp = P->gdp[p], .state = P->state[p]};
   for (int k = 0; k < s->n_sub; k++)
     s->mat->update(&s->par, &Lm, h, &pt);
@@ -272,8 +303,9 @@ static long local_phase(mpm_sim *s)
     const size_t a = c * CHUNK3, e = a + CHUNK3 < n ? a + CHUNK3 : n;
     for (size_t p = a; p < e; p++) {
       double L[9], vg[3];
+      const mpm_points *P = s->pts;
       move_point(s, p, fl, L, vg);
-      if (!update_local(s, p, L, h))
+      if (!update_local(s, p, L, h, P->mass[p] / P->vol[p]))
         bad = (long)p > bad ? (long)p : bad;
       bookkeeping(s, p, vg);
     }
@@ -284,12 +316,16 @@ static long local_phase(mpm_sim *s)
   return bad;
 }
 
-/* Steps 4-7 of the hyperelastic NGF: every point moves first (its L kept,
- * walls and wraps applied), then per substep the unit field of the dense
- * points (g_e, and lap_e by the diffusion of material.diffusion; lap = 0
- * while t < t_seed: the local model, [DK-silo] section 6) and the update of
- * every point. Returns as local_phase; *rc an error of the field. */
-static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
+/* Steps 4-7 when every point moves before any update (a nonlocal model, the
+ * unit density): every point moves (its L kept, walls and wraps applied),
+ * the units of x_{n+1} are found, and then
+ *   - a local model: the density of the state decision (the unit rule:
+ *     sum m_p / sum V_p over the unit, density.h) and the update;
+ *   - the hyperelastic NGF: per substep the unit field of the dense points
+ *     (g_e, and lap_e by the diffusion of material.diffusion; lap = 0 while
+ *     t < t_seed: the local model, [DK-silo] section 6) and the update.
+ * Returns as local_phase; *rc an error of the field. */
+static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
 {
   mpm_points *P = s->pts;
   mpm_sim3_work *w = s->w3;
@@ -309,23 +345,38 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
     scan |= mpm_sim_too_fast(s, a, e) ? MPM_SIM_SCAN_FAST : 0u;
   }
   s->scan = scan | MPM_SIM_SCAN_LEAVE;
+  if (s->usum)                              /* B-bar: tr L_p and V_p per unit */
+    mpm_sim_in_unit_dilatation(s);
+  const mpm_mesh3 *m = &s->mesh3;
   for (size_t p = 0; p < n; p++) {          /* the units of x_{n+1} */
     const double x[3] = {P->x[p], P->y[p], P->z[p]};
     int u[3];
     double l[3];
-    if (mpm_mesh3_locate(&s->mesh3, x, u, l) != 0) {
+    w->unit[p] = mpm_mesh3_locate(m, x, u, l) != 0
+                     ? -1                     /* leaving: removed after the step, or reported */
+                     : u[0] + m->nx * (u[1] + m->ny * u[2]);
+  }
+  long bad = -1;
+  if (!w->nl) {                             /* a local model: its density, its update */
+    mpm_material_density_compute(w->dens, NULL, w->dens ? MPM_DENSITY_UNIT : MPM_DENSITY_POINT,
+                                 n, P->x, P->y, w->unit, P->mass, P->vol, w->rho);
+#pragma omp parallel for schedule(static) reduction(max : bad)
+    for (size_t p = 0; p < n; p++)
+      if (!update_local(s, p, w->L + 9 * p, h, w->rho[p]))
+        bad = (long)p > bad ? (long)p : bad;
+    return bad;
+  }
+  for (size_t p = 0; p < n; p++)
+    if (w->unit[p] < 0) {                   /* the fluidity field has no open face */
       if (mpm_sim_check_state(s, s->t + s->dt, err) != MPM_OK)
         *rc = MPM_ENONFINITE;
       else
         *rc = mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g, %.6g) m, "
-                          "t = %.6g s", P->id[p], x[0], x[1], x[2], s->t + s->dt);
+                          "t = %.6g s", P->id[p], P->x[p], P->y[p], P->z[p], s->t + s->dt);
       return -1;
     }
-    w->unit[p] = (int)mpm_nonlocal3_unit(w->nl, u[0], u[1], u[2]);
-  }
   const int local = s->t < s->par.t_seed - 1e-9 * s->dt;
   const int implicit = s->cfg.material.diffusion == MPM_DIFFUSION_IMPLICIT;
-  long bad = -1;
   for (int k = 0; k < s->n_sub; k++) {
 #pragma omp parallel for schedule(static)
     for (size_t p = 0; p < n; p++)
@@ -368,12 +419,16 @@ int mpm_sim3_step(mpm_sim *s, mpm_err *err)
     return rc;
   double b[3];
   mpm_sim_gravity3(s, s->t, b);
+  if (s->usum && (rc = mpm_sim_in_unit_stress(s, err)) != MPM_OK)
+    return rc;
   mpm_sim_in_grid3(s, b);
-  const long bad = s->w3 ? nonlocal_phase(s, &rc, err) : local_phase(s);
+  const long bad = s->w3 ? moved_phase(s, &rc, err) : local_phase(s);
   if (rc != MPM_OK)
     return rc;
   if (bad >= 0)                           /* a non-finite stress: what, where, why */
     return mpm_sim_check_state(s, s->t + s->dt, err);
+  if (s->usum)                            /* one mean stress per unit */
+    mpm_sim_in_unit_project(s);
   s->t += s->dt;
   s->step++;
   if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)

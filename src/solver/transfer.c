@@ -225,10 +225,21 @@ static int reserve_units(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
-/* s->uof[p]: the unit holding point p now, -1 outside the mesh. */
+/* s->uof[p]: the unit holding point p now, -1 outside the mesh (3D: the
+ * box, i + nx (j + ny k)). */
 static void find_units(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
+  if (s->dim == 3) {
+    const mpm_mesh3 *m = &s->mesh3;
+    for (size_t p = 0; p < P->n; p++) {
+      const double x[3] = {P->x[p], P->y[p], P->z[p]};
+      int u[3];
+      double l[3];
+      s->uof[p] = mpm_mesh3_locate(m, x, u, l) ? -1 : u[0] + m->nx * (u[1] + m->ny * u[2]);
+    }
+    return;
+  }
   const int nx = s->mesh.nx;
   for (size_t p = 0; p < P->n; p++) {
     int i, j;
@@ -236,14 +247,41 @@ static void find_units(mpm_sim *s)
   }
 }
 
-/* What a unit mean averages: the in-plane mean stress of all points or of
- * the dense ones, or tr L_p. */
+/* What a unit mean averages: the mean stress of the run's dimension D,
+ * s_m = (s_xx + s_yy [+ s_zz]) / D (in the plane the in-plane mean), of
+ * all points or of the dense ones, or tr L_p over the D axes. */
 enum { MEAN_SM, MEAN_SM_DENSE, MEAN_TRL };
+
+/* The velocity gradient of point p kept over the step: the plane's per-point
+ * arrays, or the 3D step's rows of 9 (mpm_sim_in_l3). */
+static inline double trace_L(const mpm_sim *s, size_t p)
+{
+  if (s->dim == 3) {
+    const double *L = mpm_sim_in_l3(s) + 9 * p;
+    return L[0] + L[4] + L[8];
+  }
+  return s->lxx[p] + s->lyy[p];
+}
+
+static inline double mean_stress(const mpm_sim *s, size_t p)
+{
+  const mpm_points *P = s->pts;
+  if (s->dim == 3)
+    return (P->sxx[p] + P->syy[p] + P->szz[p]) / 3.0;
+  return 0.5 * (P->sxx[p] + P->syy[p]);
+}
 
 static inline double mean_value(const mpm_sim *s, size_t p, int what)
 {
-  const mpm_points *P = s->pts;
-  return what == MEAN_TRL ? s->lxx[p] + s->lyy[p] : 0.5 * (P->sxx[p] + P->syy[p]);
+  return what == MEAN_TRL ? trace_L(s, p) : mean_stress(s, p);
+}
+
+/* Units of the run's mesh. */
+static size_t unit_count(const mpm_sim *s)
+{
+  if (s->dim == 3)
+    return (size_t)s->mesh3.nx * (size_t)s->mesh3.ny * (size_t)s->mesh3.nz;
+  return (size_t)s->mesh.nx * (size_t)s->mesh.ny;
 }
 
 /* s->usum[2u + 1] = sum V_p f_p / sum V_p over the points of unit u
@@ -252,7 +290,7 @@ static inline double mean_value(const mpm_sim *s, size_t p, int what)
 static void unit_means(mpm_sim *s, int what)
 {
   const mpm_points *P = s->pts;
-  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  const size_t nu = unit_count(s);
   double *us = s->usum;
   memset(us, 0, 2 * nu * sizeof *us);
   for (size_t p = 0; p < P->n; p++) {
@@ -282,12 +320,18 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
   mpm_points *P = s->pts;
   unit_means(s, MEAN_TRL);
   const double dt = s->dt;
+  double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
-    const double tr = s->lxx[p] + s->lyy[p];
+    const double tr = trace_L(s, p);
     const double div = u < 0 ? tr : s->usum[2 * u + 1];    /* the unit's divergence */
-    s->lxx[p] += 0.5 * (div - tr);
-    s->lyy[p] += 0.5 * (div - tr);
+    if (L3) {                                                /* L_ii += (div - tr)/D */
+      for (int i = 0; i < 3; i++)
+        L3[9 * p + 4 * i] += (div - tr) / 3.0;
+    } else {
+      s->lxx[p] += 0.5 * (div - tr);
+      s->lyy[p] += 0.5 * (div - tr);
+    }
     P->vol[p] *= mpm_sim_volume_ratio(dt * div);             /* V *= exp(dt tr L) */
   }
 }
@@ -301,9 +345,11 @@ void mpm_sim_in_unit_project(mpm_sim *s)
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)
       continue;
-    const double d = s->usum[2 * u + 1] - 0.5 * (P->sxx[p] + P->syy[p]);
+    const double d = s->usum[2 * u + 1] - mean_stress(s, p);
     P->sxx[p] += d;
     P->syy[p] += d;
+    if (s->dim == 3)
+      P->szz[p] += d;
   }
 }
 

@@ -244,8 +244,14 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s);
 
 /* After the update: the in-plane mean stress of every dense point set to
  * the volume-weighted mean over the dense points of its unit of x_{n+1}
- * (the pressure of a mixed Q1/P0 element, one value per unit). */
+ * (the pressure of a mixed Q1/P0 element, one value per unit). In 3D the
+ * three of them: the mean stress (s_xx + s_yy + s_zz)/3 and tr L over three
+ * axes, the units the boxes (the same functions). */
 void mpm_sim_in_unit_project(mpm_sim *s);
+
+/* The 3D step's velocity gradients kept over the step, rows of 9 per point
+ * (step3.c). */
+double *mpm_sim_in_l3(const mpm_sim *s);
 
 /* Steps 2-3: point-to-grid band by band, then the grid update with the
  * boundary conditions; body force (bx, by). */

@@ -35,7 +35,13 @@ void mpm_sim_in_p2g_band3(const mpm_sim *s, int k, const double b[3])
     const double *S, *g[3];
     const int c = weights3(s, p, &node, &S, g);
     const double m = P->mass[p], V = P->vol[p];
-    const double sxx = P->sxx[p], syy = P->syy[p], szz = P->szz[p];
+    double sxx = P->sxx[p], syy = P->syy[p], szz = P->szz[p];
+    if (s->usum && s->uof[p] >= 0) {             /* B-bar: s_m -> the unit's mean */
+      const double d = s->usum[2 * s->uof[p] + 1] - (sxx + syy + szz) / 3.0;
+      sxx += d;
+      syy += d;
+      szz += d;
+    }
     const double sxy = P->sxy[p], syz = P->syz[p], szx = P->szx[p];
     const double a[6] = {m * P->vx[p], m * P->vy[p], m * P->vz[p], m * b[0], m * b[1], m * b[2]};
     const double ad[3][6] = {{0.0, 0.0, 0.0, -V * sxx, -V * sxy, -V * szx},
