@@ -182,8 +182,7 @@ static void move_point(mpm_sim *s, size_t p, double fl, double L[9], double vg[3
   double *const x[3] = {&P->x[p], &P->y[p], &P->z[p]};
   double *const v[3] = {&P->vx[p], &P->vy[p], &P->vz[p]};
   for (int d = 0; d < 3; d++) {
-    const double fv = *v[d] + dt * ag[d];                 /* v_FLIP */
-    *v[d] = fl == 1.0 ? fv : fl * fv + (1.0 - fl) * vg[d];
+    *v[d] = mpm_sim_in_flip(*v[d], ag[d], vg[d], dt, fl);
     *x[d] += dt * vg[d];
   }
   if (!s->usum)              /* (with B-bar later, by mpm_sim_in_unit_dilatation) */

@@ -147,6 +147,16 @@ static inline void mpm_sim_in_gather(const mpm_sim *s, int c, const int *node,
   mpm_tr_gather2((const double (*)[4])s->nq, c, node, S, g, vg, ag, L);
 }
 
+/* Step 4's velocity of a point from its velocity v, the grid acceleration
+ * ag and velocity vg at it: v_FLIP = v + dt ag, blended with the PIC
+ * velocity vg by the FLIP share fl (1: pure FLIP, [DK15]; 0: PIC, which
+ * APIC takes). One component; every dimension's step uses it. */
+static inline double mpm_sim_in_flip(double v, double ag, double vg, double dt, double fl)
+{
+  const double fv = v + dt * ag;                                /* v_FLIP */
+  return fl == 1.0 ? fv : fl * fv + (1.0 - fl) * vg;            /* fl v_FLIP + (1-fl) v_PIC */
+}
+
 /* Step 4 (the rest) and 5 for points [a, b) from what mpm_sim_in_gather gave
  * for point p at index p - a of vgx, vgy, agx, agy, lxx, lyy:
  * v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i when
@@ -167,9 +177,8 @@ static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const doub
 #pragma omp simd
   for (size_t p = a; p < b; p++) {
     const size_t k = p - a;
-    const double fvx = vx[p] + dt * agx[k], fvy = vy[p] + dt * agy[k];   /* v_FLIP */
-    vx[p] = fl == 1.0 ? fvx : fl * fvx + (1.0 - fl) * vgx[k];  /* fl v_FLIP + (1-fl) v_PIC */
-    vy[p] = fl == 1.0 ? fvy : fl * fvy + (1.0 - fl) * vgy[k];
+    vx[p] = mpm_sim_in_flip(vx[p], agx[k], vgx[k], dt, fl);
+    vy[p] = mpm_sim_in_flip(vy[p], agy[k], vgy[k], dt, fl);
     x[p] += dt * vgx[k];
     y[p] += dt * vgy[k];
   }
