@@ -8,9 +8,14 @@
  * blend, x += dt v_grid, the volume ratio of transfer.h, CPDI1's convected
  * extent (mpm_shape_extent_convect_dim), the model's update on the full 3x3
  * L (every local model of the table works on 3x3 tensors), then the walls
- * (mpm_bc_clamp_axis per axis) and periodic wraps. y is the vertical as in
- * the plane, z the third axis. Results do not depend on the thread count:
- * point-to-grid sums band by band as in the plane, the rest is per point. */
+ * (mpm_bc_clamp_axis per axis; not for a point leaving through the open
+ * outlet) and periodic wraps; points out through the outlet are removed
+ * after the step (remove.c). With the hyperelastic NGF, the unit density or
+ * the B-bar dilatation every point moves first (moved_phase), then the unit
+ * sums run in point order and the points are updated. y is the vertical as
+ * in the plane, z the third axis. Results do not depend on the thread count:
+ * point-to-grid sums band by band as in the plane, the unit sums in point
+ * order, the rest is per point. */
 #include "solver/solver.h"
 
 #include <math.h>

@@ -263,17 +263,9 @@ static inline double trace_L(const mpm_sim *s, size_t p)
   return s->lxx[p] + s->lyy[p];
 }
 
-static inline double mean_stress(const mpm_sim *s, size_t p)
-{
-  const mpm_points *P = s->pts;
-  if (s->dim == 3)
-    return (P->sxx[p] + P->syy[p] + P->szz[p]) / 3.0;
-  return 0.5 * (P->sxx[p] + P->syy[p]);
-}
-
 static inline double mean_value(const mpm_sim *s, size_t p, int what)
 {
-  return what == MEAN_TRL ? trace_L(s, p) : mean_stress(s, p);
+  return what == MEAN_TRL ? trace_L(s, p) : mpm_sim_in_mean_stress(s, p);
 }
 
 /* Units of the run's mesh. */
@@ -345,7 +337,7 @@ void mpm_sim_in_unit_project(mpm_sim *s)
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)
       continue;
-    const double d = s->usum[2 * u + 1] - mean_stress(s, p);
+    const double d = s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
     P->sxx[p] += d;
     P->syy[p] += d;
     if (s->dim == 3)
@@ -392,7 +384,7 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
   double sxx = P->sxx[p], syy = P->syy[p];
   const double sxy = P->sxy[p];
   if (bbar && s->uof[p] >= 0) {             /* s_m -> the unit's mean */
-    const double d = s->usum[2 * s->uof[p] + 1] - 0.5 * (sxx + syy);
+    const double d = s->usum[2 * s->uof[p] + 1] - mpm_sim_in_mean_stress(s, p);
     sxx += d;
     syy += d;
   }

@@ -70,6 +70,16 @@ static inline void mpm_sim_volume_update(double *restrict vol, const double *res
     }
 }
 
+/* The mean stress of point p over the run's D axes, (s_xx + s_yy [+ s_zz])
+ * / D: in the plane the in-plane mean (the B-bar options' s_m). */
+static inline double mpm_sim_in_mean_stress(const mpm_sim *s, size_t p)
+{
+  const mpm_points *P = s->pts;
+  if (s->dim == 3)
+    return (P->sxx[p] + P->syy[p] + P->szz[p]) / 3.0;
+  return 0.5 * (P->sxx[p] + P->syy[p]);
+}
+
 /* The weights of one point evaluated from its located element. */
 typedef struct mpm_sim_in_basis {
   int node[4];
