@@ -614,15 +614,19 @@ static int step(mpm_sim *s, mpm_err *err)
   } else {
     bad = point_phase(s, mat);
   }
+  return mpm_sim_in_step_end(s, bad, err);
+}
+
+int mpm_sim_in_step_end(mpm_sim *s, long bad, mpm_err *err)
+{
   if (bad >= 0)                              /* a non-finite stress: what, where, why */
     return mpm_sim_check_state(s, s->t + s->dt, err);
   if (s->usum)                               /* one mean stress per unit */
     mpm_sim_in_unit_project(s);
   s->t += s->dt;
   s->step++;
-  if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)
-    return rc;
-  return mpm_sim_remove_points(s, s->t, err);
+  const int rc = mpm_sim_check_speeds(s, s->t, err);
+  return rc != MPM_OK ? rc : mpm_sim_remove_points(s, s->t, err);
 }
 
 int mpm_sim_step(mpm_sim *s, mpm_err *err)

@@ -427,15 +427,5 @@ int mpm_sim3_step(mpm_sim *s, mpm_err *err)
     return rc;
   mpm_sim_in_grid3(s, b);
   const long bad = s->w3 ? moved_phase(s, &rc, err) : local_phase(s);
-  if (rc != MPM_OK)
-    return rc;
-  if (bad >= 0)                           /* a non-finite stress: what, where, why */
-    return mpm_sim_check_state(s, s->t + s->dt, err);
-  if (s->usum)                            /* one mean stress per unit */
-    mpm_sim_in_unit_project(s);
-  s->t += s->dt;
-  s->step++;
-  if ((rc = mpm_sim_check_speeds(s, s->t, err)) != MPM_OK)
-    return rc;
-  return mpm_sim_remove_points(s, s->t, err);
+  return rc != MPM_OK ? rc : mpm_sim_in_step_end(s, bad, err);
 }

@@ -268,6 +268,12 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s);
  * axes, the units the boxes (the same functions). */
 void mpm_sim_in_unit_project(mpm_sim *s);
 
+/* The end of a step of either dimension, once every point was updated
+ * (bad: the largest index of a point whose stress became non-finite, or
+ * -1): the report of a blow-up, the B-bar projection, the clock, the speed
+ * check and the removal of the points that left (step.c). */
+int mpm_sim_in_step_end(mpm_sim *s, long bad, mpm_err *err);
+
 /* The 3D step's velocity gradients kept over the step, rows of 9 per point
  * (step3.c). */
 double *mpm_sim_in_l3(const mpm_sim *s);
