@@ -21,11 +21,11 @@
 #include "diag/diag.h"
 #include "io/h5err.h"
 #include "io/io.h"
+#include "tmpdir.h"
 
 #define NFRAMES 3
 
 static const mpm_io_origin no_origin = {"", NULL, 1};
-#define DIR_MAX 256
 
 static const char *const all_fields[] = {"x", "y", "vx", "vy", "sxx", "syy", "szz", "sxy",
                                          "p", "mass", "volume", "state", "gdot_p", "g", "id",
@@ -94,25 +94,10 @@ static void fill_mesh(mpm_mesh *m)
   m->ly = m->ny * m->dy;
 }
 
-/* A fresh directory under $TMPDIR (default /tmp). */
+/* A fresh directory for this test's runs. */
 static void make_tmpdir(char *dir)
 {
-  const char *base = getenv("TMPDIR");
-  snprintf(dir, DIR_MAX, "%s/gm-test-output-XXXXXX", base && *base ? base : "/tmp");
-  ck_assert_ptr_nonnull(mkdtemp(dir));
-}
-
-static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-  (void)st;
-  (void)flag;
-  (void)ftw;
-  return remove(path);
-}
-
-static void remove_tree(const char *dir)
-{
-  nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+  make_tmpdir_named(dir, "test-output");
 }
 
 static void write_frame(mpm_io_output *out, int f)

@@ -28,9 +28,9 @@
 #include "diag/diag.h"
 #include "io/h5err.h"
 #include "io/io.h"
+#include "tmpdir.h"
 #include "mesh/box.h"
 
-#define DIR_MAX 256
 #define NFRAMES 3
 #define NSIDE 10             /* points along x and y; 3 layers in z */
 
@@ -116,24 +116,10 @@ static int fill_box(mpm_mesh3 *m, mpm_err *err)
   return mpm_mesh3_setup(m, err);
 }
 
+/* A fresh directory for this test's runs. */
 static void make_tmpdir(char *dir)
 {
-  const char *base = getenv("TMPDIR");
-  snprintf(dir, DIR_MAX, "%s/gm-test-output3-XXXXXX", base && *base ? base : "/tmp");
-  ck_assert_ptr_nonnull(mkdtemp(dir));
-}
-
-static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-  (void)st;
-  (void)flag;
-  (void)ftw;
-  return remove(path);
-}
-
-static void remove_tree(const char *dir)
-{
-  nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+  make_tmpdir_named(dir, "test-output3");
 }
 
 static int write_frame(mpm_io_output *out, int f, int dim, mpm_err *err)
