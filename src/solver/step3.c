@@ -351,15 +351,7 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
   s->scan = scan | MPM_SIM_SCAN_LEAVE;
   if (s->usum)                              /* B-bar: tr L_p and V_p per unit */
     mpm_sim_in_unit_dilatation(s);
-  const mpm_mesh3 *m = &s->mesh3;
-  for (size_t p = 0; p < n; p++) {          /* the units of x_{n+1} */
-    const double x[3] = {P->x[p], P->y[p], P->z[p]};
-    int u[3];
-    double l[3];
-    w->unit[p] = mpm_mesh3_locate(m, x, u, l) != 0
-                     ? -1                     /* leaving: removed after the step, or reported */
-                     : u[0] + m->nx * (u[1] + m->ny * u[2]);
-  }
+  mpm_sim_in_boxes(s, w->unit);            /* the units of x_{n+1}; -1: leaving */
   long bad = -1;
   if (!w->nl) {                             /* a local model: its density, its update */
     mpm_material_density_compute(w->dens, NULL, w->dens ? MPM_DENSITY_UNIT : MPM_DENSITY_POINT,

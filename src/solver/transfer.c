@@ -225,19 +225,25 @@ static int reserve_units(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
+void mpm_sim_in_boxes(const mpm_sim *s, int *unit)
+{
+  const mpm_points *P = s->pts;
+  const mpm_mesh3 *m = &s->mesh3;
+  for (size_t p = 0; p < P->n; p++) {
+    const double x[3] = {P->x[p], P->y[p], P->z[p]};
+    int u[3];
+    double l[3];
+    unit[p] = mpm_mesh3_locate(m, x, u, l) ? -1 : u[0] + m->nx * (u[1] + m->ny * u[2]);
+  }
+}
+
 /* s->uof[p]: the unit holding point p now, -1 outside the mesh (3D: the
  * box, i + nx (j + ny k)). */
 static void find_units(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
   if (s->dim == 3) {
-    const mpm_mesh3 *m = &s->mesh3;
-    for (size_t p = 0; p < P->n; p++) {
-      const double x[3] = {P->x[p], P->y[p], P->z[p]};
-      int u[3];
-      double l[3];
-      s->uof[p] = mpm_mesh3_locate(m, x, u, l) ? -1 : u[0] + m->nx * (u[1] + m->ny * u[2]);
-    }
+    mpm_sim_in_boxes(s, s->uof);
     return;
   }
   const int nx = s->mesh.nx;

@@ -274,6 +274,10 @@ void mpm_sim_in_unit_project(mpm_sim *s);
  * check and the removal of the points that left (step.c). */
 int mpm_sim_in_step_end(mpm_sim *s, long bad, mpm_err *err);
 
+/* unit[p]: the box of a 3D run holding point p now, i + nx (j + ny k), or
+ * -1 outside the mesh (transfer.c). */
+void mpm_sim_in_boxes(const mpm_sim *s, int *unit);
+
 /* The 3D step's velocity gradients kept over the step, rows of 9 per point
  * (step3.c). */
 double *mpm_sim_in_l3(const mpm_sim *s);
