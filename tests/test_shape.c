@@ -186,6 +186,51 @@ START_TEST(t_invariants_ugimp_wide)
 }
 END_TEST
 
+/* An extent along the axes, r = (r1x, 0, 0, r2y) (every uGIMP point as
+ * filled), is evaluated by a faster path that must give the general rule's
+ * values bit for bit. The general rule is reached with r1y = 1e-300: every
+ * sum it forms then rounds to the one with r1y = 0 (1e-300 is far below
+ * half an ulp of the other terms), so the two evaluations must agree
+ * exactly: nodes, order, weights. Extents of 0.05 to 1.6 units of either
+ * sign, points anywhere (corners clamped or wrapped included), all mesh
+ * kinds and periodicities, and a periodic mesh of two units (merged nodes);
+ * the invariants hold too where no corner is clamped. */
+START_TEST(t_ugimp_axes_bitwise)
+{
+  uint64_t s = 0xA11A5ULL;
+  for (int k = 0; k < 4; k++)
+    for (int per = 0; per < 8; per++) {
+      const int few = per >= 4;
+      mpm_mesh m = make_mesh(few ? 2 : 7, few ? 3 : 6, topo_of[k], diag_of[k], per & 1,
+                             per >> 1 & 1);
+      for (int trial = 0; trial < 400; trial++) {
+        const double a = (0.05 + 1.55 * rnd(&s)) * m.dx * (rnd(&s) < 0.5 ? -1.0 : 1.0);
+        const double b = (0.05 + 1.55 * rnd(&s)) * m.dy * (rnd(&s) < 0.5 ? -1.0 : 1.0);
+        const double ra[4] = {a, 0.0, 0.0, b}, rg[4] = {a, 1e-300, 0.0, b};
+        const double xp = random_coord(&s, m.x0, m.lx, m.dx, m.periodic_x, 0.0);
+        const double yp = random_coord(&s, m.y0, m.ly, m.dy, m.periodic_y, 0.0);
+        int na[MPM_STENCIL_W], ng[MPM_STENCIL_W];
+        double Sa[MPM_STENCIL_W], xa[MPM_STENCIL_W], ya[MPM_STENCIL_W];
+        double Sg[MPM_STENCIL_W], xg[MPM_STENCIL_W], yg[MPM_STENCIL_W];
+        const int ca = mpm_shape_ugimp.eval(&m, xp, yp, ra, na, Sa, xa, ya);
+        const int cg = mpm_shape_ugimp.eval(&m, xp, yp, rg, ng, Sg, xg, yg);
+        ck_assert_int_eq(ca, cg);
+        ck_assert_int_gt(ca, 0);
+        for (int l = 0; l < ca; l++) {
+          ck_assert_int_eq(na[l], ng[l]);
+          ck_assert(memcmp(&Sa[l], &Sg[l], sizeof(double)) == 0);
+          ck_assert(memcmp(&xa[l], &xg[l], sizeof(double)) == 0);
+          ck_assert(memcmp(&ya[l], &yg[l], sizeof(double)) == 0);
+        }
+        const int clamped = (!m.periodic_x && (xp - fabs(a) < m.x0 || xp + fabs(a) > m.x0 + m.lx)) ||
+                            (!m.periodic_y && (yp - fabs(b) < m.y0 || yp + fabs(b) > m.y0 + m.ly));
+        if (!few && !clamped)                /* the invariants hold away from clamped edges */
+          check_invariants(&m, &mpm_shape_ugimp, xp, yp, ra);
+      }
+    }
+}
+END_TEST
+
 /* CPDI1 extents are parallelograms the deformation made: sheared,
  * stretched to 1.5 units or squeezed to 0.1, either orientation. */
 START_TEST(t_invariants_cpdi)
@@ -521,6 +566,7 @@ int main(void)
   tcase_add_test(tc, t_invariants_delta);
   tcase_add_test(tc, t_invariants_ugimp);
   tcase_add_test(tc, t_invariants_ugimp_wide);
+  tcase_add_test(tc, t_ugimp_axes_bitwise);
   tcase_add_test(tc, t_invariants_cpdi);
   tcase_add_test(tc, t_cpdi_convect);
   tcase_add_test(tc, t_ugimp_inside_one_element);

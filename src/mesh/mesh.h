@@ -202,23 +202,24 @@ static inline void mpm_mesh_basis_q4(double u, double v, double ix, double iy, d
   }
 }
 
-/* Values N of the basis of unit column i at local (u, v) on the four unit
- * corners, in the order of mpm_mesh_unit_corners. Returns the mask of the
- * corners of the element (bit a for corner a): all four for Q4; for T3 the
- * three of the triangle holding (u, v) (ties on the diagonal go to the lower
- * one), the fourth getting N = 0. The T3 values are selections, not
- * branches, so that a loop over points or corners vectorises. */
-static inline unsigned mpm_mesh_shape_corners(const mpm_mesh *m, int i, double u, double v,
-                                              double N[4])
+/* Values N at local (u, v) on the four unit corners (order of
+ * mpm_mesh_unit_corners) of a unit of topology `topology`, cut along "/"
+ * if `slash` (T3). Returns the mask of the corners of the element (bit a
+ * for corner a): all four for Q4; for T3 the three of the triangle holding
+ * (u, v) (ties on the diagonal go to the lower one), the fourth getting
+ * N = 0. The T3 values are selections, not branches, so that a loop over
+ * points or corners vectorises. */
+static inline unsigned mpm_mesh_shape_unit(int topology, int slash, double u, double v,
+                                           double N[4])
 {
-  if (m->topology == MPM_TOPO_Q4) {
+  if (topology == MPM_TOPO_Q4) {
     N[0] = (1.0 - u) * (1.0 - v);
     N[1] = u * (1.0 - v);
     N[2] = u * v;
     N[3] = (1.0 - u) * v;
     return 0xfu;
   }
-  if (mpm_mesh_column_is_slash(m, i)) {
+  if (slash) {
     const int lo = u >= v;       /* lower: corners 0 1 2, N = 1-u, u-v, v; upper: 0 2 3, 1-v, u, v-u */
     N[0] = lo ? 1.0 - u : 1.0 - v;
     N[1] = lo ? u - v : 0.0;
@@ -232,6 +233,14 @@ static inline unsigned mpm_mesh_shape_corners(const mpm_mesh *m, int i, double u
   N[2] = lo ? 0.0 : u + v - 1.0;
   N[3] = lo ? v : 1.0 - u;
   return lo ? 0xbu : 0xeu;
+}
+
+/* The same for a unit of column i of mesh m. */
+static inline unsigned mpm_mesh_shape_corners(const mpm_mesh *m, int i, double u, double v,
+                                              double N[4])
+{
+  const int slash = m->topology == MPM_TOPO_T3 && mpm_mesh_column_is_slash(m, i);
+  return mpm_mesh_shape_unit(m->topology, slash, u, v, N);
 }
 
 /* Basis of unit column i at local (u, v) on the four unit corners, in the

@@ -94,29 +94,24 @@ void mpm_shape_stencil_free(mpm_shape_stencil *st)
   free(st);
 }
 
-/* Evaluate every point; returns the index of the first one outside, or n. */
+/* Evaluate every point, in chunks of consecutive points (independent, so
+ * the chunks run in parallel); returns the index of the first one outside,
+ * or n. */
 static long stencil_fill(mpm_shape_stencil *st, const mpm_shape_type *type, const mpm_mesh *m,
                          const mpm_points *pts)
 {
-  const long n = (long)pts->n;
-  const size_t w = (size_t)st->w;
+  enum { CHUNK = 512 };
+  const long n = (long)pts->n, nchunk = (n + CHUNK - 1) / CHUNK;
   long first = n;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) reduction(min : first)
 #endif
-  for (long p = 0; p < n; p++) {
-    const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
-    const size_t o = (size_t)p * w;
-    double v;
-    /* (node, S_ip, gradS_ip) of point p, and the unit row of its centre */
-    int c = type->eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o,
-                       st->dSx + o, st->dSy + o);
-    if (c >= 0 && mpm_mesh_axis_locate(pts->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y,
-                                       &st->row[p], &v))
-      c = -1;
-    st->count[p] = c;
-    if (c < 0 && p < first)
-      first = p;
+  for (long k = 0; k < nchunk; k++) {
+    const long lo = k * CHUNK, hi = lo + CHUNK < n ? lo + CHUNK : n;
+    const long f = type->fill ? type->fill(m, pts, lo, hi, st)
+                              : mpm_shape_eval_range(type->eval, m, pts, lo, hi, st);
+    if (f < hi && f < first)
+      first = f;
   }
   return first;
 }

@@ -19,6 +19,8 @@
 /* Most nodes one point can touch (uGIMP: 4 corners x 4 nodes before merging). */
 #define MPM_STENCIL_W 16
 
+struct mpm_shape_stencil;
+
 typedef struct mpm_shape_type {
   const char *name;
   const char *description;
@@ -27,6 +29,11 @@ typedef struct mpm_shape_type {
    * their count, or -1 when the point lies outside the mesh. */
   int (*eval)(const mpm_mesh *m, double x, double y, const double r[4],
               int *node, double *S, double *dSx, double *dSy);
+  /* Optional, the same for the points [lo, hi) at once: the contract of
+   * mpm_shape_eval_range, which a shape can hand its own eval (inlined
+   * there). NULL: mpm_shape_eval_range with eval. */
+  long (*fill)(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
+               struct mpm_shape_stencil *st);
   /* For the points pts on mesh m: *width, the most nodes eval gives one of
    * them (<= MPM_STENCIL_W), and *reach, how many unit rows (and columns)
    * beyond its own unit its nodes go: a point in unit row j touches node rows
@@ -103,6 +110,33 @@ typedef struct mpm_shape_stencil {
   double *S, *dSx, *dSy, *dSz;  /* [cap * w]; dSz only in 3D */
   size_t wcap;    /* room in node, S, dSx, dSy (entries) */
 } mpm_shape_stencil;
+
+/* The stencil of points [lo, hi) by eval, point by point, into st (sized
+ * for them at width st->w): count[p] = eval's return, the weights in the
+ * point's slots, row[p] the unit row of its centre. Returns the first point
+ * outside the mesh, or hi. */
+static inline long mpm_shape_eval_range(int (*eval)(const mpm_mesh *, double, double,
+                                                    const double *, int *, double *, double *,
+                                                    double *),
+                                        const mpm_mesh *m, const mpm_points *pts, long lo,
+                                        long hi, mpm_shape_stencil *st)
+{
+  const size_t w = (size_t)st->w;
+  long first = hi;
+  for (long p = lo; p < hi; p++) {
+    const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
+    const size_t o = (size_t)p * w;
+    double v;
+    int c = eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o, st->dSx + o, st->dSy + o);
+    if (c >= 0 && mpm_mesh_axis_locate(pts->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y,
+                                       &st->row[p], &v))
+      c = -1;
+    st->count[p] = c;
+    if (c < 0 && p < first)
+      first = p;
+  }
+  return first;
+}
 
 mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap);
 void mpm_shape_stencil_free(mpm_shape_stencil *st);  /* accepts NULL */
