@@ -108,8 +108,9 @@ static int reserve_triplets(mpm_nonlocal_steady *ss, size_t need, mpm_err *err)
   return MPM_OK;
 }
 
-/* Number the unknowns: the nodes touched by a dense point, less the held
- * ones, in node order. Returns their count; counts the triplets in *ntrip. */
+/* Number the unknowns: the nodes a dense point weighs (S or gradS not 0: a
+ * stencil may list a node of weights 0), less the held ones, in node
+ * order. Returns their count; counts the triplets in *ntrip. */
 static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, size_t n,
                        const unsigned char *dense, const unsigned char *held, size_t *ntrip)
 {
@@ -120,9 +121,10 @@ static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, siz
     if (!dense[p])
       continue;
     const int c = st->count[p];
-    const int *node = st->node + p * (size_t)st->w;
+    const size_t o = p * (size_t)st->w;
+    const int *node = st->node + o;
     for (int k = 0; k < c; k++)
-      if (!held[node[k]])
+      if (!held[node[k]] && (st->S[o + k] != 0.0 || st->dSx[o + k] != 0.0 || st->dSy[o + k] != 0.0))
         ss->row[node[k]] = 0;
     *ntrip += (size_t)c * (size_t)(c + 1) / 2;
   }

@@ -25,13 +25,15 @@ typedef struct mpm_shape_type {
   const char *name;
   const char *description;
   /* Weights of one point at (x, y) with extent half-vectors r1 = (r[0], r[1]),
-   * r2 = (r[2], r[3]). Writes at most MPM_STENCIL_W distinct nodes; returns
-   * their count, or -1 when the point lies outside the mesh. */
+   * r2 = (r[2], r[3]). Writes at most MPM_STENCIL_W distinct nodes (one may
+   * have weights 0: a node of the units the point reaches that it does not
+   * weigh); returns their count, or -1 when the point lies outside the
+   * mesh. */
   int (*eval)(const mpm_mesh *m, double x, double y, const double r[4],
               int *node, double *S, double *dSx, double *dSy);
-  /* Optional, the same for the points [lo, hi) at once: the contract of
-   * mpm_shape_eval_range, which a shape can hand its own eval (inlined
-   * there). NULL: mpm_shape_eval_range with eval. */
+  /* Optional, the same for the points [lo, hi) at once, in a loop the
+   * shape can specialise: the contract of mpm_shape_eval_range.
+   * NULL: mpm_shape_eval_range with eval. */
   long (*fill)(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
                struct mpm_shape_stencil *st);
   /* For the points pts on mesh m: *width, the most nodes eval gives one of
@@ -111,6 +113,20 @@ typedef struct mpm_shape_stencil {
   size_t wcap;    /* room in node, S, dSx, dSy (entries) */
 } mpm_shape_stencil;
 
+/* Point p's entry in a stencil once its weights are in its slots: c, the
+ * node count (or -1 outside), and the unit row of its centre y. Returns c,
+ * or -1 if the centre is outside. */
+static inline int mpm_shape_stencil_point(const mpm_mesh *m, mpm_shape_stencil *st, long p,
+                                          double y, int c)
+{
+  double v;
+  if (c >= 0 &&
+      mpm_mesh_axis_locate(y, m->y0, m->ly, m->idy, m->ny, m->periodic_y, &st->row[p], &v))
+    c = -1;
+  st->count[p] = c;
+  return c;
+}
+
 /* The stencil of points [lo, hi) by eval, point by point, into st (sized
  * for them at width st->w): count[p] = eval's return, the weights in the
  * point's slots, row[p] the unit row of its centre. Returns the first point
@@ -126,13 +142,9 @@ static inline long mpm_shape_eval_range(int (*eval)(const mpm_mesh *, double, do
   for (long p = lo; p < hi; p++) {
     const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
     const size_t o = (size_t)p * w;
-    double v;
-    int c = eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o, st->dSx + o, st->dSy + o);
-    if (c >= 0 && mpm_mesh_axis_locate(pts->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y,
-                                       &st->row[p], &v))
-      c = -1;
-    st->count[p] = c;
-    if (c < 0 && p < first)
+    const int c = eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o, st->dSx + o,
+                       st->dSy + o);
+    if (mpm_shape_stencil_point(m, st, p, pts->y[p], c) < 0 && p < first)
       first = p;
   }
   return first;
