@@ -123,9 +123,11 @@ static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, siz
     const int c = st->count[p];
     const size_t o = p * (size_t)st->w;
     const int *node = st->node + o;
-    for (int k = 0; k < c; k++)
-      if (!held[node[k]] && (st->S[o + k] != 0.0 || st->dSx[o + k] != 0.0 || st->dSy[o + k] != 0.0))
+    for (int k = 0; k < c; k++) {
+      const int weighed = st->S[o + k] != 0.0 || st->dSx[o + k] != 0.0 || st->dSy[o + k] != 0.0;
+      if (weighed && !held[node[k]])
         ss->row[node[k]] = 0;
+    }
     *ntrip += (size_t)c * (size_t)(c + 1) / 2;
   }
   int nrow = 0;

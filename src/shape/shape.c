@@ -94,6 +94,24 @@ void mpm_shape_stencil_free(mpm_shape_stencil *st)
   free(st);
 }
 
+/* The stencil of points [lo, hi) by the shape's eval, point by point (the
+ * contract of mpm_shape_type.fill). */
+static long eval_range(const mpm_shape_type *type, const mpm_mesh *m, const mpm_points *pts,
+                       long lo, long hi, mpm_shape_stencil *st)
+{
+  const size_t w = (size_t)st->w;
+  long first = hi;
+  for (long p = lo; p < hi; p++) {
+    const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
+    const size_t o = (size_t)p * w;
+    const int c = type->eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o, st->dSx + o,
+                             st->dSy + o);
+    if (mpm_shape_stencil_point(m, st, p, pts->y[p], c) < 0 && p < first)
+      first = p;
+  }
+  return first;
+}
+
 /* Evaluate every point, in chunks of consecutive points (independent, so
  * the chunks run in parallel); returns the index of the first one outside,
  * or n. */
@@ -108,8 +126,8 @@ static long stencil_fill(mpm_shape_stencil *st, const mpm_shape_type *type, cons
 #endif
   for (long k = 0; k < nchunk; k++) {
     const long lo = k * CHUNK, hi = lo + CHUNK < n ? lo + CHUNK : n;
-    const long f = type->fill ? type->fill(m, pts, lo, hi, st)
-                              : mpm_shape_eval_range(type->eval, m, pts, lo, hi, st);
+    const long f =
+        type->fill ? type->fill(m, pts, lo, hi, st) : eval_range(type, m, pts, lo, hi, st);
     if (f < hi && f < first)
       first = f;
   }

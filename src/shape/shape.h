@@ -32,8 +32,10 @@ typedef struct mpm_shape_type {
   int (*eval)(const mpm_mesh *m, double x, double y, const double r[4],
               int *node, double *S, double *dSx, double *dSy);
   /* Optional, the same for the points [lo, hi) at once, in a loop the
-   * shape can specialise: the contract of mpm_shape_eval_range.
-   * NULL: mpm_shape_eval_range with eval. */
+   * shape can specialise: for each point p the weights in its slots of the
+   * stencil st (sized for the points at width st->w), and count[p] and
+   * row[p] (mpm_shape_stencil_point); returns the first point outside the
+   * mesh, or hi. NULL: eval, point by point. */
   long (*fill)(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
                struct mpm_shape_stencil *st);
   /* For the points pts on mesh m: *width, the most nodes eval gives one of
@@ -125,29 +127,6 @@ static inline int mpm_shape_stencil_point(const mpm_mesh *m, mpm_shape_stencil *
     c = -1;
   st->count[p] = c;
   return c;
-}
-
-/* The stencil of points [lo, hi) by eval, point by point, into st (sized
- * for them at width st->w): count[p] = eval's return, the weights in the
- * point's slots, row[p] the unit row of its centre. Returns the first point
- * outside the mesh, or hi. */
-static inline long mpm_shape_eval_range(int (*eval)(const mpm_mesh *, double, double,
-                                                    const double *, int *, double *, double *,
-                                                    double *),
-                                        const mpm_mesh *m, const mpm_points *pts, long lo,
-                                        long hi, mpm_shape_stencil *st)
-{
-  const size_t w = (size_t)st->w;
-  long first = hi;
-  for (long p = lo; p < hi; p++) {
-    const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
-    const size_t o = (size_t)p * w;
-    const int c = eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o, st->dSx + o,
-                       st->dSy + o);
-    if (mpm_shape_stencil_point(m, st, p, pts->y[p], c) < 0 && p < first)
-      first = p;
-  }
-  return first;
 }
 
 mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap);

@@ -354,7 +354,7 @@ static int ugimp_eval(const mpm_mesh *mesh, double x, double y, const double r[4
                   : eval_general(&mc, x, y, r, node, S, dSx, dSy);
 }
 
-/* The points [lo, hi) (mpm_shape_eval_range's contract), for topology ti
+/* The points [lo, hi) (mpm_shape_type.fill's contract), for topology ti
  * and diagonal rule diag, in batches: first every point of a batch located
  * (a loop across points that vectorises), then each one's weights. */
 static inline __attribute__((always_inline)) long
