@@ -476,42 +476,59 @@ static size_t add_point(mpm_points *pts, double x, double y, const double r[4])
   return i;
 }
 
+/* The stencil of a point store (its fill, in batches) is eval's point by
+ * point, bit for bit, and each point's row is its centre's unit row: rotated
+ * extents (the general rule) and extents along the axes of either sign (the
+ * faster path, some of them clamped or wrapped), on every mesh kind,
+ * periodic along x. */
 START_TEST(t_stencil_matches_eval)
 {
   uint64_t s = 42;
-  mpm_mesh m = make_mesh(7, 6, MPM_TOPO_T3, MPM_DIAG_MIRROR, 1, 0);
-  mpm_points *pts = mpm_points_alloc(0);
-  ck_assert_ptr_nonnull(pts);
-  for (int k = 0; k < 300; k++) {
-    double r[4];
-    random_extent(&m, &s, 0.1, 0.5, r);
-    add_point(pts, random_coord(&s, m.x0, m.lx, m.dx, 1, 0.0),
-              random_coord(&s, m.y0, m.ly, m.dy, 0, 0.0), r);
-  }
-  mpm_shape_stencil *st = mpm_shape_stencil_alloc(0);
-  ck_assert_ptr_nonnull(st);
-  mpm_err err = {0};
-  for (int pass = 0; pass < 2; pass++) {  /* grow, then reuse */
-    ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err), MPM_OK);
-    ck_assert_uint_ge(st->cap, pts->n);
-    for (size_t p = 0; p < pts->n; p++) {
-      const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
-      int node[MPM_STENCIL_W];
-      double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-      const int n = mpm_shape_ugimp.eval(&m, pts->x[p], pts->y[p], r, node, S, gx,
-                                         gy);
-      ck_assert_int_eq(st->count[p], n);
-      const size_t o = p * (size_t)st->w;
-      for (int k = 0; k < n; k++) {
-        ck_assert_int_eq(st->node[o + k], node[k]);
-        ck_assert(st->S[o + k] == S[k]);  /* same arithmetic: bit-identical */
-        ck_assert(st->dSx[o + k] == gx[k]);
-        ck_assert(st->dSy[o + k] == gy[k]);
+  for (int kind = 0; kind < 4; kind++)
+    for (int aligned = 0; aligned < 2; aligned++) {
+      mpm_mesh m = make_mesh(7, 6, topo_of[kind], diag_of[kind], 1, 0);
+      mpm_points *pts = mpm_points_alloc(0);
+      ck_assert_ptr_nonnull(pts);
+      for (int k = 0; k < 300; k++) {
+        double r[4];
+        random_extent(&m, &s, 0.1, 0.5, r);
+        if (aligned) {
+          r[0] = (0.05 + 0.45 * rnd(&s)) * m.dx * (k % 7 == 0 ? -1.0 : 1.0);
+          r[1] = r[2] = 0.0;
+          r[3] = (0.05 + 0.45 * rnd(&s)) * m.dy * (k % 5 == 0 ? -1.0 : 1.0);
+        }
+        add_point(pts, random_coord(&s, m.x0, m.lx, m.dx, 1, 0.0),
+                  random_coord(&s, m.y0, m.ly, m.dy, 0, 0.0), r);
       }
+      mpm_shape_stencil *st = mpm_shape_stencil_alloc(0);
+      ck_assert_ptr_nonnull(st);
+      mpm_err err = {0};
+      for (int pass = 0; pass < 2; pass++) {  /* grow, then reuse */
+        ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_ugimp, &m, pts, 0.5, &err),
+                         MPM_OK);
+        ck_assert_uint_ge(st->cap, pts->n);
+        for (size_t p = 0; p < pts->n; p++) {
+          const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
+          int node[MPM_STENCIL_W];
+          double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
+          const int n = mpm_shape_ugimp.eval(&m, pts->x[p], pts->y[p], r, node, S, gx, gy);
+          ck_assert_int_eq(st->count[p], n);
+          int i, j;
+          double u, v;
+          ck_assert_int_eq(mpm_mesh_locate(&m, pts->x[p], pts->y[p], &i, &j, &u, &v), 0);
+          ck_assert_int_eq(st->row[p], j);
+          const size_t o = p * (size_t)st->w;
+          for (int k = 0; k < n; k++) {
+            ck_assert_int_eq(st->node[o + k], node[k]);
+            ck_assert(st->S[o + k] == S[k]);  /* same arithmetic: bit-identical */
+            ck_assert(st->dSx[o + k] == gx[k]);
+            ck_assert(st->dSy[o + k] == gy[k]);
+          }
+        }
+      }
+      mpm_points_free(pts);
+      mpm_shape_stencil_free(st);
     }
-  }
-  mpm_points_free(pts);
-  mpm_shape_stencil_free(st);
   mpm_shape_stencil_free(NULL);
 }
 END_TEST
