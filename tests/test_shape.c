@@ -233,8 +233,9 @@ START_TEST(t_ugimp_axes_bitwise)
           }
         }
         ck_assert_int_eq(l, cg);
-        const int clamped = (!m.periodic_x && (xp - fabs(a) < m.x0 || xp + fabs(a) > m.x0 + m.lx)) ||
-                            (!m.periodic_y && (yp - fabs(b) < m.y0 || yp + fabs(b) > m.y0 + m.ly));
+        const int cx = xp - fabs(a) < m.x0 || xp + fabs(a) > m.x0 + m.lx;
+        const int cy = yp - fabs(b) < m.y0 || yp + fabs(b) > m.y0 + m.ly;
+        const int clamped = (!m.periodic_x && cx) || (!m.periodic_y && cy);
         if (!few && !clamped)                /* the invariants hold away from clamped edges */
           check_invariants(&m, &mpm_shape_ugimp, xp, yp, ra);
       }

@@ -279,11 +279,12 @@ static inline void lanes_of(const mpm_mesh *m, lanes *L)
  * side c >> 1, corners.h), each located once (unit k[l], local t[l], lanes
  * l = 0 .. 3 as in `lanes`), without clamping or wrapping; the centre lies
  * between them, inside the mesh, in unit row *row. With the gradient
- * weights g = (r2y / A, r1x / A), A = 4 r1x r2y. Returns the class dx + 2 dy (dx, dy
- * = 0 or 1 more units along x, y; a negative extent in one unit passes as
- * 0), or -1 when the case does not apply (another extent, a corner outside,
- * corners more than a unit apart or in reverse order, a periodic seam among
- * the nodes). Branch-free, for a loop over points that vectorises. */
+ * weights g = (r2y / A, r1x / A), A = 4 r1x r2y. Returns the class
+ * dx + 2 dy (dx, dy = 0 or 1 more units along x, y; a negative extent in
+ * one unit passes as 0), or -1 when the case does not apply (another
+ * extent, a corner outside, corners more than a unit apart or in reverse
+ * order, a periodic seam among the nodes). Branch-free, for a loop over
+ * points that vectorises. */
 static inline __attribute__((always_inline)) int
 axes_locate(const lanes *L, double x, double y, const double r[4], int k[4], double t[4],
             double g[2], int *row)
@@ -324,9 +325,9 @@ axes_sum(const mpm_mesh *m, int ti, int diag, int cls, const int k[4], const dou
          const double g[2], int *node, double *S, double *dSx, double *dSy)
 {
   const double gx = g[0], gy = g[1];
-  const int t3 = ti == MPM_TOPO_T3, mirror = diag == MPM_DIAG_MIRROR;
-  const int slash[2] = {t3 && (mirror ? mpm_mesh_column_is_slash(m, k[0]) : diag == MPM_DIAG_SLASH),
-                        t3 && (mirror ? mpm_mesh_column_is_slash(m, k[1]) : diag == MPM_DIAG_SLASH)};
+  const int t3 = ti == MPM_TOPO_T3, mirror = diag == MPM_DIAG_MIRROR, sl = diag == MPM_DIAG_SLASH;
+  const int slash[2] = {t3 && (mirror ? mpm_mesh_column_is_slash(m, k[0]) : sl),
+                        t3 && (mirror ? mpm_mesh_column_is_slash(m, k[1]) : sl)};
   const double u[2] = {t[0], t[1]}, v[2] = {t[2], t[3]};
   const int n0 = k[2] * m->snx + k[0], snx = m->snx;
   switch (cls) {                             /* dx, dy as constants */
