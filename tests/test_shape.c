@@ -186,18 +186,55 @@ START_TEST(t_invariants_ugimp_wide)
 }
 END_TEST
 
+/* Evaluate the extent r at (xp, yp) on the faster path (r1y = r2x = 0) and
+ * on the general rule, reached with r1y = 1e-300: every sum the rule forms
+ * then rounds to the one with r1y = 0 (1e-300 is far below half an ulp of
+ * the other terms), so the two must agree bit for bit on every node both
+ * list. Both lists run in row order (the fast path has no periodic seam
+ * inside its units); a node only one of them lists must weigh exactly 0
+ * there. Returns how many nodes only the fast path lists. */
+static int axes_against_general(const mpm_mesh *m, double xp, double yp, double a, double b)
+{
+  const double ra[4] = {a, 0.0, 0.0, b}, rg[4] = {a, 1e-300, 0.0, b};
+  int na[MPM_STENCIL_W], ng[MPM_STENCIL_W];
+  double Sa[MPM_STENCIL_W], xa[MPM_STENCIL_W], ya[MPM_STENCIL_W];
+  double Sg[MPM_STENCIL_W], xg[MPM_STENCIL_W], yg[MPM_STENCIL_W];
+  const int ca = mpm_shape_ugimp.eval(m, xp, yp, ra, na, Sa, xa, ya);
+  const int cg = mpm_shape_ugimp.eval(m, xp, yp, rg, ng, Sg, xg, yg);
+  ck_assert_int_gt(ca, 0);
+  ck_assert_int_gt(cg, 0);
+  int q = 0, l = 0, extra = 0;
+  while (q < ca || l < cg) {
+    if (q < ca && l < cg && na[q] == ng[l]) {
+      ck_assert(memcmp(&Sa[q], &Sg[l], sizeof(double)) == 0);
+      ck_assert(memcmp(&xa[q], &xg[l], sizeof(double)) == 0);
+      ck_assert(memcmp(&ya[q], &yg[l], sizeof(double)) == 0);
+      q++;
+      l++;
+    } else if (q < ca && (l == cg || na[q] < ng[l])) {
+      ck_assert(Sa[q] == 0.0 && xa[q] == 0.0 && ya[q] == 0.0);
+      q++;
+      extra++;
+    } else {
+      ck_assert(Sg[l] == 0.0 && xg[l] == 0.0 && yg[l] == 0.0);
+      l++;
+    }
+  }
+  return extra;
+}
+
 /* An extent along the axes, r = (r1x, 0, 0, r2y) (every uGIMP point as
  * filled), is evaluated by a faster path that must give the general rule's
- * weights bit for bit; it may list a node more, of weights 0 (a node of the
- * units the corners fall in that no corner's element holds). The general
- * rule is reached with r1y = 1e-300: every sum it forms then rounds to the
- * one with r1y = 0 (1e-300 is far below half an ulp of the other terms), so
- * every node of the general list must be in the fast one, in the same
- * order, with the same bits, and every other node of the fast list must
- * weigh 0. Extents of 0.05 to 1.6 units of either sign, points anywhere
- * (corners clamped or wrapped included), all mesh kinds and periodicities,
- * and a periodic mesh of two units (merged nodes); the invariants hold too
- * where no corner is clamped. */
+ * weights bit for bit (axes_against_general); the two lists may differ in
+ * nodes of weights 0 only (a node of the units the corners fall in that no
+ * corner's element holds, or one the rule gives exactly 0). Extents of 0.05
+ * to 1.6 units of either sign, points anywhere (corners clamped or wrapped
+ * included), all mesh kinds and periodicities, and a periodic mesh of two
+ * units (merged nodes); the invariants hold too where no corner is
+ * clamped. Then points as a fill places them (2 x 2 and 4 x 4 a unit,
+ * quarter- and eighth-unit extents) on a mesh whose units are exact binary
+ * fractions: their corners lie exactly on unit edges, where weights are
+ * exactly 0. */
 START_TEST(t_ugimp_axes_bitwise)
 {
   uint64_t s = 0xA11A5ULL;
@@ -210,29 +247,10 @@ START_TEST(t_ugimp_axes_bitwise)
       for (int trial = 0; trial < 400; trial++) {
         const double a = (0.05 + 1.55 * rnd(&s)) * m.dx * (rnd(&s) < 0.5 ? -1.0 : 1.0);
         const double b = (0.05 + 1.55 * rnd(&s)) * m.dy * (rnd(&s) < 0.5 ? -1.0 : 1.0);
-        const double ra[4] = {a, 0.0, 0.0, b}, rg[4] = {a, 1e-300, 0.0, b};
         const double xp = random_coord(&s, m.x0, m.lx, m.dx, m.periodic_x, 0.0);
         const double yp = random_coord(&s, m.y0, m.ly, m.dy, m.periodic_y, 0.0);
-        int na[MPM_STENCIL_W], ng[MPM_STENCIL_W];
-        double Sa[MPM_STENCIL_W], xa[MPM_STENCIL_W], ya[MPM_STENCIL_W];
-        double Sg[MPM_STENCIL_W], xg[MPM_STENCIL_W], yg[MPM_STENCIL_W];
-        const int ca = mpm_shape_ugimp.eval(&m, xp, yp, ra, na, Sa, xa, ya);
-        const int cg = mpm_shape_ugimp.eval(&m, xp, yp, rg, ng, Sg, xg, yg);
-        ck_assert_int_ge(ca, cg);
-        ck_assert_int_gt(cg, 0);
-        int l = 0;                             /* next node of the general list */
-        for (int q = 0; q < ca; q++) {
-          if (l < cg && na[q] == ng[l]) {
-            ck_assert(memcmp(&Sa[q], &Sg[l], sizeof(double)) == 0);
-            ck_assert(memcmp(&xa[q], &xg[l], sizeof(double)) == 0);
-            ck_assert(memcmp(&ya[q], &yg[l], sizeof(double)) == 0);
-            l++;
-          } else {
-            ck_assert(Sa[q] == 0.0 && xa[q] == 0.0 && ya[q] == 0.0);
-            extra++;
-          }
-        }
-        ck_assert_int_eq(l, cg);
+        extra += axes_against_general(&m, xp, yp, a, b);
+        const double ra[4] = {a, 0.0, 0.0, b};
         const int cx = xp - fabs(a) < m.x0 || xp + fabs(a) > m.x0 + m.lx;
         const int cy = yp - fabs(b) < m.y0 || yp + fabs(b) > m.y0 + m.ly;
         const int clamped = (!m.periodic_x && cx) || (!m.periodic_y && cy);
@@ -241,6 +259,21 @@ START_TEST(t_ugimp_axes_bitwise)
       }
     }
   ck_assert_int_gt(extra, 0);                /* the fast path was taken */
+  for (int k = 0; k < 4; k++) {
+    mpm_mesh m = make_mesh(6, 5, topo_of[k], diag_of[k], 0, 0);
+    m.x0 = 0.0;
+    m.y0 = 0.0;
+    m.dx = 0.125;
+    m.dy = 0.25;
+    m.mirror_x = 3 * m.dx;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
+    for (int ppu = 2; ppu <= 4; ppu += 2)
+      for (int j = 0; j < m.ny * ppu; j++)
+        for (int i = 0; i < m.nx * ppu; i++)
+          axes_against_general(&m, (i + 0.5) * m.dx / ppu, (j + 0.5) * m.dy / ppu,
+                               0.5 * m.dx / ppu, 0.5 * m.dy / ppu);
+  }
 }
 END_TEST
 

@@ -26,13 +26,12 @@
  * points at a time (axes_locate, a loop that vectorises), then the weights
  * of the four possible unit blocks written out with the block in registers
  * (axes_sum, units_sum): the same values, bit for bit, as the general path
- * (eval_general), the list holding at most a node more, of weights 0. On
+ * (eval_general), the two lists differing only in nodes of weights 0. On
  * the T3 silo of scripts/bench it takes a quarter of the general path's
  * instructions. */
 #include "shape/shape.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 #include "shape/corners.h"
 
@@ -43,87 +42,8 @@
  * add node by node to the list instead. */
 enum { BLOCK = 4 };
 
-/* The block's sums as records (S, gx, gy, 0) of four lanes, slot a + BLOCK b
- * for block node column a, row b. */
-typedef double block[BLOCK * BLOCK][4];
-
-/* Zero the slots of a block of bw x bh nodes. */
-static inline void block_zero(block blk, int bw, int bh)
-{
-  for (int b = 0; b < bh; b++)
-    for (int a = 0; a < bw; a++)
-      for (int l = 0; l < 4; l++)
-        blk[a + BLOCK * b][l] = 0.0;
-}
-
-/* S += N/4, gradS += (wx, wy) N on the element of one corner, its unit's
- * first corner at slot `at`, its element mask `mask` (N of the four unit
- * corners): one vector operation per unit corner (a T3 element's fourth
- * corner has N = 0: it adds nothing and is not marked used). Returns the
- * slots it uses, as bits. */
-static inline unsigned block_add(block blk, int at, unsigned mask, const double N[4], double wx,
-                                 double wy)
-{
-  const int off[4] = {0, 1, BLOCK + 1, BLOCK};       /* slots of unit corners 0..3 */
-  const double G[4] = {0.25, wx, wy, 0.0};
-  for (int a = 0; a < 4; a++) {
-    double *b = blk[at + off[a]];
-#pragma omp simd
-    for (int l = 0; l < 4; l++)
-      b[l] += G[l] * N[a];
-  }
-  return ((mask & 3u) | (mask & 4u) << 3 | (mask & 8u) << 1) << at;
-}
-
-/* The used slots' nodes in row order (the set bits of `used`, s = a + BLOCK b,
- * from the lowest), the block's first logical node (ib, jb): returns their
- * count. When neither axis wraps within the block, node a, b is stored at
- * (jb + b) snx + ib + a; otherwise (ib or jb may be negative on a periodic
- * axis) each is aliased through
- * mpm_mesh_axis_node, and on a periodic axis of fewer units than the block
- * two of them can be one stored node: merged. */
-static inline int block_list(const mpm_mesh *m, const block blk, unsigned used, int ib, int jb,
-                             int bw, int bh, int *node, double *S, double *dSx, double *dSy)
-{
-  int cnt = 0;
-  if (!(m->periodic_x && (ib < 0 || ib + bw > m->nx)) &&
-      !(m->periodic_y && (jb < 0 || jb + bh > m->ny))) {
-    const int n0 = jb * m->snx + ib, snx = m->snx;
-    for (unsigned u = used; u; u &= u - 1) {
-      const int s = mpm_shape_in_lowest_bit(u);
-      node[cnt] = n0 + (s & (BLOCK - 1)) + (s / BLOCK) * snx;
-      S[cnt] = blk[s][0];
-      dSx[cnt] = blk[s][1];
-      dSy[cnt] = blk[s][2];
-      cnt++;
-    }
-    return cnt;
-  }
-  double *const col[3] = {S, dSx, dSy};
-  const int merge = (m->periodic_x && m->nx < bw) || (m->periodic_y && m->ny < bh);
-  int is[BLOCK], js[BLOCK];                  /* storage column, row offset of the block */
-  for (int a = 0; a < bw; a++)
-    is[a] = mpm_mesh_axis_node(ib + a, m->nx, m->periodic_x);
-  for (int b = 0; b < bh; b++)
-    js[b] = mpm_mesh_axis_node(jb + b, m->ny, m->periodic_y) * m->snx;
-  for (unsigned u = used; u; u &= u - 1) {
-    const int s = mpm_shape_in_lowest_bit(u);
-    const int id = js[s / BLOCK] + is[s % BLOCK];
-    if (merge) {
-      mpm_shape_in_list_add(id, 3, blk[s], node, col, &cnt);
-      continue;
-    }
-    node[cnt] = id;
-    S[cnt] = blk[s][0];
-    dSx[cnt] = blk[s][1];
-    dSy[cnt] = blk[s][2];
-    cnt++;
-  }
-  return cnt;
-}
-
 /* Any extent: the corner rule, corners clamped onto non-periodic edges or
- * wrapped round periodic ones. */
+ * wrapped round periodic ones (m: the caller's copy of the mesh). */
 static int eval_general(const mpm_mesh *m, double x, double y, const double r[4], int *node,
                         double *S, double *dSx, double *dSy)
 {
@@ -163,32 +83,68 @@ static int eval_general(const mpm_mesh *m, double x, double y, const double r[4]
     j1 = dj[c] > j1 ? dj[c] : j1;
   }
   const int bw = i1 - i0 + 2, bh = j1 - j0 + 2;   /* node columns and rows touched */
-  if (bw > BLOCK || bh > BLOCK) {            /* wide: node by node into the list */
-    double *const col[3] = {S, dSx, dSy};
-    int cnt = 0;
-    for (int c = 0; c < 4; c++) {
-      double N[4];
-      int id[4];
-      const unsigned mask = mpm_mesh_shape_corners(m, ci[c], cu[c], cv[c], N);
-      mpm_mesh_unit_corners(m, ci[c], cj[c], id);
-      for (int a = 0; a < 4; a++)
-        if (mask >> a & 1u) {
-          const double v[3] = {0.25 * N[a], wg[2 * c] * N[a], wg[2 * c + 1] * N[a]};
-          mpm_shape_in_list_add(id[a], 3, v, node, col, &cnt);
-        }
-    }
-    return cnt;
-  }
-  block blk;
-  block_zero(blk, bw, bh);
+  const int wide = bw > BLOCK || bh > BLOCK;
+  /* S += N/4, gradS += w_c N on the nodes of each corner's element, as
+   * records (S, gx, gy, 0) of four lanes: one vector operation per node of
+   * a corner (a T3 element's fourth unit corner has N = 0: it adds nothing
+   * and is not marked used) */
+  double blk[BLOCK * BLOCK][4];
+  for (int b = 0; b < bh && !wide; b++)
+    for (int a = 0; a < bw; a++)
+      for (int l = 0; l < 4; l++)
+        blk[a + BLOCK * b][l] = 0.0;
+  const int off[4] = {0, 1, BLOCK + 1, BLOCK};       /* slots of unit corners 0..3 */
   unsigned used = 0;
+  int cnt = 0;
+  double *const col[3] = {S, dSx, dSy};
   for (int c = 0; c < 4; c++) {
     double N[4];
     const unsigned mask = mpm_mesh_shape_corners(m, ci[c], cu[c], cv[c], N);
-    used |= block_add(blk, di[c] - i0 + BLOCK * (dj[c] - j0), mask, N, wg[2 * c],
-                      wg[2 * c + 1]);
+    const double G[4] = {0.25, wg[2 * c], wg[2 * c + 1], 0.0};
+    if (wide) {
+      int id[4];
+      mpm_mesh_unit_corners(m, ci[c], cj[c], id);
+      for (int a = 0; a < 4; a++)
+        if (mask >> a & 1u) {
+          const double v[3] = {G[0] * N[a], G[1] * N[a], G[2] * N[a]};
+          mpm_shape_in_list_add(id[a], 3, v, node, col, &cnt);
+        }
+      continue;
+    }
+    const int at = di[c] - i0 + BLOCK * (dj[c] - j0);  /* slot of unit corner 0 */
+    used |= ((mask & 3u) | (mask & 4u) << 3 | (mask & 8u) << 1) << at;
+    for (int a = 0; a < 4; a++) {
+      double *b = blk[at + off[a]];
+#pragma omp simd
+      for (int l = 0; l < 4; l++)
+        b[l] += G[l] * N[a];
+    }
   }
-  return block_list(m, blk, used, iu + i0, ju + j0, bw, bh, node, S, dSx, dSy);
+  if (wide)
+    return cnt;
+  /* the used nodes in row order (the set bits of `used`, k = a + BLOCK b,
+   * from the lowest); on a periodic axis of few units two of them can be
+   * one stored node: merged */
+  const int merge = (m->periodic_x && m->nx < bw) || (m->periodic_y && m->ny < bh);
+  int is[BLOCK], js[BLOCK];                  /* storage column, row offset of the block */
+  for (int a = 0; a < bw; a++)
+    is[a] = mpm_mesh_axis_node(iu + i0 + a, m->nx, m->periodic_x);
+  for (int b = 0; b < bh; b++)
+    js[b] = mpm_mesh_axis_node(ju + j0 + b, m->ny, m->periodic_y) * m->snx;
+  for (unsigned u = used; u; u &= u - 1) {
+    const int k = mpm_shape_in_lowest_bit(u);
+    const int id = js[k / BLOCK] + is[k % BLOCK];
+    if (merge) {
+      mpm_shape_in_list_add(id, 3, blk[k], node, col, &cnt);
+      continue;
+    }
+    node[cnt] = id;
+    S[cnt] = blk[k][0];
+    dSx[cnt] = blk[k][1];
+    dSy[cnt] = blk[k][2];
+    cnt++;
+  }
+  return cnt;
 }
 
 /* The corners of an extent along the axes fall in 1 x 1, 2 x 1, 1 x 2 or
@@ -317,7 +273,7 @@ axes_locate(const lanes *L, double x, double y, const double r[4], int k[4], dou
  * r1y = r2x = 0 reduce exactly to A = 4 r1x r2y and
  * w_c = (-+ r2y / A, -+ r1x / A) (its products with 0 add nothing but a
  * sign of zero), so every weight is the general path's bit for bit; the
- * list may hold a node more, of weights 0 (units_sum). ti, diag: the
+ * lists differ only in nodes of weights 0 (units_sum). ti, diag: the
  * mesh's topology and diagonal rule (constants where the caller
  * specialises on them). Returns the node count. */
 static inline __attribute__((always_inline)) int
