@@ -334,19 +334,49 @@ static int do_rough(const opts *o, const mpm_points *pts, const mpm_mesh *m, dou
   return rc;
 }
 
-/* --jam: the mean vy of the dense points and the point count of every frame,
- * classified (diag/jam.h); one CSV row with the evidence. */
+/* The ids of a frame lie below this (slots for matching points by id). */
+static size_t id_bound(const mpm_points *pts)
+{
+  size_t b = 0;
+  for (size_t p = 0; p < pts->n; p++)
+    if (pts->id[p] >= 0 && (size_t)pts->id[p] + 1 > b)
+      b = (size_t)pts->id[p] + 1;
+  return b;
+}
+
+/* --jam: the mean vertical velocity the dense material moved with between
+ * frames and the point count of every frame, classified (diag/jam.h); one
+ * CSV row with the evidence. */
 static int do_jam(const opts *o, mpm_io_run *r, mpm_err *err)
 {
   const int nf = mpm_io_run_nframes(r);
   double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
   size_t *n = calloc((size_t)nf + 1, sizeof *n);
-  mpm_points *pts = mpm_points_alloc(0);
-  int rc = (!t || !v || !n || !pts) ? mpm_err_set(err, MPM_ENOMEM, "out of memory") : MPM_OK;
+  mpm_points *pts = mpm_points_alloc(0), *prev = mpm_points_alloc(0);
+  int *slot = NULL;
+  size_t nslot = 0;
+  int rc = (!t || !v || !n || !pts || !prev) ? mpm_err_set(err, MPM_ENOMEM, "out of memory")
+                                             : MPM_OK;
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
     rc = read_frame(o, r, k, pts, &t[k], err);
-    v[k] = mpm_diag_dense_vy(pts);
+    if (rc != MPM_OK)
+      break;
+    if (k == 0) {                            /* points only leave: frame 0 bounds the ids */
+      nslot = id_bound(pts);
+      if (!(slot = malloc((nslot ? nslot : 1) * sizeof *slot))) {
+        rc = mpm_err_set(err, MPM_ENOMEM, "out of memory");
+        break;
+      }
+      for (size_t i = 0; i < nslot; i++)
+        slot[i] = -1;
+      v[k] = NAN;
+    } else {
+      v[k] = mpm_diag_dense_vy_moved(prev, pts, t[k] - t[k - 1], slot, nslot);
+    }
     n[k] = pts->n;
+    mpm_points *swap = prev;                 /* this frame becomes the previous one */
+    prev = pts;
+    pts = swap;
   }
   mpm_jam j;
   if (rc == MPM_OK)
@@ -357,6 +387,8 @@ static int do_jam(const opts *o, mpm_io_run *r, mpm_err *err)
            mpm_diag_jam_name(j.v_vote), j.leaving, mpm_diag_jam_name(j.n_vote), nf);
   }
   mpm_points_free(pts);
+  mpm_points_free(prev);
+  free(slot);
   free(t);
   free(v);
   free(n);

@@ -14,15 +14,27 @@ const char *mpm_diag_jam_name(int cls)
   return mpm_names_at(class_names, MPM_NAMES_COUNT(class_names), cls);
 }
 
-double mpm_diag_dense_vy(const mpm_points *pts)
+double mpm_diag_dense_vy_moved(const mpm_points *prev, const mpm_points *now, double dt, int *slot,
+                               size_t nslot)
 {
-  double m = 0.0, mv = 0.0;
-  for (size_t p = 0; p < pts->n; p++)
-    if (pts->state[p] == MPM_STATE_DENSE) {
-      m += pts->mass[p];
-      mv += pts->mass[p] * pts->vy[p];
-    }
-  return m > 0.0 ? mv / m : NAN;
+  for (size_t q = 0; q < prev->n; q++)
+    if (prev->id[q] >= 0 && (size_t)prev->id[q] < nslot)
+      slot[prev->id[q]] = (int)q;
+  double m = 0.0, my = 0.0;
+  for (size_t p = 0; p < now->n; p++) {
+    const int id = now->id[p];
+    if (now->state[p] != MPM_STATE_DENSE || id < 0 || (size_t)id >= nslot)
+      continue;
+    const int q = slot[id];
+    if (q < 0 || prev->state[q] != MPM_STATE_DENSE)
+      continue;
+    m += now->mass[p];
+    my += now->mass[p] * (now->y[p] - prev->y[q]);
+  }
+  for (size_t q = 0; q < prev->n; q++)
+    if (prev->id[q] >= 0 && (size_t)prev->id[q] < nslot)
+      slot[prev->id[q]] = -1;
+  return m > 0.0 && dt > 0.0 ? my / (m * dt) : NAN;
 }
 
 int mpm_diag_jam(size_t nf, const double *t, const double *vbar, const size_t *npoints,

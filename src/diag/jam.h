@@ -2,7 +2,14 @@
  *
  * From the frames of a run: the mass-weighted mean vertical velocity of the
  * dense material vbar(t), and the number of points that left the domain
- * between consecutive frames. Two votes:
+ * between consecutive frames. vbar is the velocity the material moved with
+ * from one frame to the next: the mean of (y_k - y_{k-1}) / (t_k - t_{k-1})
+ * over the points dense in both frames (matched by id). The points' own
+ * velocities would not do: under FLIP a point pressed against a wall can
+ * carry a velocity the grid never moves it with (on the jamming silo,
+ * points at the feet of a static arch keep 0.07 - 0.2 m/s upwards while they
+ * stay where they are, enough to hold the mean of the whole silo above 0).
+ * Two votes:
  *
  *  - velocity: the last zero crossing of vbar (a sign change between two
  *    frames, at the time interpolated linearly between them; frames with
@@ -35,13 +42,18 @@ typedef struct mpm_jam {
   int frames;           /* frames in the last tenth */
 } mpm_jam;
 
-/* Mass-weighted mean vy of the dense points of a frame; NaN when none. */
-double mpm_diag_dense_vy(const mpm_points *pts);
+/* Mass-weighted mean of (y - y_prev) / dt over the points of now that are
+ * dense there and in prev, matched by id; NaN when there are none or dt is
+ * not > 0. slot: nslot ints, all -1 on entry and again on return, nslot
+ * above every id of prev (ids of prev beyond it are not matched). Vertical
+ * displacements across a periodic y edge are not unwrapped. */
+double mpm_diag_dense_vy_moved(const mpm_points *prev, const mpm_points *now, double dt, int *slot,
+                               size_t nslot);
 
 /* Classify nf >= 2 frames at increasing times t[k] (t[0] the start), with
- * vbar[k] as from mpm_diag_dense_vy and npoints[k] the points in the domain
- * (points only ever leave). Fewer than two frames, times not increasing or
- * a point count that grows: MPM_EINVAL. */
+ * vbar[k] as from mpm_diag_dense_vy_moved (NaN for the first frame) and
+ * npoints[k] the points in the domain (points only ever leave). Fewer than
+ * two frames, times not increasing or a point count that grows: MPM_EINVAL. */
 int mpm_diag_jam(size_t nf, const double *t, const double *vbar, const size_t *npoints,
                  mpm_jam *out, mpm_err *err);
 
