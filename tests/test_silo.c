@@ -138,7 +138,7 @@ START_TEST(t_outlet_masks)
   mpm_bc bc;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_bc_setup(&bc, &m, edges, &err), MPM_OK);
-  ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, 0.0, 0.3, MPM_BC_NOSLIP, &err),
+  ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, 0.0, 0.3, MPM_BC_NOSLIP, 0, &err),
                    MPM_OK);
   const unsigned char both = MPM_FIX_X | MPM_FIX_Y;
   for (int i = 0; i <= 10; i++)
@@ -180,6 +180,44 @@ START_TEST(t_outlet_masks)
   ck_assert_double_eq(y, -1e-3);                                 /* falls through */
   ck_assert_double_eq(vy, -3.0);
   mpm_bc_clear(&bc);
+}
+END_TEST
+
+/* An orifice of 0.4 m on a floor of 0.1 m units, [0.2, 0.6], with its end
+ * nodes free ([DK15]: 5 free nodes) or held ([DK-silo] "measured from
+ * fixed-node to fixed-node": 3 free nodes between two held ones); its unit
+ * faces, for the fluidity, are the 4 between 0.2 and 0.6 either way. */
+START_TEST(t_outlet_held_ends)
+{
+  mpm_mesh m;
+  unit_mesh(&m, 10, 4, 0.1);
+  const int edges[4] = {MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_FREE};
+  const unsigned char both = MPM_FIX_X | MPM_FIX_Y;
+  for (int held = 0; held <= 1; held++) {
+    mpm_bc bc;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_bc_setup(&bc, &m, edges, &err), MPM_OK);
+    ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, 0.2, 0.6, MPM_BC_NOSLIP, held,
+                                       &err), MPM_OK);
+    for (int i = 0; i <= 10; i++)
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, i, 0)], both);  /* closed: the whole floor */
+    mpm_bc_open_outlet(&bc);
+    int nfree = 0;
+    for (int i = 0; i <= 10; i++) {
+      const unsigned char f = bc.fix[mpm_mesh_node(&m, i, 0)];
+      const int inside = held ? (i > 2 && i < 6) : (i >= 2 && i <= 6);
+      ck_assert_int_eq(f, inside ? 0 : both);
+      nfree += f == 0;
+    }
+    ck_assert_int_eq(nfree, held ? 3 : 5);
+    int lo = -1, hi = -1;
+    ck_assert_int_eq(mpm_bc_outlet_faces(&bc, &m, &lo, &hi), MPM_EDGE_BOTTOM);
+    ck_assert_int_eq(lo, 2);
+    ck_assert_int_eq(hi, 6);
+    ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.25, -1e-3), 1);
+    ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.65, -1e-3), 0);
+    mpm_bc_clear(&bc);
+  }
 }
 END_TEST
 
@@ -383,6 +421,7 @@ int main(void)
   tcase_add_test(tc, t_region_mass);
   tcase_add_test(tc, t_staircase_triangle);
   tcase_add_test(tc, t_outlet_masks);
+  tcase_add_test(tc, t_outlet_held_ends);
   tcase_add_test(tc, t_bookkeeping_through_outlet);
   tcase_add_test(tc, t_bookkeeping_through_outlet_ngf);
   tcase_add_test(tc, t_remove_below_level);

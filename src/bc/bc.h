@@ -44,6 +44,7 @@ typedef struct mpm_bc {
   unsigned char *mask[2];  /* owned: outlet closed, outlet open (NULL: no outlet) */
   int out_edge;         /* MPM_EDGE_* of the outlet, -1: none */
   double out_from, out_to;  /* its extent along the edge [m] */
+  int out_held_ends;    /* 1: the nodes at out_from and out_to stay held */
   int open;             /* 1 once mpm_bc_open_outlet was called */
 } mpm_bc;
 
@@ -137,14 +138,18 @@ void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, dou
                   double *vy, double gvx, double gvy);
 
 /* Outlet: the nodes of edge e (MPM_EDGE_*) whose coordinate along the edge
- * lies in [from, to] (ends included) become a wall of kind `closed` (noslip
- * or frictionless) until mpm_bc_open_outlet, and carry no condition of that
- * edge afterwards (a perpendicular edge meeting the outlet at a corner, such
- * as a symmetry line, keeps its own). The orifice size is the distance
- * between the first and last free node, as in [DK15] section 4.2. Call
- * after mpm_bc_setup, before mpm_bc_add_polygon. */
+ * lies in [from, to] (ends included; with held_ends, strictly inside) become
+ * a wall of kind `closed` (noslip or frictionless) until mpm_bc_open_outlet,
+ * and carry no condition of that edge afterwards (a perpendicular edge
+ * meeting the outlet at a corner, such as a symmetry line, keeps its own);
+ * with held_ends the nodes at from and to keep the edge's own condition.
+ * The orifice size to - from is then the distance between the first and
+ * last free node ([DK15] section 4.2) or between the held nodes that bound
+ * it ([DK-silo] section 7.1). Its unit faces (mpm_bc_outlet_faces) are those
+ * within [from, to] either way. Call after mpm_bc_setup, before
+ * mpm_bc_add_polygon. */
 int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
-                      int closed, mpm_err *err);
+                      int closed, int held_ends, mpm_err *err);
 void mpm_bc_open_outlet(mpm_bc *bc);
 
 /* Staircase wall: every node inside or on the polygon (nv vertices, within

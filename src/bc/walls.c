@@ -37,17 +37,25 @@ static int on_edge(const mpm_mesh *m, int e, int i, int j)
 }
 
 /* 1 if coordinate s along the edge (x on bottom/top, y on left/right) is in
- * the outlet [from, to] (ends included, to 1e-9 of a unit): the orifice
- * size is then the distance between its first and last free node, as in
- * [DK15] section 4.2. */
+ * the outlet [from, to] (ends included, to 1e-9 of a unit). */
 static int in_outlet(const mpm_bc *bc, const mpm_mesh *m, double s)
 {
   const double tol = 1e-9 * (edge_is_vertical(bc->out_edge) ? m->dy : m->dx);
   return s >= bc->out_from - tol && s <= bc->out_to + tol;
 }
 
+/* 1 if a node at coordinate s is freed when the outlet opens: in [from, to],
+ * and not at either end when the ends are held (mpm_bc_set_outlet). */
+static int frees_node(const mpm_bc *bc, const mpm_mesh *m, double s)
+{
+  const double tol = 1e-9 * (edge_is_vertical(bc->out_edge) ? m->dy : m->dx);
+  if (!in_outlet(bc, m, s))
+    return 0;
+  return !bc->out_held_ends || (s > bc->out_from + tol && s < bc->out_to - tol);
+}
+
 int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
-                      int closed, mpm_err *err)
+                      int closed, int held_ends, mpm_err *err)
 {
   if (e < MPM_EDGE_LEFT || e > MPM_EDGE_TOP)
     return mpm_err_set(err, MPM_EINVAL, "outlet: unknown edge %d", e);
@@ -65,6 +73,7 @@ int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double 
   bc->out_edge = e;
   bc->out_from = from;
   bc->out_to = to;
+  bc->out_held_ends = held_ends != 0;
   const int vert = edge_is_vertical(e);
   for (int j = 0; j <= m->ny; j++)
     for (int i = 0; i <= m->nx; i++) {
@@ -72,7 +81,7 @@ int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double 
         continue;
       double x, y;
       mpm_mesh_node_pos(m, i, j, &x, &y);
-      if (!in_outlet(bc, m, vert ? y : x))
+      if (!frees_node(bc, m, vert ? y : x))
         continue;
       const int id = mpm_mesh_node(m, i, j);
       /* open: only what a perpendicular edge meeting the outlet at a corner

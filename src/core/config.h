@@ -30,6 +30,12 @@ enum mpm_outlet_edge {
 /* The shape of a 3D outlet on its face. */
 enum mpm_outlet_shape { MPM_OUTLET_RECTANGLE = 0, MPM_OUTLET_DISC };
 
+/* The nodes at the ends of a plane outlet [from, to]: free (the orifice is
+ * the distance between its first and last free node, [DK15] section 4.2) or
+ * held (the distance between the held nodes that bound it, [DK-silo]
+ * section 7.1: "measured from fixed-node to fixed-node"). */
+enum mpm_outlet_ends { MPM_OUTLET_ENDS_FREE = 0, MPM_OUTLET_ENDS_FIXED };
+
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
 /* Where the volumetric part of the scheme lives: at the point (standard
@@ -160,6 +166,7 @@ typedef struct mpm_config {
                                   inscribed in the square [from, to] x [from2, to2] */
     double t_open;             /* closed before, open from this time on [s] */
     int closed;                /* enum mpm_bc_kind while closed (noslip, frictionless) */
+    int ends;                  /* plane: enum mpm_outlet_ends ("free" | "fixed") */
   } outlet;
 
   struct {

@@ -535,6 +535,7 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
          cfg->material.state_density != MPM_DENSITY_UNIT,
      S_MATERIAL, "state_density", "\"point\", \"unit\""},
     {c->wall_nlist[0] > 0, S_WALL, "x", "no wall polygon"},
+    {cfg->outlet.ends != MPM_OUTLET_ENDS_FREE, S_OUTLET, "ends", "\"free\""},
     {cfg->absorb.above < 1e9, S_ABSORB, "above", "no absorbing layer"},
     {cfg->stop.mass > 0.0, S_STOP, "mass", "0"},
     {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE, S_OUTLET, "edge",

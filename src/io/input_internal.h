@@ -67,7 +67,8 @@ enum key_type {
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
   NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE, NK_DILATATION, NK_TRANSFER, NK_DIFFUSION,
-  NK_G_WALL, NK_G_SAMPLE, NK_G_MASS, NK_WALL_ACC, NK_OUTLET_SHAPE
+  NK_G_WALL, NK_G_SAMPLE, NK_G_MASS, NK_WALL_ACC, NK_OUTLET_SHAPE,
+  NK_OUTLET_ENDS
 };
 
 enum key_flag {
@@ -96,7 +97,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 103
+#define NKEYS 104
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];

@@ -141,6 +141,7 @@ const key_def mpm_io_in_keys[] = {
      .kind = NK_OUTLET_SHAPE, .sdef = "rectangle", .flags = KF_3D},
     NUM(S_OUTLET, KT_REAL, "t_open", C_(outlet.t_open), 0, 0, 1e9, 0, "s"),
     NAMED(S_OUTLET, KT_ENUM, "closed", C_(outlet.closed), NK_BC, "noslip"),
+    NAMED(S_OUTLET, KT_ENUM, "ends", C_(outlet.ends), NK_OUTLET_ENDS, "free"),
 
     {.name = "x",
      .sec = S_WALL,
@@ -196,6 +197,10 @@ static const char *const dilatation_names[] = {
   [MPM_DILATATION_POINT] = "point", [MPM_DILATATION_UNIT] = "unit",
 };
 
+static const char *const outlet_ends_names[] = {
+  [MPM_OUTLET_ENDS_FREE] = "free", [MPM_OUTLET_ENDS_FIXED] = "fixed",
+};
+
 static const char *const transfer_names[] = {
   [MPM_TRANSFER_FLIP] = "flip", [MPM_TRANSFER_APIC] = "apic",
 };
@@ -214,6 +219,7 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
   case NK_EDGE: return NAME_AT(edge_names, i);
   case NK_OUTLET_SHAPE: return NAME_AT(outlet_shape_names, i);
+  case NK_OUTLET_ENDS: return NAME_AT(outlet_ends_names, i);
   case NK_DILATATION: return NAME_AT(dilatation_names, i);
   case NK_TRANSFER: return NAME_AT(transfer_names, i);
   case NK_BC: return mpm_bc_kind_name(i);
@@ -260,6 +266,7 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_G_MASS: return mpm_nonlocal_steady_mass_from_name(s);
   case NK_EDGE: return NAME_INDEX(edge_names, s);
   case NK_OUTLET_SHAPE: return NAME_INDEX(outlet_shape_names, s);
+  case NK_OUTLET_ENDS: return NAME_INDEX(outlet_ends_names, s);
   case NK_DILATATION: return NAME_INDEX(dilatation_names, s);
   case NK_TRANSFER: return NAME_INDEX(transfer_names, s);
   default: return -1;

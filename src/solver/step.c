@@ -163,7 +163,8 @@ static int build_plane(mpm_sim *s, mpm_err *err)
   }
   if (rc == MPM_OK && cfg->outlet.edge != MPM_OUTLET_NONE)
     rc = mpm_bc_set_outlet(&s->bc, &s->mesh, cfg->outlet.edge - MPM_OUTLET_LEFT + MPM_EDGE_LEFT,
-                           cfg->outlet.from, cfg->outlet.to, cfg->outlet.closed, err);
+                           cfg->outlet.from, cfg->outlet.to, cfg->outlet.closed,
+                           cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED, err);
   if (rc == MPM_OK && cfg->wall.nvert > 0)
     rc = mpm_bc_add_polygon(&s->bc, &s->mesh, cfg->wall.nvert, cfg->wall.px, cfg->wall.py,
                             cfg->wall.kind, NULL, err);
