@@ -443,6 +443,23 @@ START_TEST(t_bad_override_list)
 }
 END_TEST
 
+/* outlet.ends = "fixed" keeps the nodes at from and to held: an outlet of
+ * one unit then frees no node, which the input refuses; two units free one. */
+START_TEST(t_outlet_ends)
+{
+  const char *text = BASE "outlet {\n  edge = bottom\n  from = 0.2\n  to = 0.4\n"
+                          "  ends = fixed\n}\n";
+  mpm_config cfg;
+  mpm_err err = {0};
+  ck_assert_int_eq(load_text(text, NULL, 0, &cfg, &err), MPM_OK);
+  ck_assert_int_eq(cfg.outlet.ends, MPM_OUTLET_ENDS_FIXED);
+  expect_error(text, "outlet.to=0.3",
+               "--set 'outlet.to=0.3': key 'outlet.to': \"fixed\" leaves no node free between "
+               "the held ends at 0.2 and 0.3 m (allowed: a node strictly between from and to, "
+               "or ends = \"free\")");
+}
+END_TEST
+
 /* ------------------------------------------------------------- round trips */
 
 START_TEST(t_round_trip_files)
@@ -861,6 +878,7 @@ static Suite *input_suite(void)
   tcase_add_test(bad, t_bad_file_count);
   tcase_add_loop_test(bad, t_bad_override, 0, (int)(sizeof bad_sets / sizeof bad_sets[0]));
   tcase_add_test(bad, t_bad_override_list);
+  tcase_add_test(bad, t_outlet_ends);
   tcase_add_test(bad, t_file_errors);
   tcase_add_test(bad, t_bad_arguments);
   tcase_add_test(bad, t_error_lines);

@@ -431,6 +431,18 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   const int a1 = e == MPM_OUTLET_FRONT || e == MPM_OUTLET_BACK ? 1 : 2;
   if (check_outlet_span(c, cfg, e, a0, kf, kt, cfg->outlet.from, cfg->outlet.to) != MPM_OK)
     return MPM_EINPUT;
+  if (!dim3 && cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED) {
+    /* held ends: the first node past `from` must lie before `to` */
+    const double h = a0 ? cfg->mesh.dy : cfg->mesh.dx, o = a0 ? cfg->mesh.y0 : cfg->mesh.x0;
+    const double first = o + (floor((cfg->outlet.from - o) / h + GEOM_TOL) + 1.0) * h;
+    if (!(first < cfg->outlet.to - GEOM_TOL * h)) {
+      where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
+      return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free between the held ends "
+                                "at %s and %s m (allowed: a node strictly between from and to, "
+                                "or ends = \"free\")", mpm_io_in_approx(cfg->outlet.from).s,
+                                mpm_io_in_approx(cfg->outlet.to).s);
+    }
+  }
   if (!dim3)
     return MPM_OK;
   const int kf2 = key_index(S_OUTLET, "from2"), kt2 = key_index(S_OUTLET, "to2");
