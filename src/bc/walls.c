@@ -37,21 +37,25 @@ static int on_edge(const mpm_mesh *m, int e, int i, int j)
 }
 
 /* 1 if coordinate s along the edge (x on bottom/top, y on left/right) is in
- * the outlet [from, to] (ends included, to 1e-9 of a unit). */
+ * the outlet [from, to] widened by `by` units at each end (to 1e-9 of a
+ * unit; a negative `by` shrinks it). */
+static int in_outlet_by(const mpm_bc *bc, const mpm_mesh *m, double s, double by)
+{
+  const double h = edge_is_vertical(bc->out_edge) ? m->dy : m->dx;
+  return s >= bc->out_from - by * h && s <= bc->out_to + by * h;
+}
+
+/* 1 if s is in [from, to], ends included. */
 static int in_outlet(const mpm_bc *bc, const mpm_mesh *m, double s)
 {
-  const double tol = 1e-9 * (edge_is_vertical(bc->out_edge) ? m->dy : m->dx);
-  return s >= bc->out_from - tol && s <= bc->out_to + tol;
+  return in_outlet_by(bc, m, s, 1e-9);
 }
 
 /* 1 if a node at coordinate s is freed when the outlet opens: in [from, to],
- * and not at either end when the ends are held (mpm_bc_set_outlet). */
+ * or strictly inside it when the ends are held (mpm_bc_set_outlet). */
 static int frees_node(const mpm_bc *bc, const mpm_mesh *m, double s)
 {
-  const double tol = 1e-9 * (edge_is_vertical(bc->out_edge) ? m->dy : m->dx);
-  if (!in_outlet(bc, m, s))
-    return 0;
-  return !bc->out_held_ends || (s > bc->out_from + tol && s < bc->out_to - tol);
+  return in_outlet_by(bc, m, s, bc->out_held_ends ? -1e-9 : 1e-9);
 }
 
 int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
