@@ -52,6 +52,23 @@ rows "series slope" "t,vx,speed,ax,mu,flow_mass,front,slope,slope_deg,xa,xb" 3 "
 rows "surface" "x,top" 20 "$tmp/run" --surface --frame 0
 # 2 x 2 points in each of 20 x 20 units
 rows "smooth" "x,y,p,p_smooth,gdot_p,state" 1600 "$tmp/run" --smooth
+rows "jam series" "t,vbar,points,left,dense" 3 "$tmp/run" --jam-series
+# its frame-1 row against the points of frames 0 and 1: the mass-weighted mean
+# of (y1 - y0) / (t1 - t0) over the points dense in both, matched by id; no
+# outlet, so every point stays
+"$GRANMPM" extract "$tmp/run" --frame 0 --fields id,y,mass,state >"$tmp/f0"
+"$GRANMPM" extract "$tmp/run" --frame 1 --fields id,y,mass,state >"$tmp/f1"
+"$GRANMPM" extract "$tmp/run" --jam-series >"$tmp/js"
+awk -F, 'FNR == 1 { f++; next }
+  f == 1 { y0[$1] = $2; s0[$1] = $4 }
+  f == 2 && $4 == 0 && ($1 in s0) && s0[$1] == 0 { m += $3; my += $3 * ($2 - y0[$1]); }
+  f == 2 && $4 == 0 { d1++ }
+  f == 3 && FNR == 2 { t0 = $1 }
+  f == 3 && FNR == 3 { t1 = $1; v = $2; n = $3; left = $4; dense = $5 }
+  END { want = my / (m * (t1 - t0))
+        ok = (v - want) ^ 2 <= (1e-5 * want) ^ 2 && n == 1600 && left == 0 && dense == d1
+        if (!ok) printf "vbar %s (want %.8g), points %s, left %s, dense %s (want %d)\n", v, want, n, left, dense, d1
+        exit !ok }' "$tmp/f0" "$tmp/f1" "$tmp/js" >"$tmp/jsmsg" || fail "jam series: $(cat "$tmp/jsmsg")"
 # the initial front is the right edge of the column less half a point spacing
 front=$("$GRANMPM" extract "$tmp/run" --series | awk -F, 'NR == 2 { print $7 }')
 [ "$front" = "0.1975" ] || fail "initial front $front (want 0.1975)"

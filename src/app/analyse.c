@@ -3,7 +3,8 @@
  * free surface, its points with nodally smoothed pressure ([DK15] eqs.
  * 4.1-4.3), a per-frame series of depth-averaged speed and acceleration,
  * mean mu of the flowing layer, front position and heap slope, the
- * silo classifier of [DK-silo] section 7.2 (static, flowing or unsure), and
+ * silo classifier of [DK-silo] section 7.2 (static, flowing or unsure) or
+ * its evidence frame by frame, and
  * the roughness of a frame's pressure with its dense fraction. Frames are
  * read back with io/frame.c; the numbers come from diag/flow.c. A 3D run is
  * measured on the x and y of its points (all of them, or those of a slab
@@ -25,13 +26,15 @@
 #include "shape/shape.h"
 
 enum mode {
-  MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES, MODE_JAM, MODE_ROUGH
+  MODE_NONE, MODE_PROFILE, MODE_SURFACE, MODE_SMOOTH, MODE_SERIES, MODE_JAM, MODE_JAM_SERIES,
+  MODE_ROUGH
 };
 
 /* The options that ask for a measurement, by mode; --profile takes a value. */
 static const char *const mode_option[] = {
   [MODE_PROFILE] = "--profile", [MODE_SURFACE] = "--surface", [MODE_SMOOTH] = "--smooth",
-  [MODE_SERIES] = "--series", [MODE_JAM] = "--jam", [MODE_ROUGH] = "--roughness",
+  [MODE_SERIES] = "--series", [MODE_JAM] = "--jam", [MODE_JAM_SERIES] = "--jam-series",
+  [MODE_ROUGH] = "--roughness",
 };
 
 typedef struct opts {
@@ -346,17 +349,19 @@ static size_t id_bound(const mpm_points *pts)
 
 /* --jam: the mean vertical velocity the dense material moved with between
  * frames and the point count of every frame, classified (diag/jam.h); one
- * CSV row with the evidence. */
+ * CSV row with the evidence. --jam-series: that evidence, one row a frame
+ * (time, mean velocity, points, points gone since the frame before, dense
+ * points). */
 static int do_jam(const opts *o, mpm_io_run *r, mpm_err *err)
 {
   const int nf = mpm_io_run_nframes(r);
   double *t = calloc((size_t)nf + 1, sizeof *t), *v = calloc((size_t)nf + 1, sizeof *v);
-  size_t *n = calloc((size_t)nf + 1, sizeof *n);
+  size_t *n = calloc((size_t)nf + 1, sizeof *n), *nd = calloc((size_t)nf + 1, sizeof *nd);
   mpm_points *pts = mpm_points_alloc(0), *prev = mpm_points_alloc(0);
   int *slot = NULL;
   size_t nslot = 0;
-  int rc = (!t || !v || !n || !pts || !prev) ? mpm_err_set(err, MPM_ENOMEM, "out of memory")
-                                             : MPM_OK;
+  int rc = (!t || !v || !n || !nd || !pts || !prev)
+               ? mpm_err_set(err, MPM_ENOMEM, "out of memory") : MPM_OK;
   for (int k = 0; rc == MPM_OK && k < nf; k++) {
     rc = read_frame(o, r, k, pts, &t[k], err);
     if (rc != MPM_OK)
@@ -374,14 +379,20 @@ static int do_jam(const opts *o, mpm_io_run *r, mpm_err *err)
       v[k] = mpm_diag_dense_vy_moved(prev, pts, t[k] - t[k - 1], slot, nslot);
     }
     n[k] = pts->n;
+    for (size_t p = 0; p < pts->n; p++)
+      nd[k] += pts->state[p] == MPM_STATE_DENSE;
     mpm_points *swap = prev;                 /* this frame becomes the previous one */
     prev = pts;
     pts = swap;
   }
   mpm_jam j;
   if (rc == MPM_OK)
-    rc = mpm_diag_jam((size_t)nf, t, v, n, &j, err);
-  if (rc == MPM_OK) {
+    rc = mpm_diag_jam((size_t)nf, t, v, n, &j, err);  /* checks the frames either way */
+  if (rc == MPM_OK && o->mode == MODE_JAM_SERIES) {
+    printf("t,vbar,points,left,dense\n");
+    for (int k = 0; k < nf; k++)
+      printf("%.10g,%.6g,%zu,%zu,%zu\n", t[k], v[k], n[k], k ? n[k - 1] - n[k] : 0, nd[k]);
+  } else if (rc == MPM_OK) {
     printf("class,t_zero,t_end,velocity_vote,leaving_per_frame,outflow_vote,frames\n");
     printf("%s,%.6g,%.6g,%s,%.6g,%s,%d\n", mpm_diag_jam_name(j.cls), j.t_zero, j.t_end,
            mpm_diag_jam_name(j.v_vote), j.leaving, mpm_diag_jam_name(j.n_vote), nf);
@@ -392,6 +403,7 @@ static int do_jam(const opts *o, mpm_io_run *r, mpm_err *err)
   free(t);
   free(v);
   free(n);
+  free(nd);
   return rc;
 }
 
@@ -413,14 +425,15 @@ int mpm_app_analyse(int argc, char **argv)
   if (rc == MPM_OK && o.mode == MODE_SMOOTH && mpm_io_run_dim(r) != 2)
     rc = mpm_err_set(&err, MPM_EINPUT, "--smooth: run '%s' is 3D; the smoothing takes a 2D "
                      "run's own weights", o.dir);
-  if (rc == MPM_OK && o.mode != MODE_SERIES && o.mode != MODE_JAM)
+  if (rc == MPM_OK && o.mode != MODE_SERIES && o.mode != MODE_JAM && o.mode != MODE_JAM_SERIES)
     rc = read_frame(&o, r, o.frame, pts, &t, &err);
   if (rc == MPM_OK) {
     switch (o.mode) {
     case MODE_PROFILE: rc = do_profile(&o, pts, &m, &err); break;
     case MODE_SURFACE: rc = do_surface(&o, pts, &m, &err); break;
     case MODE_SMOOTH: rc = do_smooth(pts, &m, shape, t, &err); break;
-    case MODE_JAM: rc = do_jam(&o, r, &err); break;
+    case MODE_JAM:
+    case MODE_JAM_SERIES: rc = do_jam(&o, r, &err); break;
     case MODE_ROUGH: rc = do_rough(&o, pts, &m, t, &err); break;
     default: rc = do_series(&o, r, &m, &err); break;
     }
