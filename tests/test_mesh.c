@@ -114,18 +114,24 @@ START_TEST(t_setup_rejects)
   m = ok; m.diagonal = 3; expect_reject(m, "mesh.diagonal");
   m = ok; m.diagonal = -1; expect_reject(m, "mesh.diagonal");
   m = ok; m.mirror_x = NAN; expect_reject(m, "mesh.mirror_x");
-  m = ok; m.periodic_x = 1; m.nx = 1; expect_reject(m, "mesh.nx");
-  m = ok; m.periodic_y = 1; m.ny = 1; expect_reject(m, "mesh.ny");
+  m = ok; m.periodic_x = 1; m.nx = 0; expect_reject(m, "mesh.nx");
+  m = ok; m.periodic_y = 1; m.ny = 0; expect_reject(m, "mesh.ny");
   m = ok; m.periodic_x = 2; expect_reject(m, "mesh.periodic_x");
   m = ok; m.nx = 100000; m.ny = 100000; expect_reject(m, "nodes");
   /* the same NaN mirror is irrelevant for Q4 and for a fixed diagonal */
   m = ok; m.mirror_x = NAN; m.topology = MPM_TOPO_Q4;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
-  /* single units are fine when not periodic */
+  /* single units are fine, periodic or not: a periodic axis of one unit
+   * stores one node column (row), both edges of the unit */
   m = ok; m.nx = 1; m.ny = 1;
   ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
   ck_assert_int_eq(m.nnodes, 4);
+  m = ok; m.nx = 1; m.periodic_x = 1;
+  ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
+  ck_assert_int_eq(m.snx, 1);
+  ck_assert_int_eq(m.nnodes, m.ny + 1);
+  ck_assert_int_eq(mpm_mesh_node(&m, 1, 2), mpm_mesh_node(&m, 0, 2));
 }
 END_TEST
 

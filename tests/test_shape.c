@@ -461,6 +461,67 @@ START_TEST(t_ugimp_periodic_wrap)
 }
 END_TEST
 
+/* A periodic x axis of one unit ([DK15] section 4.4 on one column of
+ * elements): its two node columns are one node, so a nodal field can only
+ * vary along y, and a point must weigh it exactly as it weighs that field
+ * (the same value on every node of a row) on a wider periodic mesh. Per
+ * node row, the sums of S, dS/dx and dS/dy over the listed nodes (a node
+ * may be listed twice) equal those on 3 units, for every shape and
+ * topology, at random points and extents up to half a unit. */
+static void row_sums(const mpm_mesh *m, const mpm_shape_type *type, double xp, double yp,
+                     const double r[4], double sums[][3], int nrow)
+{
+  int node[MPM_STENCIL_W];
+  double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
+  const int n = type->eval(m, xp, yp, r, node, S, gx, gy);
+  ck_assert_int_ge(n, 1);
+  for (int j = 0; j < nrow; j++)
+    sums[j][0] = sums[j][1] = sums[j][2] = 0.0;
+  for (int k = 0; k < n; k++) {
+    const int j = node[k] / m->snx;
+    ck_assert_int_lt(j, nrow);
+    sums[j][0] += S[k];
+    sums[j][1] += gx[k];
+    sums[j][2] += gy[k];
+  }
+}
+
+START_TEST(t_one_unit_periodic)
+{
+  const mpm_shape_type *types[] = {&mpm_shape_delta, &mpm_shape_ugimp, &mpm_shape_cpdi};
+  const int topo[3][2] = {{MPM_TOPO_Q4, MPM_DIAG_SLASH},
+                          {MPM_TOPO_T3, MPM_DIAG_SLASH},
+                          {MPM_TOPO_T3, MPM_DIAG_BACKSLASH}};
+  uint64_t seed = 20261127;
+  for (int t = 0; t < 3; t++)
+    for (int q = 0; q < 3; q++) {
+      const mpm_mesh one = make_mesh(1, 6, topo[q][0], topo[q][1], 1, 0);
+      const mpm_mesh three = make_mesh(3, 6, topo[q][0], topo[q][1], 1, 0);
+      ck_assert_int_eq(one.snx, 1);
+      for (int trial = 0; trial < 200; trial++) {
+        double r[4] = {0.0, 0.0, 0.0, 0.0};
+        if (types[t] != &mpm_shape_delta)
+          random_extent(&one, &seed, 0.05, 0.5, r);
+        if (trial % 2 && types[t] != &mpm_shape_delta) {   /* along the axes, as filled */
+          r[0] = (0.05 + 0.45 * rnd(&seed)) * one.dx;
+          r[3] = (0.05 + 0.45 * rnd(&seed)) * one.dy;
+          r[1] = r[2] = 0.0;
+        }
+        const double xp = random_coord(&seed, one.x0, one.lx, one.dx, 1, 0.0);
+        const double yp = random_coord(&seed, one.y0, one.ly, one.dy, 0, 0.8 * one.dy);
+        double a[7][3], b[7][3];
+        row_sums(&one, types[t], xp, yp, r, a, 7);
+        row_sums(&three, types[t], xp, yp, r, b, 7);
+        for (int j = 0; j < 7; j++) {
+          ck_assert_double_eq_tol(a[j][0], b[j][0], TOL);
+          ck_assert_double_eq_tol(a[j][1], b[j][1], TOL / one.dx);
+          ck_assert_double_eq_tol(a[j][2], b[j][2], TOL / one.dy);
+        }
+      }
+    }
+}
+END_TEST
+
 /* A zero extent is the delta limit of the corner rule. */
 START_TEST(t_ugimp_zero_extent)
 {
@@ -637,6 +698,7 @@ int main(void)
   tcase_add_test(tc, t_ugimp_clamped);
   tcase_add_test(tc, t_ugimp_periodic_wrap);
   tcase_add_test(tc, t_ugimp_zero_extent);
+  tcase_add_test(tc, t_one_unit_periodic);
   tcase_add_test(tc, t_registry);
   tcase_add_test(tc, t_stencil_matches_eval);
   tcase_add_test(tc, t_stencil_outside);

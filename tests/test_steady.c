@@ -166,6 +166,55 @@ static mpm_linalg_stats cosine_case(int mode, double w, int mass)
   return s;
 }
 
+/* ---- a periodic column of one unit ---------------------------------------- */
+
+/* On a periodic x axis of one unit a point lists each node twice (its two
+ * node columns are one node): the solve must be the one of a wider periodic
+ * mesh with the same points in every column, whose solution does not vary
+ * along x. g_loc varies along y; zero flux at the bottom and top. */
+static double *column_solve(int nx, int *nrows)
+{
+  const int ny = 6;
+  mpm_mesh m = make_mesh(nx, ny, 0.1, 0.05, 1, 0);
+  mpm_points *P = make_points(&m, 2);
+  mpm_shape_stencil *st = make_stencil(&m, P);
+  inputs in = make_inputs(P->n, m.nnodes, 40.0);
+  for (size_t p = 0; p < P->n; p++)
+    in.gloc[p] = 1.0 + 0.5 * cos(acos(-1.0) * P->y[p] / (ny * 0.05));
+  mpm_err err = {0};
+  mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);
+  ck_assert_ptr_nonnull(ss);
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense,
+                                             in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
+  const double *g = mpm_nonlocal_steady_nodal(ss);
+  double *rows = malloc((ny + 1) * sizeof *rows);
+  for (int j = 0; j <= ny; j++) {
+    rows[j] = g[mpm_mesh_node(&m, 0, j)];
+    for (int i = 1; i < nx; i++)                      /* nothing varies along x */
+      ck_assert_double_eq_tol(g[mpm_mesh_node(&m, i, j)], rows[j], TOL);
+  }
+  *nrows = ny + 1;
+  mpm_nonlocal_steady_free(ss);
+  free_inputs(&in);
+  mpm_shape_stencil_free(st);
+  mpm_points_free(P);
+  return rows;
+}
+
+START_TEST(t_one_unit_column)
+{
+  int n1, n3;
+  double *one = column_solve(1, &n1), *three = column_solve(3, &n3);
+  ck_assert_int_eq(n1, n3);
+  for (int j = 0; j < n1; j++)
+    ck_assert_msg(fabs(one[j] - three[j]) <= TOL * fabs(three[j]),
+                  "row %d: g = %.17g on one unit, %.17g on three", j, one[j], three[j]);
+  ck_assert(three[0] > three[n3 - 1] + 0.1);          /* g follows g_loc along y */
+  free(one);
+  free(three);
+}
+END_TEST
+
 START_TEST(t_cosine_modes)
 {
   for (int mode = 1; mode <= 3; mode++) {
@@ -416,6 +465,7 @@ int main(void)
   Suite *s = suite_create("steady");
   TCase *tc = tcase_create("steady");
   tcase_add_test(tc, t_cosine_modes);
+  tcase_add_test(tc, t_one_unit_column);
   tcase_add_test(tc, t_indefinite_qr);
   tcase_add_test(tc, t_dirichlet_rows);
   tcase_add_test(tc, t_reuse_counts);

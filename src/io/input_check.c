@@ -76,6 +76,20 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
    * that are the element basis at the point, 4 for extents up to half a
    * unit: mpm_sim_in_node_offset) */
   const int px = cfg->bc.left == MPM_BC_PERIODIC, py = cfg->bc.bottom == MPM_BC_PERIODIC;
+  /* a plane periodic axis may be one unit (one node column or row); the 3D
+   * box keeps two */
+  if (cfg->mesh.nz > 0) {
+    const int per[3] = {px, py, cfg->bc.front == MPM_BC_PERIODIC};
+    const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
+    const char *const name[3] = {"nx", "ny", "nz"};
+    for (int a = 0; a < 3; a++)
+      if (per[a] && n[a] < 2) {
+        const int k = key_index(S_MESH, name[a]);
+        where w = blame(c, cfg, -1, k, k);
+        return mpm_io_in_fail_key(c, &w, "%s = 1 on a periodic axis of a 3D run (allowed: at "
+                                  "least 2; a plane run may have 1)", name[a]);
+      }
+  }
   const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
   const int need = shape && shape->at_point ? 2 : 4;
   if (cfg->time.transfer == MPM_TRANSFER_APIC &&

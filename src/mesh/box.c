@@ -14,9 +14,9 @@
 int mpm_mesh3_setup(mpm_mesh3 *m, mpm_err *err)
 {
   int rc;
-  if ((rc = mpm_mesh_in_check_units(m->nx, m->periodic_x, 'x', err)) != MPM_OK ||
-      (rc = mpm_mesh_in_check_units(m->ny, m->periodic_y, 'y', err)) != MPM_OK ||
-      (rc = mpm_mesh_in_check_units(m->nz, m->periodic_z, 'z', err)) != MPM_OK ||
+  if ((rc = mpm_mesh_in_check_units(m->nx, m->periodic_x, 2, 'x', err)) != MPM_OK ||
+      (rc = mpm_mesh_in_check_units(m->ny, m->periodic_y, 2, 'y', err)) != MPM_OK ||
+      (rc = mpm_mesh_in_check_units(m->nz, m->periodic_z, 2, 'z', err)) != MPM_OK ||
       (rc = mpm_mesh_in_check_lengths(m->nx, m->x0, m->dx, 'x', err)) != MPM_OK ||
       (rc = mpm_mesh_in_check_lengths(m->ny, m->y0, m->dy, 'y', err)) != MPM_OK ||
       (rc = mpm_mesh_in_check_lengths(m->nz, m->z0, m->dz, 'z', err)) != MPM_OK)

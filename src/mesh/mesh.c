@@ -16,8 +16,8 @@
 
 /* ---------------------------------------------------------------- setup */
 
-/* Units along one axis: n >= 1, periodic flag 0/1, n >= 2 when periodic. */
-int mpm_mesh_in_check_units(int n, int periodic, char axis, mpm_err *err)
+/* Units along one axis: n >= 1, periodic flag 0/1, n >= nper when periodic. */
+int mpm_mesh_in_check_units(int n, int periodic, int nper, char axis, mpm_err *err)
 {
   if (periodic != 0 && periodic != 1)
     return mpm_err_set(err, MPM_EINPUT,
@@ -27,10 +27,10 @@ int mpm_mesh_in_check_units(int n, int periodic, char axis, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT,
                        "mesh.n%c = %d is out of range (allowed: integer >= 1)",
                        axis, n);
-  if (periodic && n < 2)
+  if (periodic && n < nper)
     return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.n%c = %d is out of range (allowed: n%c >= 2 when %c "
-                       "is periodic)", axis, n, axis, axis);
+                       "mesh.n%c = %d is out of range (allowed: n%c >= %d when %c "
+                       "is periodic)", axis, n, axis, nper, axis);
   return MPM_OK;
 }
 
@@ -75,8 +75,11 @@ static int check_topology(const mpm_mesh *m, mpm_err *err)
 int mpm_mesh_setup(mpm_mesh *m, mpm_err *err)
 {
   int rc;
-  if ((rc = mpm_mesh_in_check_units(m->nx, m->periodic_x, 'x', err)) != MPM_OK ||
-      (rc = mpm_mesh_in_check_units(m->ny, m->periodic_y, 'y', err)) != MPM_OK ||
+  /* a periodic axis of one unit is one node row or column: its two edges
+   * are one node, so nothing varies along it (the infinite layer of [DK15]
+   * section 4.4 and [DK-silo] section 6 on one column of elements) */
+  if ((rc = mpm_mesh_in_check_units(m->nx, m->periodic_x, 1, 'x', err)) != MPM_OK ||
+      (rc = mpm_mesh_in_check_units(m->ny, m->periodic_y, 1, 'y', err)) != MPM_OK ||
       (rc = mpm_mesh_in_check_lengths(m->nx, m->x0, m->dx, 'x', err)) != MPM_OK ||
       (rc = mpm_mesh_in_check_lengths(m->ny, m->y0, m->dy, 'y', err)) != MPM_OK ||
       (rc = check_topology(m, err)) != MPM_OK)

@@ -8,8 +8,9 @@
 #include "core/error.h"
 
 /* Units along one axis: n >= 1 (and room for n + 1 nodes), periodic flag
- * 0/1, n >= 2 when periodic. MPM_EINPUT names mesh.n<axis>. */
-int mpm_mesh_in_check_units(int n, int periodic, char axis, mpm_err *err);
+ * 0/1, n >= nper when periodic (1 on the plane mesh, 2 on the 3D box).
+ * MPM_EINPUT names mesh.n<axis>. */
+int mpm_mesh_in_check_units(int n, int periodic, int nper, char axis, mpm_err *err);
 
 /* Origin finite, unit size finite and > 0, domain end finite. */
 int mpm_mesh_in_check_lengths(int n, double o, double h, char axis, mpm_err *err);

@@ -184,6 +184,9 @@ int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *
           a += wV * S[k] * S[l];                     /* + V w S_i S_j */
         else if (l == k)
           a += wV * S[k];                            /* + V w S_i (row sum) */
+        if (l != k && rl == rk)
+          a *= 2.0;                                  /* one node listed twice (a periodic axis of
+                                                        one unit): the pair (k, l) and (l, k) */
         ss->ti[t] = rk;
         ss->tj[t] = rl;
         ss->tv[t] = a;

@@ -1,6 +1,8 @@
 /* delta.c: original MPM weights, S_ip = N_i(x_p), gradS_ip = grad N_i(x_p)
  * (MODEL.md section 3). The element basis comes from the mesh; its nodes are
- * distinct (periodic meshes have at least two units per direction). */
+ * distinct, but on a periodic axis of one unit, where the unit's two node
+ * columns (or rows) are one node: it is listed twice, and point-to-grid adds
+ * both. */
 #include "shape/shape.h"
 
 static int delta_eval(const mpm_mesh *m, double x, double y, const double r[4],
