@@ -61,7 +61,7 @@ rows "jam series" "t,vbar,points,left,dense" 3 "$tmp/run" --jam-series
 "$GRANMPM" extract "$tmp/run" --jam-series >"$tmp/js"
 awk -F, 'FNR == 1 { f++; next }
   f == 1 { y0[$1] = $2; s0[$1] = $4 }
-  f == 2 && $4 == 0 && ($1 in s0) && s0[$1] == 0 { m += $3; my += $3 * ($2 - y0[$1]); }
+  f == 2 && $4 == 0 && ($1 in s0) && s0[$1] == 0 { m += $3; my += $3 * ($2 - y0[$1]) }
   f == 2 && $4 == 0 { d1++ }
   f == 3 && FNR == 2 { t0 = $1 }
   f == 3 && FNR == 3 { t1 = $1; v = $2; n = $3; left = $4; dense = $5 }

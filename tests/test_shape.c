@@ -579,9 +579,10 @@ static size_t add_point(mpm_points *pts, double x, double y, const double r[4])
 START_TEST(t_stencil_matches_eval)
 {
   uint64_t s = 42;
+  for (int wide = 0; wide < 2; wide++)             /* 7 units, or a periodic x of one */
   for (int kind = 0; kind < 4; kind++)
     for (int aligned = 0; aligned < 2; aligned++) {
-      mpm_mesh m = make_mesh(7, 6, topo_of[kind], diag_of[kind], 1, 0);
+      mpm_mesh m = make_mesh(wide ? 7 : 1, 6, topo_of[kind], diag_of[kind], 1, 0);
       mpm_points *pts = mpm_points_alloc(0);
       ck_assert_ptr_nonnull(pts);
       for (int k = 0; k < 300; k++) {
