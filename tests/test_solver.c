@@ -452,6 +452,200 @@ static void apic_periodic_step(const char *topo, const char *shape, int shift, d
   mpm_sim_free(s);
 }
 
+/* mesh.dilatation = "element": a 4 x 4 mesh of 0.1 m units, walled on
+ * every edge and filled with 2 x 2 points per unit, so every unit is filled
+ * (docs/model.md). The points are moved off their symmetric places and
+ * given unequal volumes (as t_bbar_unit_dilatation) unless regular. */
+static mpm_sim *element_block(int rule, int regular, double dt)
+{
+  mpm_config c;
+  base_config(&c, 4, 2, 0.0, 0.0);
+  c.bc.right = c.bc.top = MPM_BC_NOSLIP;
+  c.fill[0].xmax = c.fill[0].ymax = 0.4;
+  c.time.dt = dt;
+  c.time.flip = 0.0;
+  c.mesh.dilatation = rule;
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  ck_assert_uint_eq(s->pts->n, 64);
+  for (size_t p = 0; !regular && p < s->pts->n; p++) {
+    s->pts->x[p] += (p % 3 == 0) ? 0.011 : 0.0;
+    s->pts->y[p] -= (p % 4 == 1) ? 0.007 : 0.0;
+    s->pts->vol[p] *= 1.0 + 0.5 * (double)(p % 2);
+  }
+  return s;
+}
+
+static void set_isotropic(mpm_sim *s, size_t p, double sm)
+{
+  s->pts->sxx[p] = s->pts->syy[p] = s->pts->szz[p] = sm;
+  s->pts->sxy[p] = 0.0;
+}
+
+/* A uniform pressure exerts no force on an interior node when the filled
+ * units act as Q1/P0 elements (the four units' integrals of grad N_i
+ * cancel), whatever the points' places and volumes; the point sums of the
+ * "unit" rule do not cancel for the same points. Scale: p dy / m_node =
+ * 1000 * 0.1 / 15 = 6.7 m/s^2. */
+START_TEST(t_element_uniform_pressure)
+{
+  const int rules[2] = {MPM_DILATATION_ELEMENT, MPM_DILATATION_UNIT};
+  for (int r = 0; r < 2; r++) {
+    mpm_sim *s = element_block(rules[r], 0, 1e-6);
+    for (size_t p = 0; p < s->pts->n; p++)
+      set_isotropic(s, p, -1000.0);
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+    double worst = 0.0;
+    for (int j = 1; j < 4; j++)
+      for (int i = 1; i < 4; i++) {
+        const int n = mpm_mesh_node(&s->mesh, i, j);
+        worst = fmax(worst, hypot(s->nq[n][2], s->nq[n][3]));
+      }
+    if (r == 0)
+      ck_assert_double_le(worst, 1e-12 * 6.7);
+    else
+      ck_assert_double_ge(worst, 1e-2 * 6.7);
+    mpm_sim_free(s);
+  }
+}
+END_TEST
+
+/* The force of unit pressures s_e on an interior node N = (I, J) is
+ * f = -sum_e s_e int_e grad N_N dA, int_e dN/dx = +-dy/2 and dN/dy = +-dx/2
+ * with the sign of the side of e on which N lies:
+ *   f_x = dy/2 (s_ur - s_ul + s_lr - s_ll),  f_y = dx/2 (s_ur + s_ul - s_lr - s_ll)
+ * for the units ll = (I-1, J-1), lr = (I, J-1), ul = (I-1, J), ur = (I, J).
+ * Each unit's points carry one isotropic stress (no deviator), so this is
+ * all of f_N = m_N a_N. */
+static double unit_stress_of(int e)
+{
+  return -1000.0 - 150.0 * (double)((e * 7) % 11);
+}
+
+START_TEST(t_element_forces)
+{
+  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 0, 1e-6);
+  for (size_t p = 0; p < s->pts->n; p++) {
+    int i, j;
+    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+    set_isotropic(s, p, unit_stress_of(i + 4 * j));
+  }
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  for (int J = 1; J < 4; J++)
+    for (int I = 1; I < 4; I++) {
+      const double ll = unit_stress_of(I - 1 + 4 * (J - 1)), lr = unit_stress_of(I + 4 * (J - 1));
+      const double ul = unit_stress_of(I - 1 + 4 * J), ur = unit_stress_of(I + 4 * J);
+      const double fx = 0.05 * (ur - ul + lr - ll), fy = 0.05 * (ur + ul - lr - ll);
+      const int n = mpm_mesh_node(&s->mesh, I, J);
+      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][2], fx, 1e-12 * 100.0);
+      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][3], fy, 1e-12 * 100.0);
+    }
+  mpm_sim_free(s);
+}
+END_TEST
+
+/* In a filled unit every point changes volume at phi_e div_e: the mean
+ * divergence of the bilinear grid velocity over the unit (its value at the
+ * centre) times the unit's fill phi_e = sum V_p / (dx dy) of the start. */
+START_TEST(t_element_divergence)
+{
+  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 0, 1e-4);
+  const size_t n = s->pts->n;
+  double v0[64], phi[16] = {0};
+  int unit[64];
+  for (size_t p = 0; p < n; p++) {
+    const double x = s->pts->x[p], y = s->pts->y[p];
+    s->pts->vx[p] = 3.0 * (x - 0.2) * (y - 0.2) / 0.01 + 0.5 * (x - 0.2) * (x - 0.2) / 0.01;
+    s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
+    v0[s->pts->id[p]] = s->pts->vol[p];
+    int i, j;
+    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &i, &j), MPM_OK);
+    unit[s->pts->id[p]] = i + 4 * j;
+    phi[i + 4 * j] += s->pts->vol[p] / 0.01;
+  }
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  double worst = 0.0, spread = 0.0;
+  for (size_t p = 0; p < n; p++) {
+    const int e = unit[s->pts->id[p]], i = e % 4, j = e / 4;
+    const int n0 = mpm_mesh_node(&s->mesh, i, j), n1 = mpm_mesh_node(&s->mesh, i + 1, j);
+    const int n2 = mpm_mesh_node(&s->mesh, i, j + 1), n3 = mpm_mesh_node(&s->mesh, i + 1, j + 1);
+    const double div = (s->nq[n1][0] + s->nq[n3][0] - s->nq[n0][0] - s->nq[n2][0]) / 0.2 +
+                       (s->nq[n2][1] + s->nq[n3][1] - s->nq[n0][1] - s->nq[n1][1]) / 0.2;
+    const double rate = log(s->pts->vol[p] / v0[s->pts->id[p]]) / s->dt;
+    worst = fmax(worst, fabs(rate - phi[e] * div) / fabs(div));
+    spread = fmax(spread, fabs(phi[e] - 1.0));
+  }
+  ck_assert_double_ge(spread, 0.1);          /* the fills differ from 1 */
+  ck_assert_double_le(worst, 1e-9);          /* log of a ratio near 1: round-off */
+  mpm_sim_free(s);
+}
+END_TEST
+
+/* The projection hands the points a limited linear pressure about each
+ * unit's centroid: on regular points a linear field comes back exactly in
+ * the units with neighbours on both sides of both axes (the slopes of the
+ * unit means agree), and one per unit under the "unit" rule. On irregular
+ * points every unit's volume-weighted mean of s_m is kept. The step is
+ * short enough (1e-10 s) that nothing else changes the stresses. */
+static double linear_sm(double x, double y)
+{
+  return -(1000.0 + 2000.0 * x + 3000.0 * y);
+}
+
+START_TEST(t_element_linear_pressure)
+{
+  for (int rule = 0; rule < 2; rule++) {
+    mpm_sim *s = element_block(rule ? MPM_DILATATION_UNIT : MPM_DILATATION_ELEMENT, 1, 1e-10);
+    for (size_t p = 0; p < s->pts->n; p++)
+      set_isotropic(s, p, linear_sm(s->pts->x[p], s->pts->y[p]));
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+    double worst = 0.0;
+    for (size_t p = 0; p < s->pts->n; p++) {
+      int i, j;
+      ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+      if (i < 1 || i > 2 || j < 1 || j > 2)
+        continue;
+      const double sm = 0.5 * (s->pts->sxx[p] + s->pts->syy[p]);
+      worst = fmax(worst, fabs(sm - linear_sm(s->pts->x[p], s->pts->y[p])));
+    }
+    if (rule == 0)
+      ck_assert_double_le(worst, 1e-9 * 2000.0);
+    else
+      ck_assert_double_ge(worst, 0.25 * 0.05 * 3000.0);   /* a quarter unit off the mean */
+    mpm_sim_free(s);
+  }
+  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 0, 1e-10);
+  double mean0[16] = {0}, vol[16] = {0}, mean1[16] = {0};
+  for (size_t p = 0; p < s->pts->n; p++) {
+    const double x = s->pts->x[p], y = s->pts->y[p];
+    set_isotropic(s, p, linear_sm(x, y) + 500.0 * sin(40.0 * x * y));
+    int i, j;
+    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &i, &j), MPM_OK);
+    mean0[i + 4 * j] += s->pts->vol[p] * s->pts->sxx[p];
+    vol[i + 4 * j] += s->pts->vol[p];
+  }
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  double spread = 0.0;
+  for (size_t p = 0; p < s->pts->n; p++) {
+    int i, j;
+    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+    mean1[i + 4 * j] += s->pts->vol[p] * 0.5 * (s->pts->sxx[p] + s->pts->syy[p]);
+  }
+  for (int e = 0; e < 16; e++) {
+    ck_assert_double_eq_tol(mean1[e] / vol[e], mean0[e] / vol[e], 1e-9 * 4000.0);
+    spread = fmax(spread, fabs(mean0[e] / vol[e] - mean0[0] / vol[0]));
+  }
+  ck_assert_double_ge(spread, 100.0);
+  mpm_sim_free(s);
+}
+END_TEST
+
 START_TEST(t_apic_affine)
 {
   static const char *const kinds[][2] = {{"q4", "delta"}, {"t3", "delta"}, {"q4", "ugimp"},
@@ -986,6 +1180,10 @@ int main(void)
   tcase_add_test(tc, t_volume_ratio);
   tcase_add_test(tc, t_bbar_unit_dilatation);
   tcase_add_test(tc, t_bbar_every_shape);
+  tcase_add_test(tc, t_element_uniform_pressure);
+  tcase_add_test(tc, t_element_forces);
+  tcase_add_test(tc, t_element_divergence);
+  tcase_add_test(tc, t_element_linear_pressure);
   tcase_add_test(tc, t_apic_affine);
   tcase_add_test(tc, t_cpdi_extents_follow);
   tcase_add_test(tc, t_cpdi_apic_periodic_reach);

@@ -39,8 +39,9 @@ enum mpm_outlet_ends { MPM_OUTLET_ENDS_FREE = 0, MPM_OUTLET_ENDS_FIXED };
 enum mpm_fill_shape { MPM_FILL_RECTANGLE = 0, MPM_FILL_DISC, MPM_FILL_POLYGON };
 
 /* Where the volumetric part of the scheme lives: at the point (standard
- * MPM) or per unit (B-bar with one mean stress per unit; docs/model.md). */
-enum mpm_dilatation { MPM_DILATATION_POINT = 0, MPM_DILATATION_UNIT };
+ * MPM), per unit (B-bar with one mean stress per unit) or per unit with the
+ * filled units integrated as mixed Q1/P0 elements (docs/model.md). */
+enum mpm_dilatation { MPM_DILATATION_POINT = 0, MPM_DILATATION_UNIT, MPM_DILATATION_ELEMENT };
 
 /* How the point velocities are transferred: FLIP blended with PIC by
  * time.flip, or affine (APIC: the PIC velocity and the affine matrix
@@ -78,7 +79,7 @@ typedef struct mpm_config {
     char diagonal[MPM_NAME_MAX];  /* "/" "\\" "mirror" (T3 only) */
     double mirror_x;           /* x of the mirror line [m] */
     char shape[MPM_NAME_MAX];  /* shape-function variant: "delta" | "ugimp" */
-    int dilatation;            /* enum mpm_dilatation ("point" | "unit") */
+    int dilatation;            /* enum mpm_dilatation ("point" | "unit" | "element") */
   } mesh;
 
   struct {

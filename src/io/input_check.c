@@ -90,6 +90,16 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
                                   "least 2; a plane run may have 1)", name[a]);
       }
   }
+  /* the Q1/P0 element integral of a filled unit is written for the plane's
+   * bilinear units */
+  if (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
+      (cfg->mesh.nz > 0 || strcmp(cfg->mesh.topology, "q4") != 0)) {
+    const int k = key_index(S_MESH, "dilatation");
+    where w = blame(c, cfg, -1, k, key_index(S_MESH, cfg->mesh.nz > 0 ? "nz" : "topology"));
+    return mpm_io_in_fail_key(c, &w, "dilatation = \"element\" %s (allowed: a plane run with "
+                              "topology \"q4\"; \"unit\" or \"point\" otherwise)",
+                              cfg->mesh.nz > 0 ? "in a 3D run" : "on triangles");
+  }
   const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
   const int need = shape && shape->at_point ? 2 : 4;
   if (cfg->time.transfer == MPM_TRANSFER_APIC &&

@@ -195,6 +195,7 @@ static const char *const outlet_shape_names[] = {
 
 static const char *const dilatation_names[] = {
   [MPM_DILATATION_POINT] = "point", [MPM_DILATATION_UNIT] = "unit",
+  [MPM_DILATATION_ELEMENT] = "element",
 };
 
 static const char *const outlet_ends_names[] = {

@@ -54,7 +54,7 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
   double per_point = (double)point_store_bytes                 /* the store */
                      + sizeof(int) + MPM_STENCIL_W * (sizeof(int) + 3 * sizeof(double))
                      + sizeof(double) + 1.0;                   /* output work, removal flags */
-  const int bbar = cfg->mesh.dilatation == MPM_DILATATION_UNIT;
+  const int bbar = cfg->mesh.dilatation != MPM_DILATATION_POINT;
   if (nonlocal || density || bbar)
     per_point += 4 * sizeof(double);                           /* L_p kept over the substeps */
   if (density)
@@ -71,7 +71,7 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
   if (density)
     per_unit += 4 * sizeof(double);
   if (bbar)
-    per_unit += 2 * sizeof(double);
+    per_unit += (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT ? 7 : 2) * sizeof(double);
   if (nonlocal && cfg->material.diffusion == MPM_DIFFUSION_IMPLICIT)  /* the matrix, its */
     per_unit += 200.0 + 16.0 * log2(units + 2.0);  /* Cholesky factor (nested-dissection
                                                        fill: ~ N log N) and the vectors */

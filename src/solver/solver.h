@@ -78,6 +78,8 @@ typedef struct mpm_sim {
   int *uof;                       /* [ucap] the unit of each point, -1 outside the mesh */
   size_t ucap;
   double *usum;                   /* [2 nx ny] per unit: sum V_p, sum V_p f_p */
+  double *uel;                    /* "element": [5 nx ny] per unit: fill of a filled
+                                     unit (else 0), centroid and slope of s_m */
 
   double t, dt;                   /* current time, time step [s] */
   long step;

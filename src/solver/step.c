@@ -183,8 +183,11 @@ static int build_plane(mpm_sim *s, mpm_err *err)
     rc = nonlocal_alloc(s, err);
   if (rc == MPM_OK)
     rc = density_alloc(s, err);
-  if (rc == MPM_OK && cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
-      !(s->usum = malloc(2 * (size_t)s->mesh.nx * (size_t)s->mesh.ny * sizeof *s->usum)))
+  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  if (rc == MPM_OK && cfg->mesh.dilatation != MPM_DILATATION_POINT &&
+      (!(s->usum = malloc(2 * nu * sizeof *s->usum)) ||
+       (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
+        !(s->uel = malloc(5 * nu * sizeof *s->uel)))))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
   return rc;
 }
@@ -236,6 +239,7 @@ void mpm_sim_free(mpm_sim *s)
   mpm_material_density_free(s->dens);
   free(s->rho);
   free(s->usum);
+  free(s->uel);
   free(s->uof);
   free(s->lxx);
   free(s->lxy);

@@ -303,6 +303,100 @@ static void unit_means(mpm_sim *s, int what)
       us[2 * e + 1] /= us[2 * e];
 }
 
+/* mesh.dilatation = "element": the filled units of the plane mesh act as
+ * mixed Q1/P0 elements for the volumetric part (docs/model.md). A unit is
+ * filled when its points are all dense and each of its eight neighbours
+ * holds a point or lies beyond a closed edge (a wall without the outlet;
+ * periodic axes wrap). s->uel[5e] is the fill fraction phi = sum V_p / (dx
+ * dy) of a filled unit, 0 of any other; [5e+1] its rate phi div_e in
+ * grid-to-point, then [5e+1 .. 5e+4] the centroid and the slope of its
+ * pressure field at the projection. */
+
+/* Unit (a, b) holds a point, or lies beyond a closed edge. */
+static int neighbour_holds(const mpm_sim *s, int a, int b)
+{
+  const mpm_config *cfg = &s->cfg;
+  const int nx = s->mesh.nx, ny = s->mesh.ny;
+  int side = MPM_OUTLET_NONE, bc = MPM_BC_PERIODIC;
+  if (a < 0 || a >= nx) {
+    side = a < 0 ? MPM_OUTLET_LEFT : MPM_OUTLET_RIGHT;
+    bc = a < 0 ? cfg->bc.left : cfg->bc.right;
+    a = (a + nx) % nx;
+  }
+  if (bc == MPM_BC_PERIODIC && (b < 0 || b >= ny)) {
+    side = b < 0 ? MPM_OUTLET_BOTTOM : MPM_OUTLET_TOP;
+    bc = b < 0 ? cfg->bc.bottom : cfg->bc.top;
+    b = (b + ny) % ny;
+  }
+  if (bc != MPM_BC_PERIODIC)                  /* beyond an edge */
+    return bc != MPM_BC_FREE && cfg->outlet.edge != side;
+  return s->usum[2 * ((size_t)a + (size_t)nx * (size_t)b)] > 0.0;
+}
+
+static void filled_units(mpm_sim *s)
+{
+  const mpm_points *P = s->pts;
+  const int nx = s->mesh.nx, ny = s->mesh.ny;
+  double *el = s->uel;
+  for (size_t e = 0; e < (size_t)nx * (size_t)ny; e++)
+    el[5 * e] = 1.0;
+  for (size_t p = 0; p < P->n; p++)          /* a unit with a loose point is not filled */
+    if (s->uof[p] >= 0 && P->state[p] != MPM_STATE_DENSE)
+      el[5 * (size_t)s->uof[p]] = 0.0;
+  const double area = s->mesh.dx * s->mesh.dy;
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      const size_t e = (size_t)i + (size_t)nx * (size_t)j;
+      int filled = el[5 * e] > 0.0 && s->usum[2 * e] > 0.0;
+      for (int b = j - 1; filled && b <= j + 1; b++)
+        for (int a = i - 1; filled && a <= i + 1; a++)
+          filled = neighbour_holds(s, a, b);
+      el[5 * e] = filled ? s->usum[2 * e] / area : 0.0;
+    }
+}
+
+/* The corner nodes of plane unit e: (i,j), (i+1,j), (i,j+1), (i+1,j+1). */
+static void unit_corners(const mpm_sim *s, size_t e, int n[4])
+{
+  const int i = (int)(e % (size_t)s->mesh.nx), j = (int)(e / (size_t)s->mesh.nx);
+  n[0] = mpm_mesh_node(&s->mesh, i, j);
+  n[1] = mpm_mesh_node(&s->mesh, i + 1, j);
+  n[2] = mpm_mesh_node(&s->mesh, i, j + 1);
+  n[3] = mpm_mesh_node(&s->mesh, i + 1, j + 1);
+}
+
+/* The Q1/P0 share of point-to-grid: f_i += -sbar_e int_e grad N_i dA over
+ * every filled unit e, int_e dN_i/dx = +-dy/2, int_e dN_i/dy = +-dx/2 (sign
+ * of the corner's side). Unit by unit on one thread: thread-count free. */
+static void element_forces(mpm_sim *s)
+{
+  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  const double hx = 0.5 * s->mesh.dy, hy = 0.5 * s->mesh.dx;
+  static const double sx[4] = {-1.0, 1.0, -1.0, 1.0}, sy[4] = {-1.0, -1.0, 1.0, 1.0};
+  for (size_t e = 0; e < nu; e++) {
+    if (!(s->uel[5 * e] > 0.0))
+      continue;
+    int n[4];
+    unit_corners(s, e, n);
+    const double sb = s->usum[2 * e + 1];
+    for (int k = 0; k < 4; k++) {
+      s->nq[n[k]][2] -= sb * sx[k] * hx;
+      s->nq[n[k]][3] -= sb * sy[k] * hy;
+    }
+  }
+}
+
+/* The divergence of the bilinear grid velocity averaged over filled unit e,
+ * (1 / (dx dy)) sum_i v_i . int_e grad N_i dA. */
+static double element_divergence(const mpm_sim *s, size_t e)
+{
+  int n[4];
+  unit_corners(s, e, n);
+  const double (*v)[4] = (const double (*)[4])s->nq;
+  return (v[n[1]][0] + v[n[3]][0] - v[n[0]][0] - v[n[2]][0]) / (2.0 * s->mesh.dx) +
+         (v[n[2]][1] + v[n[3]][1] - v[n[0]][1] - v[n[1]][1]) / (2.0 * s->mesh.dy);
+}
+
 int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
 {
   int rc = reserve_units(s, err);
@@ -310,6 +404,8 @@ int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
     return rc;
   find_units(s);
   unit_means(s, MEAN_SM);
+  if (s->uel)
+    filled_units(s);
   return MPM_OK;
 }
 
@@ -317,12 +413,19 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
 {
   mpm_points *P = s->pts;
   unit_means(s, MEAN_TRL);
+  double *el = s->uel;
+  if (el)                                    /* a filled unit's rate phi div_e, once */
+    for (size_t e = 0; e < unit_count(s); e++)
+      if (el[5 * e] > 0.0)
+        el[5 * e + 1] = el[5 * e] * element_divergence(s, e);
   const double dt = s->dt;
   double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     const double tr = trace_L(s, p);
-    const double div = u < 0 ? tr : s->usum[2 * u + 1];    /* the unit's divergence */
+    double div = u < 0 ? tr : s->usum[2 * u + 1];          /* the unit's divergence */
+    if (el && u >= 0 && el[5 * (size_t)u] > 0.0)
+      div = el[5 * (size_t)u + 1];
     if (L3) {                                                /* L_ii += (div - tr)/D */
       for (int i = 0; i < 3; i++)
         L3[9 * p + 4 * i] += (div - tr) / 3.0;
@@ -334,16 +437,82 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
   }
 }
 
+/* minmod: the smaller of two slopes of one sign, else 0. */
+static inline double minmod(double a, double b)
+{
+  return a * b <= 0.0 ? 0.0 : (fabs(a) < fabs(b) ? a : b);
+}
+
+/* Slope of the unit means along one axis at unit e (n: its index step, k:
+ * its place on the axis of n units, h: the unit's side): minmod of the two
+ * one-sided differences to the neighbours that hold dense points (periodic
+ * axes wrap); 0 beside a unit without any. */
+static double mean_slope(const mpm_sim *s, size_t e, int k, int n, size_t step, int periodic,
+                         double h)
+{
+  const double *us = s->usum;
+  const size_t span = step * (size_t)n;
+  size_t lo = e - step, hi = e + step;
+  if (k == 0 || k == n - 1) {
+    if (!periodic || n < 3)
+      return 0.0;
+    if (k == 0)
+      lo = e + span - step;
+    else
+      hi = e + step - span;
+  }
+  if (!(us[2 * lo] > 0.0 && us[2 * hi] > 0.0))
+    return 0.0;
+  return minmod(us[2 * e + 1] - us[2 * lo + 1], us[2 * hi + 1] - us[2 * e + 1]) / h;
+}
+
+/* "element": the pressure field of the units reaches the points as a
+ * limited linear one about each unit's centroid of dense points (volume-
+ * weighted), so the unit means stay what they were. */
+static void element_slopes(mpm_sim *s)
+{
+  const mpm_points *P = s->pts;
+  const int nx = s->mesh.nx, ny = s->mesh.ny;
+  const size_t nu = (size_t)nx * (size_t)ny;
+  double *el = s->uel;
+  for (size_t e = 0; e < nu; e++)
+    el[5 * e + 1] = el[5 * e + 2] = 0.0;
+  for (size_t p = 0; p < P->n; p++) {
+    const int u = s->uof[p];
+    if (u < 0 || P->state[p] != MPM_STATE_DENSE)
+      continue;
+    el[5 * (size_t)u + 1] += P->vol[p] * P->x[p];
+    el[5 * (size_t)u + 2] += P->vol[p] * P->y[p];
+  }
+  const int px = s->cfg.bc.left == MPM_BC_PERIODIC, py = s->cfg.bc.bottom == MPM_BC_PERIODIC;
+  for (size_t e = 0; e < nu; e++) {
+    const double v = s->usum[2 * e];
+    if (!(v > 0.0))
+      continue;
+    el[5 * e + 1] /= v;
+    el[5 * e + 2] /= v;
+    el[5 * e + 3] = mean_slope(s, e, (int)(e % (size_t)nx), nx, 1, px, s->mesh.dx);
+    el[5 * e + 4] = mean_slope(s, e, (int)(e / (size_t)nx), ny, (size_t)nx, py, s->mesh.dy);
+  }
+}
+
 void mpm_sim_in_unit_project(mpm_sim *s)
 {
   mpm_points *P = s->pts;
   find_units(s);                             /* the units of x_{n+1} */
   unit_means(s, MEAN_SM_DENSE);
+  const double *el = s->uel;
+  if (el)
+    element_slopes(s);
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)
       continue;
-    const double d = s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
+    double d = s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
+    if (el) {
+      const double *f = el + 5 * (size_t)u;
+      d += f[3] * (P->x[p] - f[1]) + f[4] * (P->y[p] - f[2]);
+    }
     P->sxx[p] += d;
     P->syy[p] += d;
     if (s->dim == 3)
@@ -390,7 +559,10 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
   double sxx = P->sxx[p], syy = P->syy[p];
   const double sxy = P->sxy[p];
   if (bbar && s->uof[p] >= 0) {             /* s_m -> the unit's mean */
-    const double d = s->usum[2 * s->uof[p] + 1] - mpm_sim_in_mean_stress(s, p);
+    const size_t u = (size_t)s->uof[p];
+    const double d = s->uel && s->uel[5 * u] > 0.0
+                         ? -mpm_sim_in_mean_stress(s, p)   /* filled: the unit acts */
+                         : s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
     sxx += d;
     syy += d;
   }
@@ -502,6 +674,10 @@ static inline void grid_phase(mpm_sim *s, int dim, const double b[3])
         else
           p2g_band_of(s, k, kind, b[0], b[1]);
       }
+    }
+    if (dim == 2 && s->uel) {
+#pragma omp single
+      element_forces(s);
     }
 #pragma omp for schedule(static)
     for (int i = 0; i < nn; i++) {
