@@ -73,8 +73,8 @@ typedef struct mpm_sim {
   mpm_material_density *dens;     /* unit sums; NULL for the point rule */
   double *rho;                    /* [rcap] density each point's update sees [kg/m^3] */
   size_t rcap;                    /* length of rho */
-  /* mesh.dilatation = "unit" (B-bar with the mean stress per unit, transfer.c);
-   * else NULL */
+  /* mesh.dilatation = "unit" or "element" (B-bar with the mean stress per
+   * unit, transfer.c); else NULL */
   int *uof;                       /* [ucap] the unit of each point, -1 outside the mesh */
   size_t ucap;
   double *usum;                   /* [2 nx ny] per unit: sum V_p, sum V_p f_p */
