@@ -148,12 +148,12 @@ st=$?
 
 # check prints the size of the run: the example's column of 0.2 m x 0.2 m in
 # units of 0.01 m with 2 x 2 points each has 40 x 40 = 1600 points, its mesh
-# of 60 x 25 units 61 x 26 = 1586 nodes; 2 s in steps of 5.27799e-05 s
-# (cfl 0.5 of the stable 1.05560e-4 s) make ceil(37893.2) = 37894 steps;
-# frames at 0, every 0.02 s and at the end: at most 2 + 100.
+# of 60 x 25 units 61 x 26 = 1586 nodes; 3 s in steps of 5.27799e-05 s
+# (cfl 0.5 of the stable 1.05560e-4 s) make ceil(56839.8) = 56840 steps;
+# frames at 0, every 0.02 s and at the end: at most 2 + 150.
 count=$((count + 1))
 "$GRANMPM" check "$srcdir/inputs/example.conf" >"$tmp/out" 2>"$tmp/err"
-grep -qx "# size: 1600 points, 1586 nodes, 37894 steps of 5.27799e-05 s (stable: 0.00010556 s), 1 substeps per step, at most 102 frames" "$tmp/out" &&
+grep -qx "# size: 1600 points, 1586 nodes, 56840 steps of 5.27799e-05 s (stable: 0.00010556 s), 1 substeps per step, at most 152 frames" "$tmp/out" &&
   grep -q "^# estimated memory .* MB (.* available), output .* MB (.* free where it goes)\$" "$tmp/out" ||
   { fail "the size of the example"; grep '^# ' "$tmp/out"; }
 

@@ -308,9 +308,9 @@ static void unit_means(mpm_sim *s, int what)
  * filled when its points are all dense and each of its eight neighbours
  * holds a point or lies beyond a closed edge (a wall without the outlet;
  * periodic axes wrap). s->uel[5e] is the fill fraction phi = sum V_p / (dx
- * dy) of a filled unit, 0 of any other; [5e+1] its rate phi div_e in
- * grid-to-point, then [5e+1 .. 5e+4] the centroid and the slope of its
- * pressure field at the projection. */
+ * dy) of a filled unit, 0 of any other; [5e+1 .. 5e+4] the centroid and
+ * the slope of its dense points' pressure field (found before point-to-grid
+ * and again at the projection), [5e+1] in between its rate phi div_e. */
 
 /* Unit (a, b) holds a point, or lies beyond a closed edge. */
 static int neighbour_holds(const mpm_sim *s, int a, int b)
@@ -397,46 +397,6 @@ static double element_divergence(const mpm_sim *s, size_t e)
          (v[n[2]][1] + v[n[3]][1] - v[n[0]][1] - v[n[1]][1]) / (2.0 * s->mesh.dy);
 }
 
-int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
-{
-  int rc = reserve_units(s, err);
-  if (rc != MPM_OK)
-    return rc;
-  find_units(s);
-  unit_means(s, MEAN_SM);
-  if (s->uel)
-    filled_units(s);
-  return MPM_OK;
-}
-
-void mpm_sim_in_unit_dilatation(mpm_sim *s)
-{
-  mpm_points *P = s->pts;
-  unit_means(s, MEAN_TRL);
-  double *el = s->uel;
-  if (el)                                    /* a filled unit's rate phi div_e, once */
-    for (size_t e = 0; e < unit_count(s); e++)
-      if (el[5 * e] > 0.0)
-        el[5 * e + 1] = el[5 * e] * element_divergence(s, e);
-  const double dt = s->dt;
-  double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
-  for (size_t p = 0; p < P->n; p++) {
-    const int u = s->uof[p];
-    const double tr = trace_L(s, p);
-    double div = u < 0 ? tr : s->usum[2 * u + 1];          /* the unit's divergence */
-    if (el && u >= 0 && el[5 * (size_t)u] > 0.0)
-      div = el[5 * (size_t)u + 1];
-    if (L3) {                                                /* L_ii += (div - tr)/D */
-      for (int i = 0; i < 3; i++)
-        L3[9 * p + 4 * i] += (div - tr) / 3.0;
-    } else {
-      s->lxx[p] += 0.5 * (div - tr);
-      s->lyy[p] += 0.5 * (div - tr);
-    }
-    P->vol[p] *= mpm_sim_volume_ratio(dt * div);             /* V *= exp(dt tr L) */
-  }
-}
-
 /* minmod: the smaller of two slopes of one sign, else 0. */
 static inline double minmod(double a, double b)
 {
@@ -444,17 +404,28 @@ static inline double minmod(double a, double b)
 }
 
 /* Slope of the unit means along one axis at unit e (n: its index step, k:
- * its place on the axis of n units, h: the unit's side): minmod of the two
- * one-sided differences to the neighbours that hold dense points (periodic
- * axes wrap); 0 beside a unit without any. */
-static double mean_slope(const mpm_sim *s, size_t e, int k, int n, size_t step, int periodic,
-                         double h)
+ * its place on the axis of n units, h: the unit's side, lo_bc and hi_bc the
+ * conditions of the axis' two edges): minmod of the two one-sided
+ * differences to the neighbours that hold dense points (periodic axes
+ * wrap); 0 beside a unit without any. Against a wall the field goes on:
+ * the one difference inside; against a symmetry line it is even: 0. */
+static double mean_slope(const mpm_sim *s, size_t e, int k, int n, size_t step, int lo_bc,
+                         int hi_bc, double h)
 {
   const double *us = s->usum;
   const size_t span = step * (size_t)n;
   size_t lo = e - step, hi = e + step;
   if (k == 0 || k == n - 1) {
-    if (!periodic || n < 3)
+    const int bc = k == 0 ? lo_bc : hi_bc;
+    if (bc != MPM_BC_PERIODIC) {
+      if (n < 2 || bc == MPM_BC_SYMMETRY || bc == MPM_BC_FREE)
+        return 0.0;
+      const size_t in = k == 0 ? hi : lo;
+      if (!(us[2 * in] > 0.0))
+        return 0.0;
+      return (k == 0 ? us[2 * in + 1] - us[2 * e + 1] : us[2 * e + 1] - us[2 * in + 1]) / h;
+    }
+    if (n < 3)
       return 0.0;
     if (k == 0)
       lo = e + span - step;
@@ -484,15 +455,84 @@ static void element_slopes(mpm_sim *s)
     el[5 * (size_t)u + 1] += P->vol[p] * P->x[p];
     el[5 * (size_t)u + 2] += P->vol[p] * P->y[p];
   }
-  const int px = s->cfg.bc.left == MPM_BC_PERIODIC, py = s->cfg.bc.bottom == MPM_BC_PERIODIC;
+  const mpm_config *cfg = &s->cfg;
   for (size_t e = 0; e < nu; e++) {
     const double v = s->usum[2 * e];
     if (!(v > 0.0))
       continue;
     el[5 * e + 1] /= v;
     el[5 * e + 2] /= v;
-    el[5 * e + 3] = mean_slope(s, e, (int)(e % (size_t)nx), nx, 1, px, s->mesh.dx);
-    el[5 * e + 4] = mean_slope(s, e, (int)(e / (size_t)nx), ny, (size_t)nx, py, s->mesh.dy);
+    el[5 * e + 3] = mean_slope(s, e, (int)(e % (size_t)nx), nx, 1, cfg->bc.left, cfg->bc.right,
+                               s->mesh.dx);
+    el[5 * e + 4] = mean_slope(s, e, (int)(e / (size_t)nx), ny, (size_t)nx, cfg->bc.bottom,
+                               cfg->bc.top, s->mesh.dy);
+  }
+}
+
+/* The mean stress a filled unit acts with: the value of its points' linear
+ * field (slope G_e about their centroid c_e, the points' mean m_e there) at
+ * the unit's centre, m_e - G_e . (c_e - centre). The Q1/P0 element's
+ * pressure is its mean over the whole unit, which is the centre value of a
+ * linear field; the points' mean is its value where the points are (in a
+ * floor unit the material never reached, 2.5 mm higher). G_e and c_e are
+ * those the last projection used, found again from the points (a run
+ * resumed from a checkpoint continues bitwise). */
+static void element_centre_values(mpm_sim *s)
+{
+  const int nx = s->mesh.nx;
+  for (size_t e = 0; e < unit_count(s); e++) {
+    const double *f = s->uel + 5 * e;
+    if (!(f[0] > 0.0))
+      continue;
+    const double x = s->mesh.x0 + ((double)(e % (size_t)nx) + 0.5) * s->mesh.dx;
+    const double y = s->mesh.y0 + ((double)(e / (size_t)nx) + 0.5) * s->mesh.dy;
+    s->usum[2 * e + 1] -= f[3] * (f[1] - x) + f[4] * (f[2] - y);
+  }
+}
+
+int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
+{
+  int rc = reserve_units(s, err);
+  if (rc != MPM_OK)
+    return rc;
+  find_units(s);
+  if (s->uel) {                              /* the slopes of the dense points' field */
+    unit_means(s, MEAN_SM_DENSE);
+    element_slopes(s);
+  }
+  unit_means(s, MEAN_SM);
+  if (s->uel) {
+    filled_units(s);
+    element_centre_values(s);
+  }
+  return MPM_OK;
+}
+
+void mpm_sim_in_unit_dilatation(mpm_sim *s)
+{
+  mpm_points *P = s->pts;
+  unit_means(s, MEAN_TRL);
+  double *el = s->uel;
+  if (el)                                    /* a filled unit's rate phi div_e, once */
+    for (size_t e = 0; e < unit_count(s); e++)
+      if (el[5 * e] > 0.0)
+        el[5 * e + 1] = el[5 * e] * element_divergence(s, e);
+  const double dt = s->dt;
+  double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
+  for (size_t p = 0; p < P->n; p++) {
+    const int u = s->uof[p];
+    const double tr = trace_L(s, p);
+    double div = u < 0 ? tr : s->usum[2 * u + 1];          /* the unit's divergence */
+    if (el && u >= 0 && el[5 * (size_t)u] > 0.0)
+      div = el[5 * (size_t)u + 1];
+    if (L3) {                                                /* L_ii += (div - tr)/D */
+      for (int i = 0; i < 3; i++)
+        L3[9 * p + 4 * i] += (div - tr) / 3.0;
+    } else {
+      s->lxx[p] += 0.5 * (div - tr);
+      s->lyy[p] += 0.5 * (div - tr);
+    }
+    P->vol[p] *= mpm_sim_volume_ratio(dt * div);             /* V *= exp(dt tr L) */
   }
 }
 
