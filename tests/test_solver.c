@@ -518,7 +518,9 @@ END_TEST
  *   f_x = dy/2 (s_ur - s_ul + s_lr - s_ll),  f_y = dx/2 (s_ur + s_ul - s_lr - s_ll)
  * for the units ll = (I-1, J-1), lr = (I, J-1), ul = (I-1, J), ur = (I, J).
  * Each unit's points carry one isotropic stress (no deviator), so this is
- * all of f_N = m_N a_N. */
+ * all of f_N = m_N a_N. The points are regular: their centroids are the
+ * unit centres, where the element takes its pressure (t_element_centre_value
+ * for irregular ones). */
 static double unit_stress_of(int e)
 {
   return -1000.0 - 150.0 * (double)((e * 7) % 11);
@@ -526,7 +528,7 @@ static double unit_stress_of(int e)
 
 START_TEST(t_element_forces)
 {
-  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 0, 1e-6);
+  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 1, 1e-6);
   for (size_t p = 0; p < s->pts->n; p++) {
     int i, j;
     ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);

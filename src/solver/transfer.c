@@ -365,9 +365,10 @@ static void unit_corners(const mpm_sim *s, size_t e, int n[4])
   n[3] = mpm_mesh_node(&s->mesh, i + 1, j + 1);
 }
 
-/* The Q1/P0 share of point-to-grid: f_i += -sbar_e int_e grad N_i dA over
- * every filled unit e, int_e dN_i/dx = +-dy/2, int_e dN_i/dy = +-dx/2 (sign
- * of the corner's side). Unit by unit on one thread: thread-count free. */
+/* The Q1/P0 share of point-to-grid: f_i += -P_e int_e grad N_i dA over
+ * every filled unit e (P_e in s->usum, element_centre_values), int_e dN_i/dx
+ * = +-dy/2, int_e dN_i/dy = +-dx/2 (sign of the corner's side). Unit by
+ * unit on one thread: thread-count free. */
 static void element_forces(mpm_sim *s)
 {
   const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
