@@ -526,25 +526,39 @@ static double unit_stress_of(int e)
   return -1000.0 - 150.0 * (double)((e * 7) % 11);
 }
 
-START_TEST(t_element_forces)
+/* Each point's stress: its unit's value, isotropic. */
+static void set_unit_stresses(mpm_sim *s)
 {
-  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 1, 1e-6);
   for (size_t p = 0; p < s->pts->n; p++) {
     int i, j;
     ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
     set_isotropic(s, p, unit_stress_of(i + 4 * j));
   }
-  mpm_err err = {0};
-  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+}
+
+/* m a at every interior node against the forces of the unit pressures P. */
+static void check_element_forces(const mpm_sim *s, const double P[16], double tol)
+{
   for (int J = 1; J < 4; J++)
     for (int I = 1; I < 4; I++) {
-      const double ll = unit_stress_of(I - 1 + 4 * (J - 1)), lr = unit_stress_of(I + 4 * (J - 1));
-      const double ul = unit_stress_of(I - 1 + 4 * J), ur = unit_stress_of(I + 4 * J);
-      const double fx = 0.05 * (ur - ul + lr - ll), fy = 0.05 * (ur + ul - lr - ll);
+      const double ll = P[I - 1 + 4 * (J - 1)], lr = P[I + 4 * (J - 1)];
+      const double ul = P[I - 1 + 4 * J], ur = P[I + 4 * J];
       const int n = mpm_mesh_node(&s->mesh, I, J);
-      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][2], fx, 1e-12 * 100.0);
-      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][3], fy, 1e-12 * 100.0);
+      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][2], 0.05 * (ur - ul + lr - ll), tol);
+      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][3], 0.05 * (ur + ul - lr - ll), tol);
     }
+}
+
+START_TEST(t_element_forces)
+{
+  mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 1, 1e-6);
+  set_unit_stresses(s);
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  double P[16];
+  for (int e = 0; e < 16; e++)
+    P[e] = unit_stress_of(e);
+  check_element_forces(s, P, 1e-12 * 100.0);
   mpm_sim_free(s);
 }
 END_TEST
@@ -558,11 +572,7 @@ END_TEST
 START_TEST(t_element_centre_value)
 {
   mpm_sim *s = element_block(MPM_DILATATION_ELEMENT, 0, 1e-10);
-  for (size_t p = 0; p < s->pts->n; p++) {
-    int i, j;
-    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
-    set_isotropic(s, p, unit_stress_of(i + 4 * j));
-  }
+  set_unit_stresses(s);
   mpm_err err = {0};
   ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
   double sv[16] = {0}, svs[16] = {0}, P[16];
@@ -581,14 +591,7 @@ START_TEST(t_element_centre_value)
   }
   ck_assert_double_ge(shift, 1.0);           /* the centroids lie off the centres */
   ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
-  for (int J = 1; J < 4; J++)
-    for (int I = 1; I < 4; I++) {
-      const double ll = P[I - 1 + 4 * (J - 1)], lr = P[I + 4 * (J - 1)];
-      const double ul = P[I - 1 + 4 * J], ur = P[I + 4 * J];
-      const int n = mpm_mesh_node(&s->mesh, I, J);
-      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][2], 0.05 * (ur - ul + lr - ll), 1e-9);
-      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][3], 0.05 * (ur + ul - lr - ll), 1e-9);
-    }
+  check_element_forces(s, P, 1e-9);
   mpm_sim_free(s);
 }
 END_TEST
