@@ -481,7 +481,8 @@ static void element_slopes(mpm_sim *s)
 static void element_centre_values(mpm_sim *s)
 {
   const int nx = s->mesh.nx;
-  for (size_t e = 0; e < unit_count(s); e++) {
+  const size_t nu = unit_count(s);
+  for (size_t e = 0; e < nu; e++) {
     const double *f = s->uel + 5 * e;
     if (!(f[0] > 0.0))
       continue;
@@ -514,8 +515,9 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
   mpm_points *P = s->pts;
   unit_means(s, MEAN_TRL);
   double *el = s->uel;
+  const size_t nu = unit_count(s);
   if (el)                                    /* a filled unit's rate phi div_e, once */
-    for (size_t e = 0; e < unit_count(s); e++)
+    for (size_t e = 0; e < nu; e++)
       if (el[5 * e] > 0.0)
         el[5 * e + 1] = el[5 * e] * element_divergence(s, e);
   const double dt = s->dt;
