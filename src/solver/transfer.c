@@ -284,8 +284,12 @@ static size_t unit_count(const mpm_sim *s)
 
 /* s->usum[2u + 1] = sum V_p f_p / sum V_p over the points of unit u
  * (s->uof) that take part (the dense ones for MEAN_SM_DENSE), s->usum[2u]
- * = sum V_p; both 0 for a unit without such points. */
-static void unit_means(mpm_sim *s, int what)
+ * = sum V_p; both 0 for a unit without such points. Inlined at each call,
+ * where `what` is a constant. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void unit_means(mpm_sim *s, int what)
 {
   const mpm_points *P = s->pts;
   const size_t nu = unit_count(s);
@@ -589,13 +593,15 @@ static void p2g_affine(const mpm_sim *s, double (*restrict nq)[4], size_t p, int
  * as one operation on four lanes per node: q_i += S a + dS/dx ax + dS/dy ay
  * with a = m_p (v_x, v_y, b_x, b_y), ax = -V_p (0, 0, s_xx, s_xy),
  * ay = -V_p (0, 0, s_xy, s_yy). With the B-bar dilatation the in-plane
- * mean stress s_m of the point is its unit's mean. With APIC the momentum
- * takes the affine part too, (mv)_i += S m_p C_p (x_i - x_p) ([JSS+15]:
- * it adds no momentum, sum S (x_i - x_p) = 0 for every shape here). */
+ * mean stress s_m of the point is its unit's mean, or nothing in a filled
+ * unit of "element" (el: s->uel, read once per band). With APIC the
+ * momentum takes the affine part too, (mv)_i += S m_p C_p (x_i - x_p)
+ * ([JSS+15]: it adds no momentum, sum S (x_i - x_p) = 0 for every shape
+ * here). */
 static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*restrict nq)[4],
                              size_t p, int c, const int *node, const double *S,
                              const double *gx, const double *gy, double bx, double by, int bbar,
-                             int apic)
+                             const double *el, int apic)
 {
   const mpm_points *P = s->pts;
   const double m = P->mass[p], V = P->vol[p];
@@ -603,7 +609,7 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
   const double sxy = P->sxy[p];
   if (bbar && s->uof[p] >= 0) {             /* s_m -> the unit's mean */
     const size_t u = (size_t)s->uof[p];
-    const double d = s->uel && s->uel[5 * u] > 0.0
+    const double d = el && el[5 * u] > 0.0
                          ? -mpm_sim_in_mean_stress(s, p)   /* filled: the unit acts */
                          : s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
     sxx += d;
@@ -624,6 +630,7 @@ static inline void p2g_points(const mpm_sim *s, int k, int kind, double bx, doub
   const mpm_mesh_bands *b = s->bands;
   double *restrict nm = s->nm;
   double (*restrict nq)[4] = s->nq;
+  const double *el = s->uel;
   const int end = b->start[k + 1];
   for (int q = b->start[k]; q < end; q++) {
     const size_t p = (size_t)b->idx[q];
@@ -631,7 +638,7 @@ static inline void p2g_points(const mpm_sim *s, int k, int kind, double bx, doub
     const int *node;
     const double *S, *gx, *gy;
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar, apic);
+    p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar, el, apic);
   }
 }
 
