@@ -89,6 +89,8 @@ typedef struct mpm_sim {
   double stop_value;              /* the measured value that fired the stop test */
   double mtiny;                   /* nodes lighter than this are skipped */
   double mlight;                  /* nodes lighter than this take the body force only */
+  double stiny;                   /* mtiny / the lightest point: a node of weight above
+                                     this in a point's stencil is not empty */
   double mass_removed;            /* mass of the points removed so far [kg/m] */
   unsigned scan;                  /* what the point loops of the step saw once the points
                                      had moved (MPM_SIM_SCAN_*): a clear bit lets the

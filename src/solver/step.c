@@ -220,8 +220,13 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   for (size_t p = 0; p < s->pts->n; p++)
     s->mass0 += s->pts->mass[p];
   s->mtiny = 1e-12 * s->mass0 / (double)s->pts->n;          /* skip nodes lighter than this */
-  if (s->dim == 3 ? s->shape3->at_point : s->shape->at_point)  /* body force only below this */
+  if (s->dim == 3 ? s->shape3->at_point : s->shape->at_point) {  /* body force only below this */
     s->mlight = 1e-3 * s->mass0 / (double)s->pts->n;
+    double mmin = s->pts->mass[0];
+    for (size_t p = 1; p < s->pts->n; p++)
+      mmin = fmin(mmin, s->pts->mass[p]);
+    s->stiny = s->mtiny / mmin;  /* m_i >= S_ip m_p: empty only if S_ip <= stiny */
+  }
   *out = s;
   return MPM_OK;
 }
@@ -290,12 +295,12 @@ typedef struct chunk {
 } chunk;
 
 /* Steps 4-5 for points [a, b): L_p to lxx[p - a] ..., the grid velocity
- * that moved point p to ck->vgx[p - a], ck->vgy[p - a]; with APIC, L_p is
- * also the point's affine matrix C_p for the next step. */
-static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *lxx,
+ * that moved point p to ck->vgx[p - a], ck->vgy[p - a]; with APIC (apic
+ * 1), L_p is also the point's affine matrix C_p for the next step, its
+ * empty nodes taking the point's velocity (mpm_sim_in_affine). */
+static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, int apic, double *lxx,
                              double *lxy, double *lyx, double *lyy, chunk *ck)
 {
-  const int apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
   for (size_t p = a; p < b; p++) {
     mpm_sim_in_basis buf;
     const int *node;
@@ -304,6 +309,7 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *l
     const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
     mpm_sim_in_gather(s, c, node, S, gx, gy, vg, ag, L);
     if (apic) {                               /* C_p = sum v_i (x) gradS_ip */
+      mpm_sim_in_affine(s, c, node, S, gx, gy, vg, L);
       s->pts->cxx[p] = L[0];
       s->pts->cxy[p] = L[1];
       s->pts->cyx[p] = L[2];
@@ -321,19 +327,30 @@ static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, double *l
   mpm_sim_in_advance(s, a, b, ck->vgx, ck->vgy, ck->agx, ck->agy, lxx, lxy, lyx, lyy);
 }
 
-/* Steps 4-5 for points [a, b) with the weights of the step; see g2p_range. */
+/* Steps 4-5 for points [a, b) with the weights of the step; see g2p_range,
+ * compiled once per kind of weights and transfer. */
 static void move_range(mpm_sim *s, size_t a, size_t b, double *lxx, double *lxy, double *lyx,
                        double *lyy, chunk *ck)
 {
+  const int apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
   switch (mpm_sim_in_kind(s)) {
   case MPM_SIM_IN_Q4:
-    g2p_range(s, a, b, MPM_SIM_IN_Q4, lxx, lxy, lyx, lyy, ck);
+    if (apic)
+      g2p_range(s, a, b, MPM_SIM_IN_Q4, 1, lxx, lxy, lyx, lyy, ck);
+    else
+      g2p_range(s, a, b, MPM_SIM_IN_Q4, 0, lxx, lxy, lyx, lyy, ck);
     break;
   case MPM_SIM_IN_ELEMENT:
-    g2p_range(s, a, b, MPM_SIM_IN_ELEMENT, lxx, lxy, lyx, lyy, ck);
+    if (apic)
+      g2p_range(s, a, b, MPM_SIM_IN_ELEMENT, 1, lxx, lxy, lyx, lyy, ck);
+    else
+      g2p_range(s, a, b, MPM_SIM_IN_ELEMENT, 0, lxx, lxy, lyx, lyy, ck);
     break;
   default:
-    g2p_range(s, a, b, MPM_SIM_IN_STORED, lxx, lxy, lyx, lyy, ck);
+    if (apic)
+      g2p_range(s, a, b, MPM_SIM_IN_STORED, 1, lxx, lxy, lyx, lyy, ck);
+    else
+      g2p_range(s, a, b, MPM_SIM_IN_STORED, 0, lxx, lxy, lyx, lyy, ck);
   }
 }
 

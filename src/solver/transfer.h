@@ -157,6 +157,17 @@ static inline void mpm_sim_in_gather(const mpm_sim *s, int c, const int *node,
   mpm_tr_gather2((const double (*)[4])s->nq, c, node, S, g, vg, ag, L);
 }
 
+/* APIC's C_p from the L of mpm_sim_in_gather: with delta weights the empty
+ * nodes of the stencil take the point's velocity (mpm_tr_gather_empty2). */
+static inline void mpm_sim_in_affine(const mpm_sim *s, int c, const int *node, const double *S,
+                                     const double *gx, const double *gy, const double vg[2],
+                                     double L[4])
+{
+  const double *const g[2] = {gx, gy};
+  if (s->mlight > 0.0)                                   /* delta weights */
+    mpm_tr_gather_empty2(s->nm, s->mtiny, s->stiny, c, node, S, g, vg, L);
+}
+
 /* Step 4's velocity of a point from its velocity v, the grid acceleration
  * ag and velocity vg at it: v_FLIP = v + dt ag, blended with the PIC
  * velocity vg by the FLIP share fl (1: pure FLIP, [DK15]; 0: PIC, which
