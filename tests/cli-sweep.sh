@@ -3,7 +3,7 @@
 # run (scripts/run-once in every sweep script).
 #
 # scripts/sweep-hstop on a small NGF chute (ngf-chute-quick at 27 deg, four
-# depths, 15 ms each, one job at a time) runs under its own process group;
+# depths, 60 ms each, one job at a time) runs under its own process group;
 # once two runs have finished and the third has written its first frame,
 # the whole group gets SIGTERM (what a queue sends at its time limit): the
 # third run stops with a checkpoint (or, if the signal came before its
@@ -42,7 +42,7 @@ out=$tmp/sweep
 sweep() {
   GRANMPM=$tmp/granmpm "$srcdir/scripts/sweep-hstop" --out "$out" \
     --input "$srcdir/inputs/ngf-chute-quick.conf" --angles 27 --ratios "0.7 1.1 1.4 2" \
-    --t-end 0.015 --t-min 0.01 --jobs 1 >"$tmp/sweep.out" 2>&1
+    --t-end 0.06 --t-min 0.01 --jobs 1 >"$tmp/sweep.out" 2>&1
 }
 finished() {
   [ "$("$GRANMPM" info "$out/runs/$1" --status 2>/dev/null)" = finished ]
@@ -51,7 +51,7 @@ finished() {
 : >"$log"
 setsid sh -c "GRANMPM='$tmp/granmpm' '$srcdir/scripts/sweep-hstop' --out '$out' \
   --input '$srcdir/inputs/ngf-chute-quick.conf' --angles 27 --ratios '0.7 1.1 1.4 2' \
-  --t-end 0.015 --t-min 0.01 --jobs 1 >'$tmp/first.out' 2>&1" &
+  --t-end 0.06 --t-min 0.01 --jobs 1 >'$tmp/first.out' 2>&1" &
 group=$!
 # the third run of the log has written its first frame
 third=""
