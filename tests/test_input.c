@@ -17,6 +17,7 @@
 #include "core/config.h"
 #include "core/error.h"
 #include "io/io.h"
+#include "material/density.h"
 
 #ifndef TEST_SRCDIR
 #define TEST_SRCDIR "."
@@ -180,6 +181,65 @@ START_TEST(t_minimal)
   ck_assert_mem_eq(&c.material, &d.material, sizeof d.material);
   ck_assert_mem_eq(&c.bc, &d.bc, sizeof d.bc);
   ck_assert_mem_eq(&c.output, &d.output, sizeof d.output);
+}
+END_TEST
+
+/* The scheme's defaults follow the run (docs/input-reference.md, "The
+ * scheme"): the clean-field options where they exist, the next best where
+ * not, the step halved where delta weights need it, and a key the input
+ * sets is kept. */
+static void check_scheme(const char *const *sets, int nsets, int dilatation, int density,
+                         int transfer)
+{
+  mpm_config c;
+  load_ok(GOOD "minimal.conf", sets, nsets, &c);
+  ck_assert_int_eq(c.mesh.dilatation, dilatation);
+  ck_assert_int_eq(c.material.state_density, density);
+  ck_assert_int_eq(c.time.transfer, transfer);
+}
+
+START_TEST(t_scheme_defaults)
+{
+  const int P = MPM_DILATATION_POINT, U = MPM_DILATATION_UNIT, E = MPM_DILATATION_ELEMENT;
+  const int DU = MPM_DENSITY_UNIT, DP = MPM_DENSITY_POINT;
+  const int F = MPM_TRANSFER_FLIP, A = MPM_TRANSFER_APIC;
+  check_scheme(NULL, 0, E, DU, A);  /* plane q4 */
+  const char *t3[] = {"mesh.topology=t3"};
+  check_scheme(t3, 1, U, DU, A);
+  const char *box[] = {"mesh.nz=2", "mesh.dz=0.25", "fill.pile.zmin=0", "fill.pile.zmax=0.5"};
+  check_scheme(box, 4, U, DU, F);
+  /* uGIMP's APIC needs 4 units on a periodic axis, delta's 2 */
+  const char *narrow[] = {"boundary.left=periodic", "boundary.right=periodic", "mesh.nx=3",
+                          "fill.pile.xmax=0.75"};
+  check_scheme(narrow, 4, E, DU, F);
+  const char *narrow_delta[] = {"boundary.left=periodic", "boundary.right=periodic",
+                                "mesh.nx=3", "fill.pile.xmax=0.75", "mesh.shape=delta"};
+  check_scheme(narrow_delta, 5, E, DU, A);
+  const char *wide[] = {"boundary.left=periodic", "boundary.right=periodic"};
+  check_scheme(wide, 2, E, DU, A);
+  const char *blend[] = {"time.flip=0.99"};
+  check_scheme(blend, 1, E, DU, F);
+  const char *paper[] = {"mesh.dilatation=point", "material.state_density=point",
+                         "time.transfer=flip"};
+  check_scheme(paper, 3, P, DP, F);
+  const char *kept[] = {"mesh.topology=t3", "mesh.dilatation=point", "time.flip=0.99",
+                        "time.transfer=apic"};
+  check_scheme(kept, 4, P, DU, A);
+  /* delta weights under the affine transfer and a per-unit rule: half the step */
+  mpm_config c;
+  const char *delta[] = {"mesh.shape=delta"};
+  load_ok(GOOD "minimal.conf", delta, 1, &c);
+  ck_assert_double_eq(c.time.cfl, 0.25);
+  const char *delta_flip[] = {"mesh.shape=delta", "time.transfer=flip"};
+  load_ok(GOOD "minimal.conf", delta_flip, 2, &c);
+  ck_assert_double_eq(c.time.cfl, 0.5);
+  const char *delta_point[] = {"mesh.shape=delta", "mesh.dilatation=point",
+                               "material.state_density=point"};
+  load_ok(GOOD "minimal.conf", delta_point, 3, &c);
+  ck_assert_double_eq(c.time.cfl, 0.5);
+  const char *delta_cfl[] = {"mesh.shape=delta", "time.cfl=0.4"};
+  load_ok(GOOD "minimal.conf", delta_cfl, 2, &c);
+  ck_assert_double_eq(c.time.cfl, 0.4);
 }
 END_TEST
 
@@ -864,6 +924,7 @@ static Suite *input_suite(void)
   tcase_add_test(tc, t_defaults);
   tcase_add_test(tc, t_minimal);
   tcase_add_test(tc, t_every_key);
+  tcase_add_test(tc, t_scheme_defaults);
   tcase_add_test(tc, t_gravity_angle);
   tcase_add_test(tc, t_syntax);
   tcase_add_test(tc, t_overrides);

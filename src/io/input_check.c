@@ -62,6 +62,45 @@ static int check_required(in_ctx *c)
   return MPM_OK;
 }
 
+/* APIC finds a stencil node's position from its stored index: a periodic
+ * axis must hold the stencil's nodes without two being one (2 for weights
+ * that are the element basis at the point, 4 for extents up to half a unit:
+ * mpm_sim_in_node_offset). The axis (0: x, 1: y) too short for it, or -1. */
+static int apic_short_axis(const mpm_config *cfg)
+{
+  const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
+  const int need = shape && shape->at_point ? 2 : 4;
+  if (cfg->bc.left == MPM_BC_PERIODIC && cfg->mesh.nx < need)
+    return 0;
+  if (cfg->bc.bottom == MPM_BC_PERIODIC && cfg->mesh.ny < need)
+    return 1;
+  return -1;
+}
+
+/* The scheme's defaults follow the run (docs/input-reference.md, "The
+ * scheme"): the options that give clean fields wherever they exist, the
+ * paper's rules where they do not. A key the input sets is kept as set. */
+static void resolve_scheme(in_ctx *c, mpm_config *cfg)
+{
+  const int plane = cfg->mesh.nz == 0, q4 = strcmp(cfg->mesh.topology, "q4") == 0;
+  if (!is_set(c, key_index(S_MESH, "dilatation"), -1) && !(plane && q4))
+    cfg->mesh.dilatation = MPM_DILATATION_UNIT;  /* the Q1/P0 element is the plane q4's */
+  /* no affine transfer in 3D or on a periodic axis too short for it; and a
+   * FLIP share given alone asks for the blend */
+  if (!is_set(c, key_index(S_TIME, "transfer"), -1) &&
+      (!plane || apic_short_axis(cfg) >= 0 || is_set(c, key_index(S_TIME, "flip"), -1)))
+    cfg->time.transfer = MPM_TRANSFER_FLIP;
+  /* delta weights keep a lone point's affine velocity whole: under a
+   * per-unit rule a stress-free point then swells and is thrown out of the
+   * mesh at cfl 0.5 (docs/input-reference.md, time.cfl) */
+  const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
+  if (!is_set(c, key_index(S_TIME, "cfl"), -1) && shape && shape->at_point &&
+      cfg->time.transfer == MPM_TRANSFER_APIC &&
+      (cfg->mesh.dilatation != MPM_DILATATION_POINT ||
+       cfg->material.state_density == MPM_DENSITY_UNIT))
+    cfg->time.cfl = 0.25;
+}
+
 static int check_mesh(in_ctx *c, const mpm_config *cfg)
 {
   double nodes = (cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0);
@@ -71,10 +110,6 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
                               cfg->mesh.nx, cfg->mesh.ny, mpm_io_in_num(nodes).s,
                               mpm_io_in_num(MAX_NODES).s);
   }
-  /* APIC finds a stencil node's position from its stored index: a periodic
-   * axis must hold the stencil's nodes without two being one (2 for weights
-   * that are the element basis at the point, 4 for extents up to half a
-   * unit: mpm_sim_in_node_offset) */
   const int px = cfg->bc.left == MPM_BC_PERIODIC, py = cfg->bc.bottom == MPM_BC_PERIODIC;
   /* a plane periodic axis may be one unit (one node column or row); the 3D
    * box keeps two */
@@ -100,15 +135,14 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
                               "topology \"q4\"; \"unit\" or \"point\" otherwise)",
                               cfg->mesh.nz > 0 ? "in a 3D run" : "on triangles");
   }
-  const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
-  const int need = shape && shape->at_point ? 2 : 4;
-  if (cfg->time.transfer == MPM_TRANSFER_APIC &&
-      ((px && cfg->mesh.nx < need) || (py && cfg->mesh.ny < need))) {
-    const int onx = px && cfg->mesh.nx < need;
-    where w = blame(c, cfg, -1, key_index(S_TIME, "transfer"), key_index(S_MESH, onx ? "nx" : "ny"));
+  const int axis = apic_short_axis(cfg);
+  if (cfg->time.transfer == MPM_TRANSFER_APIC && axis >= 0) {
+    const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
+    where w = blame(c, cfg, -1, key_index(S_TIME, "transfer"), key_index(S_MESH, axis ? "ny" : "nx"));
     return mpm_io_in_fail_key(c, &w, "transfer = \"apic\" with shape = \"%s\" on a periodic "
                               "axis of %d units (allowed: at least %d)", cfg->mesh.shape,
-                              onx ? cfg->mesh.nx : cfg->mesh.ny, need);
+                              axis ? cfg->mesh.ny : cfg->mesh.nx,
+                              shape && shape->at_point ? 2 : 4);
   }
   double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
   double m = cfg->mesh.mirror_x;
@@ -647,6 +681,7 @@ int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
     return mpm_io_in_fail_at(
         c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')", MPM_MAX_FILLS);
   }
+  resolve_scheme(c, cfg);
   if (check_mesh(c, cfg) || check_time(c, cfg) || check_gravity(c, cfg) ||
       check_material(c, cfg) || check_boundary(c, cfg) || check_outlet(c, cfg) ||
       check_wall(c, cfg) || check_region(c, cfg) || check_dimension(c, cfg))

@@ -47,14 +47,14 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_MESH, KT_NAME, "diagonal", C_(mesh.diagonal), NK_DIAGONAL, "/"),
     NUM(S_MESH, KT_REAL, "mirror_x", C_(mesh.mirror_x), 0, -1e9, 1e9, 0, "m"),
     NAMED(S_MESH, KT_NAME, "shape", C_(mesh.shape), NK_SHAPE, "ugimp"),
-    NAMED(S_MESH, KT_ENUM, "dilatation", C_(mesh.dilatation), NK_DILATATION, "point"),
+    NAMED(S_MESH, KT_ENUM, "dilatation", C_(mesh.dilatation), NK_DILATATION, "element"),
 
     NUM(S_TIME, KT_REAL, "dt", C_(time.dt), 0, 1e-12, 1e6, KF_ZERO_OFF, "s"),
     NUM(S_TIME, KT_REAL, "cfl", C_(time.cfl), 0.5, 1e-6, 1, 0, "-"),
     NUM(S_TIME, KT_REAL, "t_end", C_(time.t_end), 0, 1e-9, 1e9, KF_REQUIRED, "s"),
     NUM(S_TIME, KT_REAL, "frame_dt", C_(time.frame_dt), 0.01, 1e-9, 1e9, 0, "s"),
     NUM(S_TIME, KT_REAL, "flip", C_(time.flip), 1, 0, 1, 0, "-"),
-    NAMED(S_TIME, KT_ENUM, "transfer", C_(time.transfer), NK_TRANSFER, "flip"),
+    NAMED(S_TIME, KT_ENUM, "transfer", C_(time.transfer), NK_TRANSFER, "apic"),
     NUM(S_TIME, KT_BOOL, "dt_unstable_ok", C_(time.dt_unstable_ok), 0, 0, 1, 0, "-"),
 
     NUM(S_GRAVITY, KT_REAL, "gx", C_(gravity.gx), 0, -1e5, 1e5, 0, "m/s^2"),
@@ -88,7 +88,7 @@ const key_def mpm_io_in_keys[] = {
     NAMED(S_MATERIAL, KT_ENUM, "g_mass", C_(material.g_mass), NK_G_MASS, "consistent"),
     NUM(S_MATERIAL, KT_INT, "n_sub", C_(material.n_sub), 1, 1, 1000000, 0, "-"),
     NUM(S_MATERIAL, KT_REAL, "dt_sub", C_(material.dt_sub), 0, 1e-12, 1e6, KF_ZERO_OFF, "s"),
-    NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "point"),
+    NAMED(S_MATERIAL, KT_ENUM, "state_density", C_(material.state_density), NK_DENSITY, "unit"),
 
     NAMED(S_BOUNDARY, KT_ENUM, "left", C_(bc.left), NK_BC, "free"),
     NAMED(S_BOUNDARY, KT_ENUM, "right", C_(bc.right), NK_BC, "free"),

@@ -17,7 +17,9 @@
 #include "mesh/box.h"
 #include "mesh/mesh.h"
 
-/* Defaults of every key (docs/input-reference.md). */
+/* Defaults of every key (docs/input-reference.md), those of the scheme
+ * (mesh.dilatation, material.state_density, time.transfer, time.cfl) as in
+ * a plane q4 run with uGIMP weights: a load resolves them by the run. */
 void mpm_io_input_defaults(mpm_config *cfg);
 
 /* Parse path into cfg (defaults first), then apply overrides of the form
