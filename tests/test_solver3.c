@@ -13,7 +13,12 @@
  *  - the plane: a z-invariant 3D run (periodic z, no z motion) gives the
  *    plane run of the same input, to round-off, with every shape;
  *  - threads: a 3D column collapsing onto a rough floor against walls is
- *    bitwise the same on one and on two threads (bands of unit layers). */
+ *    bitwise the same on one and on two threads (bands of unit layers);
+ *  - the affine transfer (APIC): every test above under it too; an affine
+ *    velocity field is carried exactly through a step, C_p included, and a
+ *    periodic box shifted by one unit along every axis gives the shifted
+ *    result (the offsets x_i - x_p take each node's nearest image).
+ * The looped tests run _i % 3 over the shapes and _i / 3 over FLIP, APIC. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -75,16 +80,23 @@ static void steps(mpm_sim *s, int n)
 
 static const char *const shapes[] = {"delta", "ugimp", "cpdi"};
 
+/* Loop index _i: the shape _i % 3 under FLIP (_i < 3) or APIC. */
+static void loop_scheme(mpm_config *c, int i)
+{
+  c->time.transfer = i < 3 ? MPM_TRANSFER_FLIP : MPM_TRANSFER_APIC;
+}
+
 START_TEST(t_free_flight)
 {
   mpm_config c;
-  box_config(&c, shapes[_i], 3, 3, 3);
+  box_config(&c, shapes[_i % 3], 4, 4, 4);
+  loop_scheme(&c, _i);
   c.fill[0].vx = 0.3;
   c.fill[0].vy = -0.2;
   c.fill[0].vz = 0.1;
   mpm_sim *s = make(&c);
   const mpm_points *P = s->pts;
-  ck_assert_int_eq((int)P->n, 216);
+  ck_assert_int_eq((int)P->n, 512);
   double *x0 = malloc(3 * P->n * sizeof *x0);
   for (size_t p = 0; p < P->n; p++) {
     x0[3 * p] = P->x[p];
@@ -92,7 +104,7 @@ START_TEST(t_free_flight)
     x0[3 * p + 2] = P->z[p];
   }
   steps(s, 20);
-  const double t = s->t, v[3] = {0.3, -0.2, 0.1}, len = 0.03;
+  const double t = s->t, v[3] = {0.3, -0.2, 0.1}, len = 0.04;
   for (size_t p = 0; p < P->n; p++) {
     /* velocities to round-off of the sums (1e-15 of v), stress zero to
      * the round-off of L = sum v_i (x) gradS = 0 (1e-13 of v/dx, times
@@ -116,7 +128,8 @@ END_TEST
 START_TEST(t_free_fall)
 {
   mpm_config c;
-  box_config(&c, shapes[_i], 4, 8, 4);
+  box_config(&c, shapes[_i % 3], 4, 8, 4);
+  loop_scheme(&c, _i);
   c.bc.left = c.bc.right = c.bc.bottom = c.bc.top = MPM_BC_FREE;
   c.bc.front = c.bc.back = MPM_BC_FREE;
   c.fill[0].xmin = c.fill[0].ymin = c.fill[0].zmin = 0.01;
@@ -126,6 +139,12 @@ START_TEST(t_free_fall)
   c.gravity.gy = -9.8;
   c.gravity.gz = 0.5;
   mpm_sim *s = make(&c);
+  /* under APIC the points a quarter unit along z, so that a layer of them
+   * lies on the grid plane z = 0.03 m with empty nodes beyond it, where
+   * delta's gradients do not vanish (transfer.inc, mpm_tr_gather_empty);
+   * FLIP keeps [DK15]'s L_p, whose stress such a layer would feel */
+  for (size_t p = 0; _i >= 3 && p < s->pts->n; p++)
+    s->pts->z[p] = 0.0025 * nearbyint((s->pts->z[p] + 0.0025) / 0.0025);
   steps(s, 10);          /* 10 dt: the box moves 0.3 mm */
   const mpm_points *P = s->pts;
   const double t = s->t;
@@ -148,7 +167,8 @@ static double noise(unsigned *state)
 START_TEST(t_momentum)
 {
   mpm_config c;
-  box_config(&c, shapes[_i], 4, 4, 4);
+  box_config(&c, shapes[_i % 3], 4, 4, 4);
+  loop_scheme(&c, _i);
   mpm_sim *s = make(&c);
   mpm_points *P = s->pts;
   unsigned st = 12345u;
@@ -197,14 +217,17 @@ static void column_config(mpm_config *c, const char *shape, int nz, const char *
 START_TEST(t_plane)
 {
   mpm_config c2, c3;
-  column_config(&c2, shapes[_i], 0, "mu_i");
-  column_config(&c3, shapes[_i], 2, "mu_i");
+  const int nz = _i < 3 ? 2 : 4;                /* uGIMP's APIC: 4 units on a periodic axis */
+  column_config(&c2, shapes[_i % 3], 0, "mu_i");
+  column_config(&c3, shapes[_i % 3], nz, "mu_i");
+  loop_scheme(&c2, _i);
+  loop_scheme(&c3, _i);
   mpm_sim *s2 = make(&c2), *s3 = make(&c3);
   ck_assert_double_eq(s2->dt, s3->dt);
   steps(s2, 200);
   steps(s3, 200);
   const mpm_points *P = s2->pts, *Q = s3->pts;
-  ck_assert_uint_eq(Q->n, 4 * P->n);            /* 2 x 2 points a unit along z, 2 units */
+  ck_assert_uint_eq(Q->n, 2 * (size_t)nz * P->n);  /* 2 points a unit along z */
   double vmax = 0.0, dev = 0.0, wz = 0.0, pmax = 0.0, dp = 0.0;
   for (size_t q = 0; q < Q->n; q++) {
     size_t best = 0;                           /* the plane point at the same (x, y) */
@@ -321,11 +344,135 @@ START_TEST(t_unit_options)
 }
 END_TEST
 
+/* APIC ([JSS+15]) carries an affine velocity field v = v0 + A x exactly:
+ * with C_p = A the nodes receive (mv)_i = sum S m_p (v_p + A (x_i - x_p))
+ * = m_i (v0 + A x_i) (every shape reproduces linear functions), so a
+ * stress-free box without gravity or walls leaves the step with
+ * v_p = v0 + A x_p (the positions of the start) and C_p = A at every
+ * point, also at its faces; PIC loses the rotation there. Momentum is kept
+ * (sum S (x_i - x_p) = 0). Returns the largest error of v_p and C_p. */
+static double apic_step3(const char *shape, int apic)
+{
+  static const double v0[3] = {0.3, -0.2, 0.1};
+  static const double A[3][3] = {{0.5, -2.0, 0.75}, {1.5, -0.25, -1.0}, {-0.5, 1.25, 0.2}};
+  mpm_config c;
+  box_config(&c, shape, 5, 5, 5);
+  c.bc.left = c.bc.right = c.bc.bottom = c.bc.top = MPM_BC_FREE;
+  c.bc.front = c.bc.back = MPM_BC_FREE;
+  c.fill[0].xmin = c.fill[0].ymin = c.fill[0].zmin = 0.01;
+  c.fill[0].xmax = c.fill[0].ymax = c.fill[0].zmax = 0.04;
+  c.time.transfer = apic ? MPM_TRANSFER_APIC : MPM_TRANSFER_FLIP;
+  c.time.flip = 0.0;                              /* PIC: the point takes sum S v_i */
+  mpm_sim *s = make(&c);
+  mpm_points *P = s->pts;
+  const size_t n = P->n;
+  ck_assert_uint_eq(n, 216);
+  double (*x)[3] = malloc(n * sizeof *x), q0[3] = {0.0, 0.0, 0.0}, m = 0.0;
+  double *const v[3] = {P->vx, P->vy, P->vz};
+  double *const C[9] = {P->cxx, P->cxy, P->cxz, P->cyx, P->cyy, P->cyz, P->czx, P->czy, P->czz};
+  for (size_t p = 0; p < n; p++) {
+    x[p][0] = P->x[p];
+    x[p][1] = P->y[p];
+    x[p][2] = P->z[p];
+    for (int i = 0; i < 3; i++) {
+      v[i][p] = v0[i] + A[i][0] * x[p][0] + A[i][1] * x[p][1] + A[i][2] * x[p][2];
+      for (int j = 0; j < 3; j++)
+        C[3 * i + j][p] = A[i][j];
+      q0[i] += P->mass[p] * v[i][p];
+    }
+    m += P->mass[p];
+  }
+  steps(s, 1);
+  double worst = 0.0, q1[3] = {0.0, 0.0, 0.0};
+  for (size_t p = 0; p < n; p++) {
+    const int k = P->id[p];                      /* the store may be reordered */
+    for (int i = 0; i < 3; i++) {
+      const double want = v0[i] + A[i][0] * x[k][0] + A[i][1] * x[k][1] + A[i][2] * x[k][2];
+      worst = fmax(worst, fabs(v[i][p] - want));
+      for (int j = 0; apic && j < 3; j++)
+        worst = fmax(worst, fabs(C[3 * i + j][p] - A[i][j]));
+      q1[i] += P->mass[p] * v[i][p];
+    }
+  }
+  for (int i = 0; i < 3; i++)                    /* |v| < 4 m/s: 1e-12 is round-off */
+    ck_assert_msg(fabs(q1[i] - q0[i]) <= 1e-12 * m, "%s: momentum %d changed by %g", shape, i,
+                  q1[i] - q0[i]);
+  free(x);
+  mpm_sim_free(s);
+  return worst;
+}
+
+START_TEST(t_apic_affine)
+{
+  const double e = apic_step3(shapes[_i], 1);
+  ck_assert_msg(e <= 1e-12, "%s: APIC off the affine field by %g", shapes[_i], e);
+  ck_assert_double_ge(apic_step3(shapes[_i], 0), 1e-3);   /* PIC */
+}
+END_TEST
+
+/* Across the periodic faces: a box filling a periodic 4 x 4 x 4 mesh with
+ * a velocity periodic along every axis and C_p its gradient, one step;
+ * then everything shifted by one unit along x, y and z (positions
+ * wrapped). The points that straddle the seams are others after the shift,
+ * so an offset x_i - x_p taken from a wrong image, or a node's position
+ * decoded wrongly from its storage index, shows. v[3 id + d]: the result. */
+static void apic_periodic_step3(const char *shape, int shift, double *v)
+{
+  mpm_config c;
+  box_config(&c, shape, 4, 4, 4);
+  c.time.transfer = MPM_TRANSFER_APIC;
+  mpm_sim *s = make(&c);
+  mpm_points *P = s->pts;
+  const double k = 8.0 * atan(1.0) / 0.04, len = 0.04;   /* 2 pi / period */
+  for (size_t p = 0; p < P->n; p++) {
+    const double x = P->x[p], y = P->y[p], z = P->z[p];    /* the field before the shift */
+    P->vx[p] = 0.3 + 0.2 * sin(k * y) + 0.1 * cos(k * z);
+    P->vy[p] = -0.2 + 0.1 * cos(k * x) * sin(k * z);
+    P->vz[p] = 0.05 * sin(k * (x + y));
+    P->cxx[p] = 0.0;
+    P->cxy[p] = 0.2 * k * cos(k * y);
+    P->cxz[p] = -0.1 * k * sin(k * z);
+    P->cyx[p] = -0.1 * k * sin(k * x) * sin(k * z);
+    P->cyy[p] = 0.0;
+    P->cyz[p] = 0.1 * k * cos(k * x) * cos(k * z);
+    P->czx[p] = P->czy[p] = 0.05 * k * cos(k * (x + y));
+    P->czz[p] = 0.0;
+    P->x[p] = fmod(x + shift * 0.01, len);
+    P->y[p] = fmod(y + shift * 0.01, len);
+    P->z[p] = fmod(z + shift * 0.01, len);
+  }
+  steps(s, 1);
+  ck_assert_uint_eq(P->n, 512);
+  for (size_t p = 0; p < P->n; p++) {
+    v[3 * P->id[p]] = P->vx[p];
+    v[3 * P->id[p] + 1] = P->vy[p];
+    v[3 * P->id[p] + 2] = P->vz[p];
+  }
+  mpm_sim_free(s);
+}
+
+START_TEST(t_apic_periodic)
+{
+  double *a = malloc(2 * 3 * 512 * sizeof *a), *b = a + 3 * 512;
+  apic_periodic_step3(shapes[_i], 0, a);
+  apic_periodic_step3(shapes[_i], 1, b);
+  double worst = 0.0, spread = 0.0;
+  for (int k = 0; k < 3 * 512; k++) {
+    worst = fmax(worst, fabs(a[k] - b[k]));
+    spread = fmax(spread, fabs(a[k] - a[k % 3]));
+  }
+  ck_assert_double_gt(spread, 0.05);               /* the field varies */
+  ck_assert_msg(worst <= 1e-12, "%s: the shifted box differs by %g m/s", shapes[_i], worst);
+  free(a);
+}
+END_TEST
+
 #ifdef _OPENMP
 START_TEST(t_threads)
 {
   mpm_config c;
-  column_config(&c, shapes[_i], 3, "mu_i");
+  column_config(&c, shapes[_i % 3], 4, "mu_i");
+  loop_scheme(&c, _i);
   double *f[2];
   size_t n = 0;
   for (int k = 0; k < 2; k++) {
@@ -353,14 +500,16 @@ int main(void)
   Suite *su = suite_create("solver3");
   TCase *tc = tcase_create("step");
   tcase_set_timeout(tc, 120);
-  tcase_add_loop_test(tc, t_free_flight, 0, 3);
-  tcase_add_loop_test(tc, t_free_fall, 0, 3);
-  tcase_add_loop_test(tc, t_momentum, 0, 3);
-  tcase_add_loop_test(tc, t_plane, 0, 3);
+  tcase_add_loop_test(tc, t_free_flight, 0, 6);
+  tcase_add_loop_test(tc, t_free_fall, 0, 6);
+  tcase_add_loop_test(tc, t_momentum, 0, 6);
+  tcase_add_loop_test(tc, t_plane, 0, 6);
+  tcase_add_loop_test(tc, t_apic_affine, 0, 3);
+  tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
   tcase_add_loop_test(tc, t_outlet, 0, 2);
   tcase_add_test(tc, t_unit_options);
 #ifdef _OPENMP
-  tcase_add_loop_test(tc, t_threads, 0, 3);
+  tcase_add_loop_test(tc, t_threads, 0, 6);
 #endif
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);

@@ -62,18 +62,26 @@ static int check_required(in_ctx *c)
   return MPM_OK;
 }
 
-/* APIC finds a stencil node's position from its stored index: a periodic
- * axis must hold the stencil's nodes without two being one (2 for weights
- * that are the element basis at the point, 4 for extents up to half a unit:
- * mpm_sim_in_node_offset). The axis (0: x, 1: y) too short for it, or -1. */
-static int apic_short_axis(const mpm_config *cfg)
+/* The units a periodic axis needs under APIC, which finds a stencil node's
+ * position from its stored index: the axis must hold the stencil's nodes
+ * without two being one (2 for weights that are the element basis at the
+ * point, 4 for extents up to half a unit: mpm_sim_in_node_offset). */
+static int apic_axis_need(const mpm_config *cfg)
 {
   const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
-  const int need = shape && shape->at_point ? 2 : 4;
+  return shape && shape->at_point ? 2 : 4;   /* the 3D shapes share the names and rules */
+}
+
+/* The axis (0: x, 1: y, 2: z) too short for APIC, or -1. */
+static int apic_short_axis(const mpm_config *cfg)
+{
+  const int need = apic_axis_need(cfg);
   if (cfg->bc.left == MPM_BC_PERIODIC && cfg->mesh.nx < need)
     return 0;
   if (cfg->bc.bottom == MPM_BC_PERIODIC && cfg->mesh.ny < need)
     return 1;
+  if (cfg->mesh.nz > 0 && cfg->bc.front == MPM_BC_PERIODIC && cfg->mesh.nz < need)
+    return 2;
   return -1;
 }
 
@@ -85,10 +93,10 @@ static void resolve_scheme(in_ctx *c, mpm_config *cfg)
   const int plane = cfg->mesh.nz == 0, q4 = strcmp(cfg->mesh.topology, "q4") == 0;
   if (!is_set(c, key_index(S_MESH, "dilatation"), -1) && !(plane && q4))
     cfg->mesh.dilatation = MPM_DILATATION_UNIT;  /* the Q1/P0 element is the plane q4's */
-  /* no affine transfer in 3D or on a periodic axis too short for it; and a
-   * FLIP share given alone asks for the blend */
+  /* no affine transfer on a periodic axis too short for it; and a FLIP
+   * share given alone asks for the blend */
   if (!is_set(c, key_index(S_TIME, "transfer"), -1) &&
-      (!plane || apic_short_axis(cfg) >= 0 || is_set(c, key_index(S_TIME, "flip"), -1)))
+      (apic_short_axis(cfg) >= 0 || is_set(c, key_index(S_TIME, "flip"), -1)))
     cfg->time.transfer = MPM_TRANSFER_FLIP;
   /* delta weights keep a lone point's affine velocity whole: under a
    * per-unit rule a stress-free point then swells and is thrown out of the
@@ -137,12 +145,12 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
   }
   const int axis = apic_short_axis(cfg);
   if (cfg->time.transfer == MPM_TRANSFER_APIC && axis >= 0) {
-    const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
-    where w = blame(c, cfg, -1, key_index(S_TIME, "transfer"), key_index(S_MESH, axis ? "ny" : "nx"));
+    const char *const nname[3] = {"nx", "ny", "nz"};
+    const int nunits[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
+    where w = blame(c, cfg, -1, key_index(S_TIME, "transfer"), key_index(S_MESH, nname[axis]));
     return mpm_io_in_fail_key(c, &w, "transfer = \"apic\" with shape = \"%s\" on a periodic "
                               "axis of %d units (allowed: at least %d)", cfg->mesh.shape,
-                              axis ? cfg->mesh.ny : cfg->mesh.nx,
-                              shape && shape->at_point ? 2 : 4);
+                              nunits[axis], apic_axis_need(cfg));
   }
   double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
   double m = cfg->mesh.mirror_x;
@@ -600,7 +608,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   /* what the plane run has and the 3D one has not (yet): named, not ignored */
   struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
     {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
-    {cfg->time.transfer != MPM_TRANSFER_FLIP, S_TIME, "transfer", "\"flip\""},
     {cfg->material.state_density != MPM_DENSITY_POINT &&
          cfg->material.state_density != MPM_DENSITY_UNIT,
      S_MATERIAL, "state_density", "\"point\", \"unit\""},

@@ -5,9 +5,10 @@
  * 3D shape (shape3.h), point-to-grid and the grid update of transfer.inc
  * with DIM 3 in transfer.c's parallel grid phase (bands of unit layers along
  * z), then point by point: the gather of transfer.inc, the FLIP/PIC velocity
- * blend, x += dt v_grid, the volume ratio of transfer.h, CPDI1's convected
- * extent (mpm_shape_extent_convect_dim), the model's update on the full 3x3
- * L (every local model of the table works on 3x3 tensors), then the walls
+ * blend or APIC's affine matrix, x += dt v_grid, the volume ratio of
+ * transfer.h, CPDI1's convected extent (mpm_shape_extent_convect_dim), the
+ * model's update on the full 3x3 L (every local model of the table works on
+ * 3x3 tensors), then the walls
  * (mpm_bc_clamp_axis per axis; not for a point leaving through the open
  * outlet) and periodic wraps; points out through the outlet are removed
  * after the step (remove.c). With the hyperelastic NGF, the unit density or
@@ -176,14 +177,17 @@ static inline void stress_set(mpm_points *P, size_t p, mpm_sym3 s)
   P->szx[p] = s.zx;
 }
 
-/* Steps 4-5 for point p: gather, FLIP/PIC velocity, x += dt v_grid, volume,
- * CPDI1 extent. L_p to L (row-major), the grid velocity that moved it to vg. */
+/* Steps 4-5 for point p: gather (with APIC, C_p), FLIP/PIC velocity,
+ * x += dt v_grid, volume, CPDI1 extent. L_p to L (row-major), the grid
+ * velocity that moved it to vg. */
 static void move_point(mpm_sim *s, size_t p, double fl, double L[9], double vg[3])
 {
   mpm_points *P = s->pts;
   const double dt = s->dt;
   double ag[3];
   mpm_sim_in_gather3(s, p, vg, ag, L);
+  if (s->cfg.time.transfer == MPM_TRANSFER_APIC)
+    mpm_sim_in_affine3(s, p, vg, L);                      /* C_p = sum v_i (x) gradS_ip */
   double *const x[3] = {&P->x[p], &P->y[p], &P->z[p]};
   double *const v[3] = {&P->vx[p], &P->vy[p], &P->vz[p]};
   for (int d = 0; d < 3; d++) {
@@ -298,7 +302,7 @@ enum { CHUNK3 = 64 };
  * index of a point whose stress became non-finite, or -1. */
 static long local_phase(mpm_sim *s)
 {
-  const double fl = s->cfg.time.flip, h = s->dt / s->n_sub;
+  const double fl = mpm_sim_in_flip_share(s), h = s->dt / s->n_sub;
   const size_t n = s->pts->n, nc = (n + CHUNK3 - 1) / CHUNK3;
   long bad = -1;
   unsigned scan = 0;
@@ -336,7 +340,7 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
   const size_t n = P->n, nc = (n + CHUNK3 - 1) / CHUNK3;
   if ((*rc = work_reserve(w, n, err)) != MPM_OK)
     return -1;
-  const double fl = s->cfg.time.flip, h = s->dt / s->n_sub;
+  const double fl = mpm_sim_in_flip_share(s), h = s->dt / s->n_sub;
   unsigned scan = 0;
 #pragma omp parallel for schedule(static) reduction(| : scan)
   for (size_t c = 0; c < nc; c++) {
@@ -407,6 +411,8 @@ int mpm_sim3_step(mpm_sim *s, mpm_err *err)
   int rc = mpm_shape3_stencil_compute(s->st, s->shape3, &s->mesh3, P, s->t, err);
   if (rc == MPM_EOUTSIDE && mpm_sim_check_state(s, s->t, err) != MPM_OK)
     return MPM_ENONFINITE;                /* "outside" at a non-finite position: say that */
+  if (rc == MPM_OK && s->cfg.time.transfer == MPM_TRANSFER_APIC && s->shape3->convect)
+    rc = mpm_sim_in_apic_extents_fit(s, err);
   if (rc != MPM_OK)
     return rc;
   const int reach = s->st->reach;         /* node layers k - reach .. k + 1 + reach */

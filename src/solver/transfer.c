@@ -99,29 +99,47 @@ static long locate_all(mpm_sim *s)
 
 /* APIC takes a stencil node's nearest periodic image (mpm_sim_in_node_offset):
  * right while every node lies within half a period of its point. A node lies
- * within h + 1 unit of its point, h = |r1| + |r2| along the axis (the
- * corners' reach), which the input check bounds for extents as filled; a
- * convected (CPDI1) extent can outgrow it: then the run stops, naming the
- * point. */
-static int apic_extents_fit(const mpm_sim *s, mpm_err *err)
+ * within h + 1 unit of its point, h = |r1| + |r2| (+ |r3| in 3D) along the
+ * axis (the corners' reach), which the input check bounds for extents as
+ * filled; a convected (CPDI1) extent can outgrow it: then the run stops,
+ * naming the point. */
+int mpm_sim_in_apic_extents_fit(const mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
-  const mpm_mesh *m = &s->mesh;
-  for (int axis = 0; axis < 2; axis++) {
-    const int periodic = axis ? m->periodic_y : m->periodic_x;
-    if (!periodic)
+  const int dim = s->dim;
+  int periodic[3];
+  double unit[3], len[3];
+  int n[3];
+  if (dim == 3) {
+    const mpm_mesh3 *m = &s->mesh3;
+    periodic[0] = m->periodic_x, periodic[1] = m->periodic_y, periodic[2] = m->periodic_z;
+    unit[0] = m->dx, unit[1] = m->dy, unit[2] = m->dz;
+    len[0] = m->lx, len[1] = m->ly, len[2] = m->lz;
+    n[0] = m->nx, n[1] = m->ny, n[2] = m->nz;
+  } else {
+    const mpm_mesh *m = &s->mesh;
+    periodic[0] = m->periodic_x, periodic[1] = m->periodic_y;
+    unit[0] = m->dx, unit[1] = m->dy;
+    len[0] = m->lx, len[1] = m->ly;
+    n[0] = m->nx, n[1] = m->ny;
+  }
+  const double *const r[3][3] = {{P->r1x, P->r2x, P->r3x}, {P->r1y, P->r2y, P->r3y},
+                                 {P->r1z, P->r2z, P->r3z}};
+  for (int axis = 0; axis < dim; axis++) {
+    if (!periodic[axis])
       continue;
-    const double *a = axis ? P->r1y : P->r1x, *b = axis ? P->r2y : P->r2x;
-    const double h = axis ? m->dy : m->dx, len = axis ? m->ly : m->lx;
-    for (size_t p = 0; p < P->n; p++)
-      if (!(2.0 * (fabs(a[p]) + fabs(b[p]) + h) < len))
+    for (size_t p = 0; p < P->n; p++) {
+      double h = 0.0;
+      for (int v = 0; v < dim; v++)
+        h += fabs(r[axis][v][p]);
+      if (!(2.0 * (h + unit[axis]) < len[axis]))
         return mpm_err_set(err, MPM_EINPUT,
                            "point %d: its extent reaches %.3g units along the periodic %c axis "
                            "of %d units at t = %.6g s (allowed with time.transfer = \"apic\": "
                            "less than half the axis minus one unit); a convected (cpdi) "
                            "extent grew: use shape \"ugimp\" or more units", P->id[p],
-                           (fabs(a[p]) + fabs(b[p])) / h, axis ? 'y' : 'x',
-                           axis ? m->ny : m->nx, s->t);
+                           h / unit[axis], "xyz"[axis], n[axis], s->t);
+    }
   }
   return MPM_OK;
 }
@@ -154,7 +172,7 @@ int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
       return rc;
     }
     if (s->cfg.time.transfer == MPM_TRANSFER_APIC && s->shape->convect &&
-        (rc = apic_extents_fit(s, err)) != MPM_OK)
+        (rc = mpm_sim_in_apic_extents_fit(s, err)) != MPM_OK)
       return rc;
     row = s->st->row;
     reach = s->st->reach;
@@ -579,12 +597,11 @@ static void p2g_affine(const mpm_sim *s, double (*restrict nq)[4], size_t p, int
 {
   const mpm_points *P = s->pts;
   const double m = P->mass[p];
-  const double cxx = P->cxx[p], cxy = P->cxy[p], cyx = P->cyx[p], cyy = P->cyy[p];
+  const double C[4] = {P->cxx[p], P->cxy[p], P->cyx[p], P->cyy[p]};
   for (int k = 0; k < c; k++) {
-    double ex, ey;
-    mpm_sim_in_node_offset(&s->mesh, node[k], P->x[p], P->y[p], &ex, &ey);
-    nq[node[k]][0] += S[k] * m * (cxx * ex + cxy * ey);
-    nq[node[k]][1] += S[k] * m * (cyx * ex + cyy * ey);
+    double e[2];
+    mpm_sim_in_node_offset(&s->mesh, node[k], P->x[p], P->y[p], &e[0], &e[1]);
+    mpm_tr_p2g_affine2(nq[node[k]], S[k] * m, C, e);
   }
 }
 

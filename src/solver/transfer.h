@@ -130,6 +130,13 @@ static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int kind, mpm_s
   return st->count[p];
 }
 
+/* One component of x_i - x_p, d, on a periodic axis of length len its
+ * nearest image. */
+static inline double mpm_sim_in_axis_offset(double d, int periodic, double len)
+{
+  return periodic ? d - len * nearbyint(d / len) : d;
+}
+
 /* x_i - (x, y) for the node of storage id i, on a periodic axis its image
  * nearest to (x, y). A stencil node lies within 1 + r units of its point (r
  * the stencil's reach beyond the point's unit), so that is its own image
@@ -138,13 +145,18 @@ static inline int mpm_sim_in_weights(const mpm_sim *s, size_t p, int kind, mpm_s
 static inline void mpm_sim_in_node_offset(const mpm_mesh *m, int i, double x, double y,
                                           double *ex, double *ey)
 {
-  double dx = m->x0 + (i % m->snx) * m->dx - x, dy = m->y0 + (i / m->snx) * m->dy - y;
-  if (m->periodic_x)
-    dx -= m->lx * nearbyint(dx / m->lx);
-  if (m->periodic_y)
-    dy -= m->ly * nearbyint(dy / m->ly);
-  *ex = dx;
-  *ey = dy;
+  *ex = mpm_sim_in_axis_offset(m->x0 + (i % m->snx) * m->dx - x, m->periodic_x, m->lx);
+  *ey = mpm_sim_in_axis_offset(m->y0 + (i / m->snx) * m->dy - y, m->periodic_y, m->ly);
+}
+
+/* The same on the box mesh of a 3D run, storage id i, point x. */
+static inline void mpm_sim_in_node_offset3(const mpm_mesh3 *m, int i, const double x[3],
+                                           double e[3])
+{
+  const int sxy = m->snx * m->sny;
+  e[0] = mpm_sim_in_axis_offset(m->x0 + (i % m->snx) * m->dx - x[0], m->periodic_x, m->lx);
+  e[1] = mpm_sim_in_axis_offset(m->y0 + (i % sxy / m->snx) * m->dy - x[1], m->periodic_y, m->ly);
+  e[2] = mpm_sim_in_axis_offset(m->z0 + (i / sxy) * m->dz - x[2], m->periodic_z, m->lz);
 }
 
 /* Step 4 for a point with weights (c, node, S, gx, gy), after the grid
@@ -178,6 +190,13 @@ static inline double mpm_sim_in_flip(double v, double ag, double vg, double dt, 
   return fl == 1.0 ? fv : fl * fv + (1.0 - fl) * vg;            /* fl v_FLIP + (1-fl) v_PIC */
 }
 
+/* The FLIP share of step 4's velocity blend: time.flip (1: [DK15]); APIC
+ * takes the PIC velocity (0). */
+static inline double mpm_sim_in_flip_share(const mpm_sim *s)
+{
+  return s->cfg.time.transfer == MPM_TRANSFER_APIC ? 0.0 : s->cfg.time.flip;
+}
+
 /* Step 4 (the rest) and 5 for points [a, b) from what mpm_sim_in_gather gave
  * for point p at index p - a of vgx, vgy, agx, agy, lxx, lyy:
  * v_p += dt sum S a_i (FLIP; blended with the PIC velocity sum S v_i when
@@ -193,8 +212,7 @@ static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const doub
   double *restrict x = P->x, *restrict y = P->y, *restrict vx = P->vx, *restrict vy = P->vy;
   double *restrict vol = P->vol;
   const double dt = s->dt;
-  /* FLIP share (1: [DK15]); APIC takes the PIC velocity */
-  const double fl = s->cfg.time.transfer == MPM_TRANSFER_APIC ? 0.0 : s->cfg.time.flip;
+  const double fl = mpm_sim_in_flip_share(s);
 #pragma omp simd
   for (size_t p = a; p < b; p++) {
     const size_t k = p - a;
@@ -258,6 +276,11 @@ static inline void mpm_sim_in_bookkeeping(mpm_sim *s, size_t a, size_t b, const 
  * is first reordered by unit row (mpm_sim_in_reorder). */
 int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err);
 
+/* With APIC and a convected (CPDI1) extent: every point's stencil within
+ * half of each periodic axis (its nodes their own nearest images), else
+ * MPM_EINPUT naming the point (transfer.c). */
+int mpm_sim_in_apic_extents_fit(const mpm_sim *s, mpm_err *err);
+
 /* The point store in the order of the bands of its unit rows (stable), so
  * that the points of a band lie together in memory. */
 int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err);
@@ -306,5 +329,10 @@ void mpm_sim_in_grid_node3(mpm_sim *s, int i, const double b[3], double idt);
 /* Step 4 for point p of a 3D run (transfer.inc's gather): the grid velocity
  * vg and acceleration ag at it, and L_p (row-major, L[3 i + j] = dv_i/dx_j). */
 void mpm_sim_in_gather3(const mpm_sim *s, size_t p, double vg[3], double ag[3], double L[9]);
+
+/* APIC in 3D: the L of mpm_sim_in_gather3 becomes point p's C_p (with delta
+ * weights its empty nodes taking the point's velocity vg, as
+ * mpm_sim_in_affine in the plane) and is stored. */
+void mpm_sim_in_affine3(mpm_sim *s, size_t p, const double vg[3], double L[9]);
 
 #endif
