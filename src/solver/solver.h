@@ -77,6 +77,9 @@ typedef struct mpm_sim {
    * unit, transfer.c); else NULL */
   int *uof;                       /* [ucap] the unit of each point, -1 outside the mesh */
   size_t ucap;
+  int uof_moved;                  /* 1: uof holds the units of x_{n+1} of this step */
+  double *xnode;                  /* APIC: [dim nnodes] the nodes' coordinates, axis by
+                                     axis (mpm_sim_in_node_offset); else NULL */
   double *usum;                   /* [2 nx ny] per unit: sum V_p, sum V_p f_p */
   double *uel;                    /* "element": [5 nx ny] per unit: fill of a filled
                                      unit (else 0), centroid and slope of s_m */

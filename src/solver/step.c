@@ -212,6 +212,8 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     rc = s->dim == 3 ? mpm_sim3_build(s, err) : build_plane(s, err);
   if (rc == MPM_OK && s->pts->n == 0)
     rc = mpm_err_set(err, MPM_EINPUT, "the fills hold no point");
+  if (rc == MPM_OK && cfg->time.transfer == MPM_TRANSFER_APIC)
+    rc = mpm_sim_in_node_table(s, err);       /* the offsets x_i - x_p */
   if (rc != MPM_OK) {
     mpm_sim_free(s);
     return rc;
@@ -246,6 +248,7 @@ void mpm_sim_free(mpm_sim *s)
   free(s->usum);
   free(s->uel);
   free(s->uof);
+  free(s->xnode);
   free(s->lxx);
   free(s->lxy);
   free(s->lyx);
@@ -578,9 +581,9 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
  * order and the points are updated. Returns as point_phase. */
 static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm_err *err)
 {
-  if ((*rc = move_points(s, err)) != MPM_OK)
+  if ((*rc = move_points(s, err)) != MPM_OK || (*rc = mpm_sim_in_units_moved(s, err)) != MPM_OK)
     return -1;
-  update_density(s, NULL);
+  update_density(s, s->uof);                 /* the projection reuses the units */
   return update_stored(s, mat, 0, 0, s->n_sub);
 }
 

@@ -229,6 +229,34 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
  * points of a unit share their unit's mean s_m. The unit sums run in point
  * order on one thread: thread-count free. */
 
+int mpm_sim_in_node_table(mpm_sim *s, mpm_err *err)
+{
+  const int dim = s->dim;
+  int sn[3], nn;
+  double o[3], h[3];
+  if (dim == 3) {
+    const mpm_mesh3 *m = &s->mesh3;
+    sn[0] = m->snx, sn[1] = m->sny, sn[2] = m->snz, nn = m->nnodes;
+    o[0] = m->x0, o[1] = m->y0, o[2] = m->z0;
+    h[0] = m->dx, h[1] = m->dy, h[2] = m->dz;
+  } else {
+    const mpm_mesh *m = &s->mesh;
+    sn[0] = m->snx, sn[1] = m->sny, sn[2] = 1, nn = m->nnodes;
+    o[0] = m->x0, o[1] = m->y0;
+    h[0] = m->dx, h[1] = m->dy;
+  }
+  double *xn = malloc((size_t)dim * (size_t)nn * sizeof *xn);
+  if (!xn)
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the positions of %d nodes", nn);
+  for (int i = 0; i < nn; i++) {
+    const int idx[3] = {i % sn[0], i / sn[0] % sn[1], i / (sn[0] * sn[1])};
+    for (int d = 0; d < dim; d++)
+      xn[(size_t)d * (size_t)nn + (size_t)i] = o[d] + idx[d] * h[d];
+  }
+  s->xnode = xn;
+  return MPM_OK;
+}
+
 /* Room for the unit of every point. */
 static int reserve_units(mpm_sim *s, mpm_err *err)
 {
@@ -514,12 +542,23 @@ static void element_centre_values(mpm_sim *s)
   }
 }
 
+int mpm_sim_in_units_moved(mpm_sim *s, mpm_err *err)
+{
+  const int rc = reserve_units(s, err);
+  if (rc == MPM_OK) {
+    find_units(s);
+    s->uof_moved = 1;
+  }
+  return rc;
+}
+
 int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
 {
   int rc = reserve_units(s, err);
   if (rc != MPM_OK)
     return rc;
-  find_units(s);
+  find_units(s);                             /* the units of x_n */
+  s->uof_moved = 0;
   if (s->uel) {                              /* the slopes of the dense points' field */
     unit_means(s, MEAN_SM_DENSE);
     element_slopes(s);
@@ -564,7 +603,8 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
 void mpm_sim_in_unit_project(mpm_sim *s)
 {
   mpm_points *P = s->pts;
-  find_units(s);                             /* the units of x_{n+1} */
+  if (!s->uof_moved)                         /* the units of x_{n+1} */
+    find_units(s);
   unit_means(s, MEAN_SM_DENSE);
   const double *el = s->uel;
   if (el)
@@ -600,7 +640,7 @@ static void p2g_affine(const mpm_sim *s, double (*restrict nq)[4], size_t p, int
   const double C[4] = {P->cxx[p], P->cxy[p], P->cyx[p], P->cyy[p]};
   for (int k = 0; k < c; k++) {
     double e[2];
-    mpm_sim_in_node_offset(&s->mesh, node[k], P->x[p], P->y[p], &e[0], &e[1]);
+    mpm_sim_in_node_offset(s, node[k], P->x[p], P->y[p], &e[0], &e[1]);
     mpm_tr_p2g_affine2(nq[node[k]], S[k] * m, C, e);
   }
 }

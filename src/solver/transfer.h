@@ -137,27 +137,34 @@ static inline double mpm_sim_in_axis_offset(double d, int periodic, double len)
   return periodic ? d - len * nearbyint(d / len) : d;
 }
 
-/* x_i - (x, y) for the node of storage id i, on a periodic axis its image
- * nearest to (x, y). A stencil node lies within 1 + r units of its point (r
- * the stencil's reach beyond the point's unit), so that is its own image
- * while the axis has at least 2 + 2r units, which the input check demands
- * for APIC (a node at exactly half the period away has S = 0). */
-static inline void mpm_sim_in_node_offset(const mpm_mesh *m, int i, double x, double y,
+/* x_i - (x, y) for the node of storage id i (s->xnode), on a periodic axis
+ * its image nearest to (x, y). A stencil node lies within 1 + r units of
+ * its point (r the stencil's reach beyond the point's unit), so that is its
+ * own image while the axis has at least 2 + 2r units, which the input check
+ * demands for APIC (a node at exactly half the period away has S = 0). */
+static inline void mpm_sim_in_node_offset(const mpm_sim *s, int i, double x, double y,
                                           double *ex, double *ey)
 {
-  *ex = mpm_sim_in_axis_offset(m->x0 + (i % m->snx) * m->dx - x, m->periodic_x, m->lx);
-  *ey = mpm_sim_in_axis_offset(m->y0 + (i / m->snx) * m->dy - y, m->periodic_y, m->ly);
+  const mpm_mesh *m = &s->mesh;
+  const size_t nn = (size_t)m->nnodes;
+  *ex = mpm_sim_in_axis_offset(s->xnode[i] - x, m->periodic_x, m->lx);
+  *ey = mpm_sim_in_axis_offset(s->xnode[nn + (size_t)i] - y, m->periodic_y, m->ly);
 }
 
-/* The same on the box mesh of a 3D run, storage id i, point x. */
-static inline void mpm_sim_in_node_offset3(const mpm_mesh3 *m, int i, const double x[3],
+/* The same in a 3D run, point x. */
+static inline void mpm_sim_in_node_offset3(const mpm_sim *s, int i, const double x[3],
                                            double e[3])
 {
-  const int sxy = m->snx * m->sny;
-  e[0] = mpm_sim_in_axis_offset(m->x0 + (i % m->snx) * m->dx - x[0], m->periodic_x, m->lx);
-  e[1] = mpm_sim_in_axis_offset(m->y0 + (i % sxy / m->snx) * m->dy - x[1], m->periodic_y, m->ly);
-  e[2] = mpm_sim_in_axis_offset(m->z0 + (i / sxy) * m->dz - x[2], m->periodic_z, m->lz);
+  const mpm_mesh3 *m = &s->mesh3;
+  const size_t nn = (size_t)m->nnodes;
+  e[0] = mpm_sim_in_axis_offset(s->xnode[i] - x[0], m->periodic_x, m->lx);
+  e[1] = mpm_sim_in_axis_offset(s->xnode[nn + (size_t)i] - x[1], m->periodic_y, m->ly);
+  e[2] = mpm_sim_in_axis_offset(s->xnode[2 * nn + (size_t)i] - x[2], m->periodic_z, m->lz);
 }
+
+/* s->xnode for APIC: the coordinates of every stored node, x0 + i dx
+ * (likewise y, z; a periodic axis stores its first node only). */
+int mpm_sim_in_node_table(mpm_sim *s, mpm_err *err);
 
 /* Step 4 for a point with weights (c, node, S, gx, gy), after the grid
  * update: vg, ag and the in-plane L = {xx, xy, yx, yy} of mpm_tr_gather2. */
@@ -284,6 +291,11 @@ int mpm_sim_in_apic_extents_fit(const mpm_sim *s, mpm_err *err);
 /* The point store in the order of the bands of its unit rows (stable), so
  * that the points of a band lie together in memory. */
 int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err);
+
+/* s->uof: the unit of every point at x_{n+1}, once every point moved, for
+ * the density of the state decision and the projection of the step's end
+ * (s->uof_moved set; mpm_sim_in_unit_stress clears it). */
+int mpm_sim_in_units_moved(mpm_sim *s, mpm_err *err);
 
 /* B-bar (mesh.dilatation = "unit", transfer.c). Before point-to-grid: the
  * unit of every point (s->uof) and each unit's volume-weighted mean of the

@@ -55,7 +55,7 @@ void mpm_sim_in_p2g_band3(const mpm_sim *s, int k, const double b[3])
       const double xp[3] = {P->x[p], P->y[p], P->z[p]};
       for (int j = 0; j < c; j++) {
         double e[3];
-        mpm_sim_in_node_offset3(&s->mesh3, node[j], xp, e);
+        mpm_sim_in_node_offset3(s, node[j], xp, e);
         mpm_tr_p2g_affine3(s->nq3[node[j]], S[j] * m, C, e);
       }
     }
