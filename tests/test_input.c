@@ -207,11 +207,11 @@ START_TEST(t_scheme_defaults)
   const char *t3[] = {"mesh.topology=t3"};
   check_scheme(t3, 1, U, DU, A);
   const char *box[] = {"mesh.nz=2", "mesh.dz=0.25", "fill.pile.zmin=0", "fill.pile.zmax=0.5"};
-  check_scheme(box, 4, U, DU, A);
+  check_scheme(box, 4, E, DU, A);
   const char *box_narrow[] = {"mesh.nz=2", "mesh.dz=0.25", "fill.pile.zmin=0",
                               "fill.pile.zmax=0.5", "boundary.front=periodic",
                               "boundary.back=periodic"};
-  check_scheme(box_narrow, 6, U, DU, F);  /* uGIMP's APIC: 4 units along periodic z */
+  check_scheme(box_narrow, 6, E, DU, F);  /* uGIMP's APIC: 4 units along periodic z */
   /* uGIMP's APIC needs 4 units on a periodic axis, delta's 2 */
   const char *narrow[] = {"boundary.left=periodic", "boundary.right=periodic", "mesh.nx=3",
                           "fill.pile.xmax=0.75"};

@@ -14,6 +14,9 @@
  *    plane run of the same input, to round-off, with every shape;
  *  - threads: a 3D column collapsing onto a rough floor against walls is
  *    bitwise the same on one and on two threads (bands of unit layers);
+ *  - the element dilatation (Q1/P0 boxes): a uniform pressure pushes no
+ *    interior node, and the projection returns a linear mean stress exactly
+ *    and keeps the box means of any other;
  *  - the affine transfer (APIC): every test above under it too; an affine
  *    velocity field is carried exactly through a step, C_p included, and a
  *    periodic box shifted by one unit along every axis gives the shifted
@@ -344,6 +347,225 @@ START_TEST(t_unit_options)
 }
 END_TEST
 
+/* mesh.dilatation = "element" on boxes: a 4 x 4 x 4 mesh of 1 cm boxes,
+ * walled on every face and filled with 2 x 2 x 2 points a box (every box
+ * filled), delta weights; unless regular the points are moved off their
+ * symmetric places and given unequal volumes. */
+static mpm_sim *element_box(int rule, int regular, double dt)
+{
+  mpm_config c;
+  box_config(&c, "delta", 4, 4, 4);
+  c.bc.left = c.bc.right = c.bc.bottom = c.bc.top = MPM_BC_NOSLIP;
+  c.bc.front = c.bc.back = MPM_BC_NOSLIP;
+  c.time.dt = dt;
+  c.mesh.dilatation = rule;
+  mpm_sim *s = make(&c);
+  ck_assert_uint_eq(s->pts->n, 512);
+  for (size_t p = 0; !regular && p < s->pts->n; p++) {
+    s->pts->x[p] += (p % 3 == 0) ? 0.0011 : 0.0;
+    s->pts->y[p] -= (p % 4 == 1) ? 0.0007 : 0.0;
+    s->pts->z[p] += (p % 5 == 2) ? 0.0009 : 0.0;
+    s->pts->vol[p] *= 1.0 + 0.5 * (double)(p % 2);
+  }
+  return s;
+}
+
+static void set_isotropic3(mpm_sim *s, size_t p, double sm)
+{
+  mpm_points *P = s->pts;
+  P->sxx[p] = P->syy[p] = P->szz[p] = sm;
+  P->sxy[p] = P->syz[p] = P->szx[p] = 0.0;
+}
+
+/* A uniform pressure exerts no force on an interior node when the filled
+ * boxes act as Q1/P0 elements (the eight boxes' integrals of grad N_i
+ * cancel), whatever the points' places and volumes; the point sums of the
+ * "unit" rule do not cancel for the same points. Scale: p dy dz / m_node =
+ * 1000 * 1e-4 / 1.5e-3 = 67 m/s^2. */
+START_TEST(t_element_uniform)
+{
+  const int rules[2] = {MPM_DILATATION_ELEMENT, MPM_DILATATION_UNIT};
+  for (int r = 0; r < 2; r++) {
+    mpm_sim *s = element_box(rules[r], 0, 1e-6);
+    for (size_t p = 0; p < s->pts->n; p++)
+      set_isotropic3(s, p, -1000.0);
+    steps(s, 1);
+    double worst = 0.0;
+    for (int k = 1; k < 4; k++)
+      for (int j = 1; j < 4; j++)
+        for (int i = 1; i < 4; i++) {
+          const double *a = s->nq3[mpm_mesh3_node(&s->mesh3, i, j, k)] + 3;
+          worst = fmax(worst, sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+        }
+    if (r == 0)
+      ck_assert_double_le(worst, 1e-12 * 67.0);
+    else
+      ck_assert_double_ge(worst, 1e-2 * 67.0);
+    mpm_sim_free(s);
+  }
+}
+END_TEST
+
+/* The force of box pressures P_e on an interior node N = (I, J, K) is
+ * f = -sum_e P_e int_e grad N_N dV, int_e dN/dx_d = +-dy dz / 4 (the face
+ * normal to d over 4; sign: the side of e on which N lies), so
+ * f_d = A (sum of P_e over the four boxes above N along d - the four
+ * below). Each box's points carry one isotropic stress (no deviator) and
+ * are regular (their centroid the box centre, where the element takes its
+ * pressure), so this is all of f_N = m_N a_N. */
+static double box_stress_of(int e)
+{
+  return -1000.0 - 150.0 * (double)((e * 7) % 11);
+}
+
+START_TEST(t_element_forces)
+{
+  mpm_sim *s = element_box(MPM_DILATATION_ELEMENT, 1, 1e-6);
+  const mpm_points *P = s->pts;
+  for (size_t p = 0; p < P->n; p++) {
+    const double x[3] = {P->x[p], P->y[p], P->z[p]};
+    int u[3];
+    double l[3];
+    ck_assert_int_eq(mpm_mesh3_locate(&s->mesh3, x, u, l), 0);
+    set_isotropic3(s, p, box_stress_of(u[0] + 4 * (u[1] + 4 * u[2])));
+  }
+  steps(s, 1);
+  const double A = 0.01 * 0.01 / 4.0;
+  double fmax_ = 0.0;
+  for (int K = 1; K < 4; K++)
+    for (int J = 1; J < 4; J++)
+      for (int I = 1; I < 4; I++) {
+        const int n = mpm_mesh3_node(&s->mesh3, I, J, K), N[3] = {I, J, K};
+        for (int d = 0; d < 3; d++) {
+          double want = 0.0;
+          for (int c = 0; c < 8; c++) {             /* the eight boxes around N */
+            const int b[3] = {I - 1 + (c & 1), J - 1 + (c >> 1 & 1), K - 1 + (c >> 2 & 1)};
+            want += (b[d] == N[d] ? A : -A) * box_stress_of(b[0] + 4 * (b[1] + 4 * b[2]));
+          }
+          ck_assert_double_eq_tol(s->nm[n] * s->nq3[n][3 + d], want, 1e-11);
+          fmax_ = fmax(fmax_, fabs(want));
+        }
+      }
+  ck_assert_double_ge(fmax_, 0.01);          /* forces of 1e-2 N and more */
+  mpm_sim_free(s);
+}
+END_TEST
+
+/* A filled box's volume rate is the mean divergence of the trilinear grid
+ * velocity over it, phi (1 / V_e) sum_i v_i . int_e grad N_i dV: a block
+ * of 4 x 4 x 4 boxes inside a larger free mesh, moving with v = D x, its
+ * eight inner boxes filled (phi = 1; the nodes of a regular block carry the
+ * exact field), so their points' volumes grow by exp(dt tr D); the boxes
+ * along the block's faces are not filled. */
+START_TEST(t_element_divergence)
+{
+  static const double D[3][3] = {{1.0, 0.5, 0.0}, {-0.25, -0.5, 0.75}, {0.0, 0.3, 2.0}};
+  mpm_config c;
+  box_config(&c, "delta", 6, 6, 6);
+  c.bc.left = c.bc.right = c.bc.bottom = c.bc.top = MPM_BC_FREE;
+  c.bc.front = c.bc.back = MPM_BC_FREE;
+  c.fill[0].xmin = c.fill[0].ymin = c.fill[0].zmin = 0.01;
+  c.fill[0].xmax = c.fill[0].ymax = c.fill[0].zmax = 0.05;
+  c.time.dt = 1e-5;
+  c.mesh.dilatation = MPM_DILATATION_ELEMENT;
+  mpm_sim *s = make(&c);
+  mpm_points *P = s->pts;
+  double *v0 = malloc(P->n * sizeof *v0);
+  for (size_t p = 0; p < P->n; p++) {
+    const double x[3] = {P->x[p], P->y[p], P->z[p]};
+    double *const v[3] = {&P->vx[p], &P->vy[p], &P->vz[p]};
+    for (int i = 0; i < 3; i++)
+      *v[i] = D[i][0] * x[0] + D[i][1] * x[1] + D[i][2] * x[2];
+    v0[P->id[p]] = P->vol[p];
+  }
+  int inner = 0;
+  double worst = 0.0;
+  for (size_t p = 0; p < P->n; p++)           /* the points of the inner boxes, 2 <= i, j, k <= 3 */
+    inner += fabs(P->x[p] - 0.03) < 0.01 && fabs(P->y[p] - 0.03) < 0.01 && fabs(P->z[p] - 0.03) < 0.01;
+  steps(s, 1);
+  const double want = exp(1e-5 * (D[0][0] + D[1][1] + D[2][2]));
+  for (size_t p = 0; p < P->n; p++) {
+    const double x = P->x[p], y = P->y[p], z = P->z[p];
+    if (fabs(x - 0.03) < 0.01 && fabs(y - 0.03) < 0.01 && fabs(z - 0.03) < 0.01)
+      worst = fmax(worst, fabs(P->vol[p] / v0[P->id[p]] - want));
+  }
+  ck_assert_int_eq(inner, 64);
+  ck_assert_double_le(worst, 1e-13);          /* a rate of 2.5 /s over 1e-5 s: 2.5e-5 */
+  int filled = 0;                             /* the eight inner boxes, no other */
+  for (int e = 0; e < 216; e++)
+    if (s->uel[7 * e] > 0.0) {
+      const int i = e % 6, j = e / 6 % 6, k = e / 36;
+      ck_assert(i >= 2 && i <= 3 && j >= 2 && j <= 3 && k >= 2 && k <= 3);
+      ck_assert_double_eq_tol(s->uel[7 * e], 1.0, 1e-4);   /* phi: the volumes after the step */
+      filled++;
+    }
+  ck_assert_int_eq(filled, 8);
+  free(v0);
+  mpm_sim_free(s);
+}
+END_TEST
+
+static double linear_sm3(double x, double y, double z)
+{
+  return -(1000.0 + 20000.0 * x + 30000.0 * y - 10000.0 * z);
+}
+
+/* The projection of "element" gives each filled box's dense points a
+ * limited linear field about their centroid: a linear mean stress comes
+ * back exactly (the slopes of its box means are exact, also beside the
+ * walls), where "unit" sets it to each box's mean (a quarter box off at
+ * the points); a field that is not linear keeps its box means. */
+START_TEST(t_element_linear)
+{
+  for (int rule = 0; rule < 2; rule++) {
+    mpm_sim *s = element_box(rule ? MPM_DILATATION_UNIT : MPM_DILATATION_ELEMENT, 1, 1e-10);
+    const mpm_points *P = s->pts;
+    for (size_t p = 0; p < P->n; p++)
+      set_isotropic3(s, p, linear_sm3(P->x[p], P->y[p], P->z[p]));
+    steps(s, 1);
+    double worst = 0.0;
+    for (size_t p = 0; p < P->n; p++) {
+      const double sm = (P->sxx[p] + P->syy[p] + P->szz[p]) / 3.0;
+      worst = fmax(worst, fabs(sm - linear_sm3(P->x[p], P->y[p], P->z[p])));
+    }
+    if (rule == 0)
+      ck_assert_double_le(worst, 1e-9 * 2400.0);
+    else
+      ck_assert_double_ge(worst, 0.25 * 0.01 * 30000.0);
+    mpm_sim_free(s);
+  }
+  mpm_sim *s = element_box(MPM_DILATATION_ELEMENT, 0, 1e-10);
+  const mpm_points *P = s->pts;
+  for (size_t p = 0; p < P->n; p++) {
+    const double x = P->x[p], y = P->y[p], z = P->z[p];
+    set_isotropic3(s, p, linear_sm3(x, y, z) + 500.0 * sin(4000.0 * x * y + 900.0 * z));
+  }
+  double v[2][64], sv[2][64];
+  for (int k = 0; k < 2; k++) {
+    for (int e = 0; e < 64; e++)
+      v[k][e] = sv[k][e] = 0.0;
+    for (size_t p = 0; p < P->n; p++) {
+      const double x[3] = {P->x[p], P->y[p], P->z[p]};
+      int u[3];
+      double l[3];
+      ck_assert_int_eq(mpm_mesh3_locate(&s->mesh3, x, u, l), 0);
+      const int e = u[0] + 4 * (u[1] + 4 * u[2]);
+      v[k][e] += P->vol[p];
+      sv[k][e] += P->vol[p] * (P->sxx[p] + P->syy[p] + P->szz[p]) / 3.0;
+    }
+    if (k == 0)
+      steps(s, 1);
+  }
+  double spread = 0.0;
+  for (int e = 0; e < 64; e++) {
+    ck_assert_double_eq_tol(sv[1][e] / v[1][e], sv[0][e] / v[0][e], 1e-9 * 3000.0);
+    spread = fmax(spread, fabs(sv[0][e] / v[0][e] - sv[0][0] / v[0][0]));
+  }
+  ck_assert_double_ge(spread, 100.0);
+  mpm_sim_free(s);
+}
+END_TEST
+
 /* APIC ([JSS+15]) carries an affine velocity field v = v0 + A x exactly:
  * with C_p = A the nodes receive (mv)_i = sum S m_p (v_p + A (x_i - x_p))
  * = m_i (v0 + A x_i) (every shape reproduces linear functions), so a
@@ -508,6 +730,10 @@ int main(void)
   tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
   tcase_add_loop_test(tc, t_outlet, 0, 2);
   tcase_add_test(tc, t_unit_options);
+  tcase_add_test(tc, t_element_uniform);
+  tcase_add_test(tc, t_element_forces);
+  tcase_add_test(tc, t_element_divergence);
+  tcase_add_test(tc, t_element_linear);
 #ifdef _OPENMP
   tcase_add_loop_test(tc, t_threads, 0, 6);
 #endif

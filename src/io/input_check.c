@@ -91,8 +91,8 @@ static int apic_short_axis(const mpm_config *cfg)
 static void resolve_scheme(in_ctx *c, mpm_config *cfg)
 {
   const int plane = cfg->mesh.nz == 0, q4 = strcmp(cfg->mesh.topology, "q4") == 0;
-  if (!is_set(c, key_index(S_MESH, "dilatation"), -1) && !(plane && q4))
-    cfg->mesh.dilatation = MPM_DILATATION_UNIT;  /* the Q1/P0 element is the plane q4's */
+  if (!is_set(c, key_index(S_MESH, "dilatation"), -1) && plane && !q4)
+    cfg->mesh.dilatation = MPM_DILATATION_UNIT;  /* the Q1/P0 element is the units' */
   /* no affine transfer on a periodic axis too short for it; and a FLIP
    * share given alone asks for the blend */
   if (!is_set(c, key_index(S_TIME, "transfer"), -1) &&
@@ -133,15 +133,14 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
                                   "least 2; a plane run may have 1)", name[a]);
       }
   }
-  /* the Q1/P0 element integral of a filled unit is written for the plane's
-   * bilinear units */
-  if (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
-      (cfg->mesh.nz > 0 || strcmp(cfg->mesh.topology, "q4") != 0)) {
+  /* the Q1/P0 element integral of a filled unit is written for the
+   * (bi/tri)linear units */
+  if (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT && cfg->mesh.nz == 0 &&
+      strcmp(cfg->mesh.topology, "q4") != 0) {
     const int k = key_index(S_MESH, "dilatation");
-    where w = blame(c, cfg, -1, k, key_index(S_MESH, cfg->mesh.nz > 0 ? "nz" : "topology"));
-    return mpm_io_in_fail_key(c, &w, "dilatation = \"element\" %s (allowed: a plane run with "
-                              "topology \"q4\"; \"unit\" or \"point\" otherwise)",
-                              cfg->mesh.nz > 0 ? "in a 3D run" : "on triangles");
+    where w = blame(c, cfg, -1, k, key_index(S_MESH, "topology"));
+    return mpm_io_in_fail_key(c, &w, "dilatation = \"element\" on triangles (allowed: topology "
+                              "\"q4\" or a 3D run; \"unit\" or \"point\" otherwise)");
   }
   const int axis = apic_short_axis(cfg);
   if (cfg->time.transfer == MPM_TRANSFER_APIC && axis >= 0) {

@@ -187,7 +187,7 @@ static int build_plane(mpm_sim *s, mpm_err *err)
   if (rc == MPM_OK && cfg->mesh.dilatation != MPM_DILATATION_POINT &&
       (!(s->usum = malloc(2 * nu * sizeof *s->usum)) ||
        (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
-        !(s->uel = calloc(5 * nu, sizeof *s->uel)))))
+        !(s->uel = calloc(mpm_sim_in_el_width(s) * nu, sizeof *s->uel)))))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
   return rc;
 }

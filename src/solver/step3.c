@@ -147,8 +147,11 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
   if (!(s->nm = calloc(nn, sizeof *s->nm)) || !(s->nq3 = calloc(nn, sizeof *s->nq3)) ||
       !(s->st = mpm_shape_stencil_alloc(0)) || !(s->bands = mpm_mesh_bands_alloc()))
     return mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
-  if (cfg->mesh.dilatation == MPM_DILATATION_UNIT &&
-      !(s->usum = malloc(2 * (size_t)m->nx * (size_t)m->ny * (size_t)m->nz * sizeof *s->usum)))
+  const size_t nu = (size_t)m->nx * (size_t)m->ny * (size_t)m->nz;
+  if (cfg->mesh.dilatation != MPM_DILATATION_POINT &&
+      (!(s->usum = malloc(2 * nu * sizeof *s->usum)) ||
+       (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
+        !(s->uel = calloc(mpm_sim_in_el_width(s) * nu, sizeof *s->uel)))))
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
   return s->mat->nonlocal || s->cfg.material.state_density == MPM_DENSITY_UNIT || s->usum
              ? work_alloc(s, err) : MPM_OK;

@@ -353,99 +353,207 @@ static inline void unit_means(mpm_sim *s, int what)
       us[2 * e + 1] /= us[2 * e];
 }
 
-/* mesh.dilatation = "element": the filled units of the plane mesh act as
- * mixed Q1/P0 elements for the volumetric part (docs/model.md). A unit is
- * filled when its points are all dense and each of its eight neighbours
- * holds a point or lies beyond a closed edge (a wall without the outlet;
- * periodic axes wrap). s->uel[5e] is the fill fraction phi = sum V_p / (dx
- * dy) of a filled unit, 0 of any other; [5e+1 .. 5e+4] the centroid and
- * the slope of its dense points' pressure field (found before point-to-grid
- * and again at the projection), [5e+1] in between its rate phi div_e. */
+/* mesh.dilatation = "element": the filled units act as mixed Q1/P0
+ * elements for the volumetric part (docs/model.md). A unit is filled when
+ * its points are all dense and each of its 3^D - 1 neighbours holds a point
+ * or lies beyond a closed edge or face (a wall without the outlet; periodic
+ * axes wrap). With w = 1 + 2D values per unit (mpm_sim_in_el_width),
+ * s->uel[w e] is the fill fraction phi = sum V_p / V_e of a filled unit, 0
+ * of any other; [w e + 1 .. w e + D] the centroid and [w e + D + 1 .. w e +
+ * 2D] the slope of its dense points' mean stress field (found before
+ * point-to-grid and again at the projection), [w e + 1] in between its rate
+ * phi div_e. The functions below take the dimension D as an argument that
+ * is a constant where they are inlined (the callers dispatch once), so the
+ * loops over axes unroll. */
 
-/* Unit (a, b) holds a point, or lies beyond a closed edge. */
-static int neighbour_holds(const mpm_sim *s, int a, int b)
+#if defined(__GNUC__)
+#define EL_INLINE static inline __attribute__((always_inline))
+#else
+#define EL_INLINE static inline
+#endif
+
+/* The geometry of the run's units, axis by axis: counts, sizes, origins,
+ * the index step of unit e along each axis, the conditions and outlet
+ * sides of each axis' two ends. */
+typedef struct unit_grid {
+  int n[3];
+  size_t step[3];
+  double h[3], o[3];
+  int bc[3][2], side[3][2];
+} unit_grid;
+
+static unit_grid unit_grid_of(const mpm_sim *s)
 {
   const mpm_config *cfg = &s->cfg;
-  const int nx = s->mesh.nx, ny = s->mesh.ny;
-  int side = MPM_OUTLET_NONE, bc = MPM_BC_PERIODIC;
-  if (a < 0 || a >= nx) {
-    side = a < 0 ? MPM_OUTLET_LEFT : MPM_OUTLET_RIGHT;
-    bc = a < 0 ? cfg->bc.left : cfg->bc.right;
-    a = (a + nx) % nx;
+  unit_grid g = {.bc = {{cfg->bc.left, cfg->bc.right}, {cfg->bc.bottom, cfg->bc.top},
+                        {cfg->bc.front, cfg->bc.back}},
+                 .side = {{MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT}, {MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP},
+                          {MPM_OUTLET_FRONT, MPM_OUTLET_BACK}}};
+  if (s->dim == 3) {
+    const mpm_mesh3 *m = &s->mesh3;
+    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = m->nz;
+    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = m->dz;
+    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = m->z0;
+  } else {
+    const mpm_mesh *m = &s->mesh;
+    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = 1;
+    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = 1.0;
+    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = 0.0;
   }
-  if (bc == MPM_BC_PERIODIC && (b < 0 || b >= ny)) {
-    side = b < 0 ? MPM_OUTLET_BOTTOM : MPM_OUTLET_TOP;
-    bc = b < 0 ? cfg->bc.bottom : cfg->bc.top;
-    b = (b + ny) % ny;
+  g.step[0] = 1;
+  g.step[1] = (size_t)g.n[0];
+  g.step[2] = (size_t)g.n[0] * (size_t)g.n[1];
+  return g;
+}
+
+/* The places of unit e along the D axes. */
+EL_INLINE void unit_places(const unit_grid *g, size_t e, int dim, int at[3])
+{
+  at[0] = (int)(e % (size_t)g->n[0]);
+  at[1] = (int)(e / g->step[1] % (size_t)g->n[1]);
+  at[2] = dim == 3 ? (int)(e / g->step[2]) : 0;
+}
+
+/* Unit at places u[0 .. D-1] (any integers) holds a point, or lies beyond a
+ * closed edge or face. */
+EL_INLINE int neighbour_holds(const mpm_sim *s, const unit_grid *g, int dim, const int u[3])
+{
+  size_t e = 0;
+  for (int d = 0; d < dim; d++) {
+    int a = u[d];
+    if (a < 0 || a >= g->n[d]) {
+      const int hi = a >= 0, bc = g->bc[d][hi];
+      if (bc != MPM_BC_PERIODIC)              /* beyond an edge */
+        return bc != MPM_BC_FREE && s->cfg.outlet.edge != g->side[d][hi];
+      a = (a + g->n[d]) % g->n[d];
+    }
+    e += (size_t)a * g->step[d];
   }
-  if (bc != MPM_BC_PERIODIC)                  /* beyond an edge */
-    return bc != MPM_BC_FREE && cfg->outlet.edge != side;
-  return s->usum[2 * ((size_t)a + (size_t)nx * (size_t)b)] > 0.0;
+  return s->usum[2 * e] > 0.0;
+}
+
+EL_INLINE void filled_units_dim(mpm_sim *s, int dim)
+{
+  const mpm_points *P = s->pts;
+  const unit_grid g = unit_grid_of(s);
+  const size_t w = (size_t)(1 + 2 * dim);
+  double *el = s->uel;
+  double vol = 1.0;
+  for (int d = 0; d < dim; d++)
+    vol *= g.h[d];
+  const int nz = dim == 3 ? g.n[2] : 1, kz = dim == 3 ? 1 : 0;
+  for (size_t e = 0; e < unit_count(s); e++)
+    el[w * e] = 1.0;
+  for (size_t p = 0; p < P->n; p++)          /* a unit with a loose point is not filled */
+    if (s->uof[p] >= 0 && P->state[p] != MPM_STATE_DENSE)
+      el[w * (size_t)s->uof[p]] = 0.0;
+  size_t e = 0;
+  for (int k = 0; k < nz; k++)
+    for (int j = 0; j < g.n[1]; j++)
+      for (int i = 0; i < g.n[0]; i++, e++) {
+        int filled = el[w * e] > 0.0 && s->usum[2 * e] > 0.0;
+        for (int c = k - kz; filled && c <= k + kz; c++)
+          for (int b = j - 1; filled && b <= j + 1; b++)
+            for (int a = i - 1; filled && a <= i + 1; a++)
+              filled = neighbour_holds(s, &g, dim, (const int[3]){a, b, c});
+        el[w * e] = filled ? s->usum[2 * e] / vol : 0.0;
+      }
 }
 
 static void filled_units(mpm_sim *s)
 {
-  const mpm_points *P = s->pts;
-  const int nx = s->mesh.nx, ny = s->mesh.ny;
-  double *el = s->uel;
-  for (size_t e = 0; e < (size_t)nx * (size_t)ny; e++)
-    el[5 * e] = 1.0;
-  for (size_t p = 0; p < P->n; p++)          /* a unit with a loose point is not filled */
-    if (s->uof[p] >= 0 && P->state[p] != MPM_STATE_DENSE)
-      el[5 * (size_t)s->uof[p]] = 0.0;
-  const double area = s->mesh.dx * s->mesh.dy;
-  for (int j = 0; j < ny; j++)
-    for (int i = 0; i < nx; i++) {
-      const size_t e = (size_t)i + (size_t)nx * (size_t)j;
-      int filled = el[5 * e] > 0.0 && s->usum[2 * e] > 0.0;
-      for (int b = j - 1; filled && b <= j + 1; b++)
-        for (int a = i - 1; filled && a <= i + 1; a++)
-          filled = neighbour_holds(s, a, b);
-      el[5 * e] = filled ? s->usum[2 * e] / area : 0.0;
-    }
+  if (s->dim == 3)
+    filled_units_dim(s, 3);
+  else
+    filled_units_dim(s, 2);
 }
 
-/* The corner nodes of plane unit e: (i,j), (i+1,j), (i,j+1), (i+1,j+1). */
-static void unit_corners(const mpm_sim *s, size_t e, int n[4])
+/* The 2^D corner nodes of unit e, corner c offset by bit d of c along axis
+ * d (in the plane (i,j), (i+1,j), (i,j+1), (i+1,j+1)). */
+EL_INLINE void unit_corners(const mpm_sim *s, const unit_grid *g, int dim, size_t e, int n[8])
 {
-  const int i = (int)(e % (size_t)s->mesh.nx), j = (int)(e / (size_t)s->mesh.nx);
-  n[0] = mpm_mesh_node(&s->mesh, i, j);
-  n[1] = mpm_mesh_node(&s->mesh, i + 1, j);
-  n[2] = mpm_mesh_node(&s->mesh, i, j + 1);
-  n[3] = mpm_mesh_node(&s->mesh, i + 1, j + 1);
+  int at[3];
+  unit_places(g, e, dim, at);
+  if (dim == 2)
+    for (int c = 0; c < 4; c++)
+      n[c] = mpm_mesh_node(&s->mesh, at[0] + (c & 1), at[1] + (c >> 1 & 1));
+  else
+    for (int c = 0; c < 8; c++)
+      n[c] = mpm_mesh3_node(&s->mesh3, at[0] + (c & 1), at[1] + (c >> 1 & 1), at[2] + (c >> 2 & 1));
 }
 
-/* The Q1/P0 share of point-to-grid: f_i += -P_e int_e grad N_i dA over
- * every filled unit e (P_e in s->usum, element_centre_values), int_e dN_i/dx
- * = +-dy/2, int_e dN_i/dy = +-dx/2 (sign of the corner's side). Unit by
- * unit on one thread: thread-count free. */
-static void element_forces(mpm_sim *s)
+/* The nodal record of node i in a run of dimension D: its 2D lanes. */
+EL_INLINE double *node_record(const mpm_sim *s, int dim, int i)
 {
-  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
-  const double hx = 0.5 * s->mesh.dy, hy = 0.5 * s->mesh.dx;
-  static const double sx[4] = {-1.0, 1.0, -1.0, 1.0}, sy[4] = {-1.0, -1.0, 1.0, 1.0};
+  return dim == 3 ? s->nq3[i] : s->nq[i];
+}
+
+/* |int_e dN_c/dx_d dV| over a unit, the same for every corner (its sign
+ * the corner's side along d): the face normal to d over 2^(D-1) (plane:
+ * dy/2 for d = x). */
+EL_INLINE double face_share(const unit_grid *g, int dim, int d)
+{
+  double a = dim == 3 ? 0.25 : 0.5;
+  for (int q = 0; q < dim; q++)
+    if (q != d)
+      a *= g->h[q];
+  return a;
+}
+
+/* The Q1/P0 share of point-to-grid: f_i += -P_e int_e grad N_i dV over
+ * every filled unit e (P_e in s->usum, element_centre_values), on the force
+ * lanes D .. 2D-1 of the nodal records. Unit by unit on one thread:
+ * thread-count free. */
+EL_INLINE void element_forces_dim(mpm_sim *s, int dim)
+{
+  const unit_grid g = unit_grid_of(s);
+  const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
+  const int nc = 1 << dim;
+  double share[3];
+  for (int d = 0; d < dim; d++)
+    share[d] = face_share(&g, dim, d);
   for (size_t e = 0; e < nu; e++) {
-    if (!(s->uel[5 * e] > 0.0))
+    if (!(s->uel[w * e] > 0.0))
       continue;
-    int n[4];
-    unit_corners(s, e, n);
+    int n[8];
+    unit_corners(s, &g, dim, e, n);
     const double sb = s->usum[2 * e + 1];
-    for (int k = 0; k < 4; k++) {
-      s->nq[n[k]][2] -= sb * sx[k] * hx;
-      s->nq[n[k]][3] -= sb * sy[k] * hy;
+    for (int c = 0; c < nc; c++) {
+      double *q = node_record(s, dim, n[c]);
+      for (int d = 0; d < dim; d++)
+        q[dim + d] -= sb * (c >> d & 1 ? 1.0 : -1.0) * share[d];
     }
   }
 }
 
-/* The divergence of the bilinear grid velocity averaged over filled unit e,
- * (1 / (dx dy)) sum_i v_i . int_e grad N_i dA. */
-static double element_divergence(const mpm_sim *s, size_t e)
+static void element_forces(mpm_sim *s)
 {
-  int n[4];
-  unit_corners(s, e, n);
-  const double (*v)[4] = (const double (*)[4])s->nq;
-  return (v[n[1]][0] + v[n[3]][0] - v[n[0]][0] - v[n[2]][0]) / (2.0 * s->mesh.dx) +
-         (v[n[2]][1] + v[n[3]][1] - v[n[0]][1] - v[n[1]][1]) / (2.0 * s->mesh.dy);
+  if (s->dim == 3)
+    element_forces_dim(s, 3);
+  else
+    element_forces_dim(s, 2);
+}
+
+/* The divergence of the grid velocity averaged over filled unit e,
+ * (1 / V_e) sum_i v_i . int_e grad N_i dV: per axis the corners of the
+ * upper side minus those of the lower, over 2^(D-1) h_d. */
+EL_INLINE double element_divergence(const mpm_sim *s, const unit_grid *g, int dim, size_t e)
+{
+  int n[8];
+  unit_corners(s, g, dim, e, n);
+  const int nc = 1 << dim;
+  double div = 0.0;
+  for (int d = 0; d < dim; d++) {
+    double t = 0.0;
+    for (int c = 0; c < nc; c++)
+      if (c >> d & 1)
+        t += node_record(s, dim, n[c])[d];
+    for (int c = 0; c < nc; c++)
+      if (!(c >> d & 1))
+        t -= node_record(s, dim, n[c])[d];
+    div += t / ((double)(nc / 2) * g->h[d]);
+  }
+  return div;
 }
 
 /* minmod: the smaller of two slopes of one sign, else 0. */
@@ -454,20 +562,20 @@ static inline double minmod(double a, double b)
   return a * b <= 0.0 ? 0.0 : (fabs(a) < fabs(b) ? a : b);
 }
 
-/* Slope of the unit means along one axis at unit e (n: its index step, k:
- * its place on the axis of n units, h: the unit's side, lo_bc and hi_bc the
- * conditions of the axis' two edges): minmod of the two one-sided
- * differences to the neighbours that hold dense points (periodic axes
- * wrap); 0 beside a unit without any. Against a wall the field goes on:
- * the one difference inside; against a symmetry line it is even: 0. */
-static double mean_slope(const mpm_sim *s, size_t e, int k, int n, size_t step, int lo_bc,
-                         int hi_bc, double h)
+/* Slope of the unit means along axis d at unit e (k its place on the axis):
+ * minmod of the two one-sided differences to the neighbours that hold dense
+ * points (periodic axes wrap); 0 beside a unit without any. Against a wall
+ * the field goes on: the one difference inside; against a symmetry line it
+ * is even: 0. */
+static double mean_slope(const mpm_sim *s, const unit_grid *g, size_t e, int d, int k)
 {
   const double *us = s->usum;
-  const size_t span = step * (size_t)n;
+  const int n = g->n[d];
+  const size_t step = g->step[d], span = step * (size_t)n;
+  const double h = g->h[d];
   size_t lo = e - step, hi = e + step;
   if (k == 0 || k == n - 1) {
-    const int bc = k == 0 ? lo_bc : hi_bc;
+    const int bc = g->bc[d][k != 0];
     if (bc != MPM_BC_PERIODIC) {
       if (n < 2 || bc == MPM_BC_SYMMETRY || bc == MPM_BC_FREE)
         return 0.0;
@@ -488,36 +596,64 @@ static double mean_slope(const mpm_sim *s, size_t e, int k, int n, size_t step, 
   return minmod(us[2 * e + 1] - us[2 * lo + 1], us[2 * hi + 1] - us[2 * e + 1]) / h;
 }
 
-/* "element": the pressure field of the units reaches the points as a
+/* The coordinates of point p over the D axes. */
+EL_INLINE void point_at(const mpm_points *P, size_t p, int dim, double x[3])
+{
+  x[0] = P->x[p];
+  x[1] = P->y[p];
+  x[2] = dim == 3 ? P->z[p] : 0.0;
+}
+
+/* "element": the mean stress field of the units reaches the points as a
  * limited linear one about each unit's centroid of dense points (volume-
  * weighted), so the unit means stay what they were. */
-static void element_slopes(mpm_sim *s)
+EL_INLINE void element_slopes_dim(mpm_sim *s, int dim)
 {
   const mpm_points *P = s->pts;
-  const int nx = s->mesh.nx, ny = s->mesh.ny;
-  const size_t nu = (size_t)nx * (size_t)ny;
+  const unit_grid g = unit_grid_of(s);
+  const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
   double *el = s->uel;
   for (size_t e = 0; e < nu; e++)
-    el[5 * e + 1] = el[5 * e + 2] = 0.0;
+    for (int d = 0; d < dim; d++)
+      el[w * e + 1 + (size_t)d] = 0.0;
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)
       continue;
-    el[5 * (size_t)u + 1] += P->vol[p] * P->x[p];
-    el[5 * (size_t)u + 2] += P->vol[p] * P->y[p];
+    double x[3];
+    point_at(P, p, dim, x);
+    for (int d = 0; d < dim; d++)
+      el[w * (size_t)u + 1 + (size_t)d] += P->vol[p] * x[d];
   }
-  const mpm_config *cfg = &s->cfg;
   for (size_t e = 0; e < nu; e++) {
     const double v = s->usum[2 * e];
     if (!(v > 0.0))
       continue;
-    el[5 * e + 1] /= v;
-    el[5 * e + 2] /= v;
-    el[5 * e + 3] = mean_slope(s, e, (int)(e % (size_t)nx), nx, 1, cfg->bc.left, cfg->bc.right,
-                               s->mesh.dx);
-    el[5 * e + 4] = mean_slope(s, e, (int)(e / (size_t)nx), ny, (size_t)nx, cfg->bc.bottom,
-                               cfg->bc.top, s->mesh.dy);
+    int at[3];
+    unit_places(&g, e, dim, at);
+    for (int d = 0; d < dim; d++)
+      el[w * e + 1 + (size_t)d] /= v;
+    for (int d = 0; d < dim; d++)
+      el[w * e + 1 + (size_t)(dim + d)] = mean_slope(s, &g, e, d, at[d]);
   }
+}
+
+static void element_slopes(mpm_sim *s)
+{
+  if (s->dim == 3)
+    element_slopes_dim(s, 3);
+  else
+    element_slopes_dim(s, 2);
+}
+
+/* G_e . (x - c_e) for unit values f = s->uel + w e and a point x, the sum
+ * in axis order. */
+EL_INLINE double slope_offset(const double *f, int dim, const double x[3])
+{
+  double t = f[1 + dim] * (x[0] - f[1]);
+  for (int d = 1; d < dim; d++)
+    t += f[1 + dim + d] * (x[d] - f[1 + d]);
+  return t;
 }
 
 /* The mean stress a filled unit acts with: the value of its points' linear
@@ -530,15 +666,19 @@ static void element_slopes(mpm_sim *s)
  * resumed from a checkpoint continues bitwise). */
 static void element_centre_values(mpm_sim *s)
 {
-  const int nx = s->mesh.nx;
-  const size_t nu = unit_count(s);
+  const int dim = s->dim;
+  const unit_grid g = unit_grid_of(s);
+  const size_t w = mpm_sim_in_el_width(s), nu = unit_count(s);
   for (size_t e = 0; e < nu; e++) {
-    const double *f = s->uel + 5 * e;
+    const double *f = s->uel + w * e;
     if (!(f[0] > 0.0))
       continue;
-    const double x = s->mesh.x0 + ((double)(e % (size_t)nx) + 0.5) * s->mesh.dx;
-    const double y = s->mesh.y0 + ((double)(e / (size_t)nx) + 0.5) * s->mesh.dy;
-    s->usum[2 * e + 1] -= f[3] * (f[1] - x) + f[4] * (f[2] - y);
+    int at[3];
+    unit_places(&g, e, dim, at);
+    double c[3] = {0.0, 0.0, 0.0};             /* the unit's centre */
+    for (int d = 0; d < dim; d++)
+      c[d] = g.o[d] + ((double)at[d] + 0.5) * g.h[d];
+    s->usum[2 * e + 1] += slope_offset(f, dim, c);    /* m_e - G_e . (c_e - centre) */
   }
 }
 
@@ -571,24 +711,35 @@ int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
+/* A filled unit's rate phi div_e in s->uel[w e + 1], once per unit. */
+EL_INLINE void element_rates_dim(mpm_sim *s, int dim)
+{
+  const unit_grid g = unit_grid_of(s);
+  const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
+  double *el = s->uel;
+  for (size_t e = 0; e < nu; e++)
+    if (el[w * e] > 0.0)
+      el[w * e + 1] = el[w * e] * element_divergence(s, &g, dim, e);
+}
+
 void mpm_sim_in_unit_dilatation(mpm_sim *s)
 {
   mpm_points *P = s->pts;
   unit_means(s, MEAN_TRL);
   double *el = s->uel;
-  const size_t nu = unit_count(s);
-  if (el)                                    /* a filled unit's rate phi div_e, once */
-    for (size_t e = 0; e < nu; e++)
-      if (el[5 * e] > 0.0)
-        el[5 * e + 1] = el[5 * e] * element_divergence(s, e);
+  const size_t w = mpm_sim_in_el_width(s);
+  if (el && s->dim == 3)
+    element_rates_dim(s, 3);
+  else if (el)
+    element_rates_dim(s, 2);
   const double dt = s->dt;
   double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     const double tr = trace_L(s, p);
     double div = u < 0 ? tr : s->usum[2 * u + 1];          /* the unit's divergence */
-    if (el && u >= 0 && el[5 * (size_t)u] > 0.0)
-      div = el[5 * (size_t)u + 1];
+    if (el && u >= 0 && el[w * (size_t)u] > 0.0)
+      div = el[w * (size_t)u + 1];
     if (L3) {                                                /* L_ii += (div - tr)/D */
       for (int i = 0; i < 3; i++)
         L3[9 * p + 4 * i] += (div - tr) / 3.0;
@@ -600,29 +751,40 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
   }
 }
 
-void mpm_sim_in_unit_project(mpm_sim *s)
+/* The projection's change of point p's mean stress to its unit's value. */
+EL_INLINE void project_dim(mpm_sim *s, int dim)
 {
   mpm_points *P = s->pts;
-  if (!s->uof_moved)                         /* the units of x_{n+1} */
-    find_units(s);
-  unit_means(s, MEAN_SM_DENSE);
   const double *el = s->uel;
-  if (el)
-    element_slopes(s);
+  const size_t w = (size_t)(1 + 2 * dim);
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)
       continue;
     double d = s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
     if (el) {
-      const double *f = el + 5 * (size_t)u;
-      d += f[3] * (P->x[p] - f[1]) + f[4] * (P->y[p] - f[2]);
+      double x[3];
+      point_at(P, p, dim, x);
+      d += slope_offset(el + w * (size_t)u, dim, x);
     }
     P->sxx[p] += d;
     P->syy[p] += d;
-    if (s->dim == 3)
+    if (dim == 3)
       P->szz[p] += d;
   }
+}
+
+void mpm_sim_in_unit_project(mpm_sim *s)
+{
+  if (!s->uof_moved)                         /* the units of x_{n+1} */
+    find_units(s);
+  unit_means(s, MEAN_SM_DENSE);
+  if (s->uel)
+    element_slopes(s);
+  if (s->dim == 3)
+    project_dim(s, 3);
+  else
+    project_dim(s, 2);
 }
 
 /* ---- steps 2-3 ---------------------------------------------------------------- */
@@ -665,10 +827,7 @@ static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*res
   double sxx = P->sxx[p], syy = P->syy[p];
   const double sxy = P->sxy[p];
   if (bbar && s->uof[p] >= 0) {             /* s_m -> the unit's mean */
-    const size_t u = (size_t)s->uof[p];
-    const double d = el && el[5 * u] > 0.0
-                         ? -mpm_sim_in_mean_stress(s, p)   /* filled: the unit acts */
-                         : s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
+    const double d = mpm_sim_in_bbar_shift(s, el, p);
     sxx += d;
     syy += d;
   }
@@ -782,7 +941,7 @@ static inline void grid_phase(mpm_sim *s, int dim, const double b[3])
           p2g_band_of(s, k, kind, b[0], b[1]);
       }
     }
-    if (dim == 2 && s->uel) {
+    if (s->uel) {
 #pragma omp single
       element_forces(s);
     }

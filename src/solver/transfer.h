@@ -80,6 +80,24 @@ static inline double mpm_sim_in_mean_stress(const mpm_sim *s, size_t p)
   return 0.5 * (P->sxx[p] + P->syy[p]);
 }
 
+/* "element": the values the unit grid keeps per unit in s->uel, 1 + 2D
+ * (the fill, the centroid, the slope of the mean stress; transfer.c). */
+static inline size_t mpm_sim_in_el_width(const mpm_sim *s)
+{
+  return 1 + 2 * (size_t)s->dim;
+}
+
+/* B-bar in point-to-grid: the change of point p's mean stress (its unit
+ * uof[p] >= 0) to its unit's mean, or, in a filled unit of "element" (el:
+ * s->uel), to 0: the unit acts with its own (element_forces). */
+static inline double mpm_sim_in_bbar_shift(const mpm_sim *s, const double *el, size_t p)
+{
+  const size_t u = (size_t)s->uof[p];
+  return el && el[mpm_sim_in_el_width(s) * u] > 0.0
+             ? -mpm_sim_in_mean_stress(s, p)
+             : s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
+}
+
 /* The weights of one point evaluated from its located element. */
 typedef struct mpm_sim_in_basis {
   int node[4];

@@ -38,7 +38,7 @@ void mpm_sim_in_p2g_band3(const mpm_sim *s, int k, const double b[3])
     const double m = P->mass[p], V = P->vol[p];
     double sxx = P->sxx[p], syy = P->syy[p], szz = P->szz[p];
     if (s->usum && s->uof[p] >= 0) {             /* B-bar: s_m -> the unit's mean */
-      const double d = s->usum[2 * s->uof[p] + 1] - mpm_sim_in_mean_stress(s, p);
+      const double d = mpm_sim_in_bbar_shift(s, s->uel, p);
       sxx += d;
       syy += d;
       szz += d;
