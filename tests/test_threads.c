@@ -13,7 +13,9 @@
  * units by the point extents (material.g_average = "extent", two colours of
  * bands), and by their centres with the unit sampling of p^-1/2 and the
  * implicit diffusion. The element and hybrid densities of the state
- * decision sum their unit masses in point order on one thread. */
+ * decision sum their unit masses in point order on one thread; so do the
+ * per-unit dilatations (the element rule on q4, the unit rule on
+ * triangles), whose per-point and per-unit loops run in parallel. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -58,8 +60,9 @@ static void column_config(mpm_config *c, const char *topology, int ngf, int dens
   if (delta)
     strcpy(c->mesh.shape, "delta");
   c->material.state_density = density;
-  if (density == MPM_DENSITY_UNIT) {   /* with the B-bar dilatation and APIC, as the example */
-    c->mesh.dilatation = MPM_DILATATION_UNIT;
+  if (density == MPM_DENSITY_UNIT) {   /* with the defaults' dilatation and APIC */
+    c->mesh.dilatation = strcmp(topology, "q4") == 0 ? MPM_DILATATION_ELEMENT
+                                                     : MPM_DILATATION_UNIT;
     c->time.transfer = MPM_TRANSFER_APIC;
   }
   c->bc.left = MPM_BC_SYMMETRY;
