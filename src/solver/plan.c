@@ -64,14 +64,17 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
                  + (extent ? MPM_NONLOCAL_PARTS * (sizeof(int) + sizeof(double)) : 0);
   if (bbar)
     per_point += sizeof(int);                                  /* the unit of each point */
+  const int dim = cfg->mesh.nz > 0 ? 3 : 2;
   double per_node = 9 * sizeof(double) + sizeof(int) + 2 + 2 * sizeof(double);  /* + bc */
+  if (cfg->time.transfer == MPM_TRANSFER_APIC)
+    per_node += dim * sizeof(double);                          /* the nodes' positions */
   double per_unit = 0.0;
   if (nonlocal)
     per_unit += 6 * sizeof(double);
   if (density)
     per_unit += 4 * sizeof(double);
   if (bbar)
-    per_unit += (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT ? 7 : 2) * sizeof(double);
+    per_unit += (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT ? 3 + 2 * dim : 2) * sizeof(double);
   if (nonlocal && cfg->material.diffusion == MPM_DIFFUSION_IMPLICIT)  /* the matrix, its */
     per_unit += 200.0 + 16.0 * log2(units + 2.0);  /* Cholesky factor (nested-dissection
                                                        fill: ~ N log N) and the vectors */
@@ -103,7 +106,8 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   sz->steps = ceil(cfg->time.t_end / sz->dt * (1.0 - 1e-12));
   /* one frame at t = 0, at most one per step on the schedule, one at the end */
   sz->frames = 2.0 + fmin(sz->steps, floor(cfg->time.t_end / cfg->time.frame_dt));
-  const double n = (double)sz->points, units = (double)cfg->mesh.nx * cfg->mesh.ny;
+  const double n = (double)sz->points,
+               units = (double)cfg->mesh.nx * cfg->mesh.ny * (dim3 ? cfg->mesh.nz : 1);
   sz->memory = BASE_BYTES + fmin(sz->frames * H5_CACHE_PER_FRAME, H5_CACHE_MAX) +
                workspace_bytes(cfg, n, (double)sz->nodes, units) +
                n * (double)point_store_bytes;        /* a checkpoint assembled in memory */
