@@ -227,8 +227,7 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
  * in point-to-grid as its unit's volume-weighted mean, its tr L is replaced
  * by its unit's volume-weighted mean, and after the update the dense
  * points of a unit share their unit's mean s_m. The unit sums run in point
- * order on one thread; the loops that write one point's or one unit's own
- * values run in parallel: thread-count free. */
+ * order on one thread: thread-count free. */
 
 int mpm_sim_in_node_table(mpm_sim *s, mpm_err *err)
 {
@@ -276,7 +275,6 @@ void mpm_sim_in_boxes(const mpm_sim *s, int *unit)
 {
   const mpm_points *P = s->pts;
   const mpm_mesh3 *m = &s->mesh3;
-#pragma omp parallel for schedule(static)
   for (size_t p = 0; p < P->n; p++) {
     const double x[3] = {P->x[p], P->y[p], P->z[p]};
     int u[3];
@@ -294,11 +292,11 @@ static void find_units(mpm_sim *s)
     mpm_sim_in_boxes(s, s->uof);
     return;
   }
-  const int nx = s->mesh.nx;
-#pragma omp parallel for schedule(static)
+  const mpm_mesh m = s->mesh;             /* a copy: its fields stay in registers */
   for (size_t p = 0; p < P->n; p++) {
     int i, j;
-    s->uof[p] = mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) == MPM_OK ? i + nx * j : -1;
+    double u, v;
+    s->uof[p] = mpm_mesh_locate(&m, P->x[p], P->y[p], &i, &j, &u, &v) ? -1 : i + m.nx * j;
   }
 }
 
@@ -444,24 +442,23 @@ EL_INLINE void filled_units_dim(mpm_sim *s, int dim)
   double vol = 1.0;
   for (int d = 0; d < dim; d++)
     vol *= g.h[d];
-  const int kz = dim == 3 ? 1 : 0;
-  const size_t nu = unit_count(s);
-  for (size_t e = 0; e < nu; e++)
+  const int nz = dim == 3 ? g.n[2] : 1, kz = dim == 3 ? 1 : 0;
+  for (size_t e = 0; e < unit_count(s); e++)
     el[w * e] = 1.0;
   for (size_t p = 0; p < P->n; p++)          /* a unit with a loose point is not filled */
     if (s->uof[p] >= 0 && P->state[p] != MPM_STATE_DENSE)
       el[w * (size_t)s->uof[p]] = 0.0;
-#pragma omp parallel for schedule(static)    /* unit by unit: its own value only */
-  for (size_t e = 0; e < nu; e++) {
-    int at[3];
-    unit_places(&g, e, dim, at);
-    int filled = el[w * e] > 0.0 && s->usum[2 * e] > 0.0;
-    for (int c = at[2] - kz; filled && c <= at[2] + kz; c++)
-      for (int b = at[1] - 1; filled && b <= at[1] + 1; b++)
-        for (int a = at[0] - 1; filled && a <= at[0] + 1; a++)
-          filled = neighbour_holds(s, &g, dim, (const int[3]){a, b, c});
-    el[w * e] = filled ? s->usum[2 * e] / vol : 0.0;
-  }
+  size_t e = 0;
+  for (int k = 0; k < nz; k++)
+    for (int j = 0; j < g.n[1]; j++)
+      for (int i = 0; i < g.n[0]; i++, e++) {
+        int filled = el[w * e] > 0.0 && s->usum[2 * e] > 0.0;
+        for (int c = k - kz; filled && c <= k + kz; c++)
+          for (int b = j - 1; filled && b <= j + 1; b++)
+            for (int a = i - 1; filled && a <= i + 1; a++)
+              filled = neighbour_holds(s, &g, dim, (const int[3]){a, b, c});
+        el[w * e] = filled ? s->usum[2 * e] / vol : 0.0;
+      }
 }
 
 static void filled_units(mpm_sim *s)
@@ -629,7 +626,6 @@ EL_INLINE void element_slopes_dim(mpm_sim *s, int dim)
     for (int d = 0; d < dim; d++)
       el[w * (size_t)u + 1 + (size_t)d] += P->vol[p] * x[d];
   }
-#pragma omp parallel for schedule(static)    /* unit by unit */
   for (size_t e = 0; e < nu; e++) {
     const double v = s->usum[2 * e];
     if (!(v > 0.0))
@@ -674,7 +670,6 @@ static void element_centre_values(mpm_sim *s)
   const int dim = s->dim;
   const unit_grid g = unit_grid_of(s);
   const size_t w = mpm_sim_in_el_width(s), nu = unit_count(s);
-#pragma omp parallel for schedule(static)
   for (size_t e = 0; e < nu; e++) {
     const double *f = s->uel + w * e;
     if (!(f[0] > 0.0))
@@ -723,7 +718,6 @@ EL_INLINE void element_rates_dim(mpm_sim *s, int dim)
   const unit_grid g = unit_grid_of(s);
   const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
   double *el = s->uel;
-#pragma omp parallel for schedule(static)
   for (size_t e = 0; e < nu; e++)
     if (el[w * e] > 0.0)
       el[w * e + 1] = el[w * e] * element_divergence(s, &g, dim, e);
@@ -741,7 +735,6 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
     element_rates_dim(s, 2);
   const double dt = s->dt;
   double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
-#pragma omp parallel for schedule(static)    /* point by point */
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     const double tr = trace_L(s, p);
@@ -765,7 +758,6 @@ EL_INLINE void project_dim(mpm_sim *s, int dim)
   mpm_points *P = s->pts;
   const double *el = s->uel;
   const size_t w = (size_t)(1 + 2 * dim);
-#pragma omp parallel for schedule(static)    /* point by point */
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)
