@@ -97,6 +97,41 @@ static long locate_all(mpm_sim *s)
   return first;
 }
 
+/* The geometry of the run's units, axis by axis (the plane's third axis a
+ * single unit): counts, sizes, origins, the index step of unit e along
+ * each axis, the conditions and outlet sides of each axis' two ends (a
+ * periodic axis: MPM_BC_PERIODIC at both). */
+typedef struct unit_grid {
+  int n[3];
+  size_t step[3];
+  double h[3], o[3];
+  int bc[3][2], side[3][2];
+} unit_grid;
+
+static unit_grid unit_grid_of(const mpm_sim *s)
+{
+  const mpm_config *cfg = &s->cfg;
+  unit_grid g = {.bc = {{cfg->bc.left, cfg->bc.right}, {cfg->bc.bottom, cfg->bc.top},
+                        {cfg->bc.front, cfg->bc.back}},
+                 .side = {{MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT}, {MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP},
+                          {MPM_OUTLET_FRONT, MPM_OUTLET_BACK}}};
+  if (s->dim == 3) {
+    const mpm_mesh3 *m = &s->mesh3;
+    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = m->nz;
+    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = m->dz;
+    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = m->z0;
+  } else {
+    const mpm_mesh *m = &s->mesh;
+    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = 1;
+    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = 1.0;
+    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = 0.0;
+  }
+  g.step[0] = 1;
+  g.step[1] = (size_t)g.n[0];
+  g.step[2] = (size_t)g.n[0] * (size_t)g.n[1];
+  return g;
+}
+
 /* APIC takes a stencil node's nearest periodic image (mpm_sim_in_node_offset):
  * right while every node lies within half a period of its point. A node lies
  * within h + 1 unit of its point, h = |r1| + |r2| (+ |r3| in 3D) along the
@@ -107,38 +142,24 @@ int mpm_sim_in_apic_extents_fit(const mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
   const int dim = s->dim;
-  int periodic[3];
-  double unit[3], len[3];
-  int n[3];
-  if (dim == 3) {
-    const mpm_mesh3 *m = &s->mesh3;
-    periodic[0] = m->periodic_x, periodic[1] = m->periodic_y, periodic[2] = m->periodic_z;
-    unit[0] = m->dx, unit[1] = m->dy, unit[2] = m->dz;
-    len[0] = m->lx, len[1] = m->ly, len[2] = m->lz;
-    n[0] = m->nx, n[1] = m->ny, n[2] = m->nz;
-  } else {
-    const mpm_mesh *m = &s->mesh;
-    periodic[0] = m->periodic_x, periodic[1] = m->periodic_y;
-    unit[0] = m->dx, unit[1] = m->dy;
-    len[0] = m->lx, len[1] = m->ly;
-    n[0] = m->nx, n[1] = m->ny;
-  }
+  const unit_grid g = unit_grid_of(s);
   const double *const r[3][3] = {{P->r1x, P->r2x, P->r3x}, {P->r1y, P->r2y, P->r3y},
                                  {P->r1z, P->r2z, P->r3z}};
   for (int axis = 0; axis < dim; axis++) {
-    if (!periodic[axis])
+    if (g.bc[axis][0] != MPM_BC_PERIODIC)
       continue;
+    const double unit = g.h[axis], len = g.n[axis] * unit;
     for (size_t p = 0; p < P->n; p++) {
       double h = 0.0;
       for (int v = 0; v < dim; v++)
         h += fabs(r[axis][v][p]);
-      if (!(2.0 * (h + unit[axis]) < len[axis]))
+      if (!(2.0 * (h + unit) < len))
         return mpm_err_set(err, MPM_EINPUT,
                            "point %d: its extent reaches %.3g units along the periodic %c axis "
                            "of %d units at t = %.6g s (allowed with time.transfer = \"apic\": "
                            "less than half the axis minus one unit); a convected (cpdi) "
                            "extent grew: use shape \"ugimp\" or more units", P->id[p],
-                           h / unit[axis], "xyz"[axis], n[axis], s->t);
+                           h / unit, "xyz"[axis], g.n[axis], s->t);
     }
   }
   return MPM_OK;
@@ -232,26 +253,18 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
 int mpm_sim_in_node_table(mpm_sim *s, mpm_err *err)
 {
   const int dim = s->dim;
-  int sn[3], nn;
-  double o[3], h[3];
-  if (dim == 3) {
-    const mpm_mesh3 *m = &s->mesh3;
-    sn[0] = m->snx, sn[1] = m->sny, sn[2] = m->snz, nn = m->nnodes;
-    o[0] = m->x0, o[1] = m->y0, o[2] = m->z0;
-    h[0] = m->dx, h[1] = m->dy, h[2] = m->dz;
-  } else {
-    const mpm_mesh *m = &s->mesh;
-    sn[0] = m->snx, sn[1] = m->sny, sn[2] = 1, nn = m->nnodes;
-    o[0] = m->x0, o[1] = m->y0;
-    h[0] = m->dx, h[1] = m->dy;
-  }
+  const unit_grid g = unit_grid_of(s);
+  int sn[3] = {1, 1, 1};                   /* stored nodes: a periodic axis aliases its last */
+  for (int d = 0; d < dim; d++)
+    sn[d] = g.n[d] + (g.bc[d][0] == MPM_BC_PERIODIC ? 0 : 1);
+  const int nn = sn[0] * sn[1] * sn[2];
   double *xn = malloc((size_t)dim * (size_t)nn * sizeof *xn);
   if (!xn)
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the positions of %d nodes", nn);
   for (int i = 0; i < nn; i++) {
     const int idx[3] = {i % sn[0], i / sn[0] % sn[1], i / (sn[0] * sn[1])};
     for (int d = 0; d < dim; d++)
-      xn[(size_t)d * (size_t)nn + (size_t)i] = o[d] + idx[d] * h[d];
+      xn[(size_t)d * (size_t)nn + (size_t)i] = g.o[d] + idx[d] * g.h[d];
   }
   s->xnode = xn;
   return MPM_OK;
@@ -373,40 +386,6 @@ static inline void unit_means(mpm_sim *s, int what)
 #define EL_INLINE static inline
 #endif
 
-/* The geometry of the run's units, axis by axis: counts, sizes, origins,
- * the index step of unit e along each axis, the conditions and outlet
- * sides of each axis' two ends. */
-typedef struct unit_grid {
-  int n[3];
-  size_t step[3];
-  double h[3], o[3];
-  int bc[3][2], side[3][2];
-} unit_grid;
-
-static unit_grid unit_grid_of(const mpm_sim *s)
-{
-  const mpm_config *cfg = &s->cfg;
-  unit_grid g = {.bc = {{cfg->bc.left, cfg->bc.right}, {cfg->bc.bottom, cfg->bc.top},
-                        {cfg->bc.front, cfg->bc.back}},
-                 .side = {{MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT}, {MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP},
-                          {MPM_OUTLET_FRONT, MPM_OUTLET_BACK}}};
-  if (s->dim == 3) {
-    const mpm_mesh3 *m = &s->mesh3;
-    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = m->nz;
-    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = m->dz;
-    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = m->z0;
-  } else {
-    const mpm_mesh *m = &s->mesh;
-    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = 1;
-    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = 1.0;
-    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = 0.0;
-  }
-  g.step[0] = 1;
-  g.step[1] = (size_t)g.n[0];
-  g.step[2] = (size_t)g.n[0] * (size_t)g.n[1];
-  return g;
-}
-
 /* The places of unit e along the D axes. */
 EL_INLINE void unit_places(const unit_grid *g, size_t e, int dim, int at[3])
 {
@@ -437,13 +416,14 @@ EL_INLINE void filled_units_dim(mpm_sim *s, int dim)
 {
   const mpm_points *P = s->pts;
   const unit_grid g = unit_grid_of(s);
-  const size_t w = (size_t)(1 + 2 * dim);
+  const size_t w = mpm_sim_in_el_width_of(dim);
   double *el = s->uel;
   double vol = 1.0;
   for (int d = 0; d < dim; d++)
     vol *= g.h[d];
   const int nz = dim == 3 ? g.n[2] : 1, kz = dim == 3 ? 1 : 0;
-  for (size_t e = 0; e < unit_count(s); e++)
+  const size_t nu = unit_count(s);
+  for (size_t e = 0; e < nu; e++)
     el[w * e] = 1.0;
   for (size_t p = 0; p < P->n; p++)          /* a unit with a loose point is not filled */
     if (s->uof[p] >= 0 && P->state[p] != MPM_STATE_DENSE)
@@ -508,7 +488,7 @@ EL_INLINE double face_share(const unit_grid *g, int dim, int d)
 EL_INLINE void element_forces_dim(mpm_sim *s, int dim)
 {
   const unit_grid g = unit_grid_of(s);
-  const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
+  const size_t w = mpm_sim_in_el_width_of(dim), nu = unit_count(s);
   const int nc = 1 << dim;
   double share[3];
   for (int d = 0; d < dim; d++)
@@ -612,7 +592,7 @@ EL_INLINE void element_slopes_dim(mpm_sim *s, int dim)
 {
   const mpm_points *P = s->pts;
   const unit_grid g = unit_grid_of(s);
-  const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
+  const size_t w = mpm_sim_in_el_width_of(dim), nu = unit_count(s);
   double *el = s->uel;
   for (size_t e = 0; e < nu; e++)
     for (int d = 0; d < dim; d++)
@@ -716,7 +696,7 @@ int mpm_sim_in_unit_stress(mpm_sim *s, mpm_err *err)
 EL_INLINE void element_rates_dim(mpm_sim *s, int dim)
 {
   const unit_grid g = unit_grid_of(s);
-  const size_t w = (size_t)(1 + 2 * dim), nu = unit_count(s);
+  const size_t w = mpm_sim_in_el_width_of(dim), nu = unit_count(s);
   double *el = s->uel;
   for (size_t e = 0; e < nu; e++)
     if (el[w * e] > 0.0)
@@ -757,7 +737,7 @@ EL_INLINE void project_dim(mpm_sim *s, int dim)
 {
   mpm_points *P = s->pts;
   const double *el = s->uel;
-  const size_t w = (size_t)(1 + 2 * dim);
+  const size_t w = mpm_sim_in_el_width_of(dim);
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     if (u < 0 || P->state[p] != MPM_STATE_DENSE)

@@ -82,9 +82,14 @@ static inline double mpm_sim_in_mean_stress(const mpm_sim *s, size_t p)
 
 /* "element": the values the unit grid keeps per unit in s->uel, 1 + 2D
  * (the fill, the centroid, the slope of the mean stress; transfer.c). */
+static inline size_t mpm_sim_in_el_width_of(int dim)
+{
+  return 1 + 2 * (size_t)dim;
+}
+
 static inline size_t mpm_sim_in_el_width(const mpm_sim *s)
 {
-  return 1 + 2 * (size_t)s->dim;
+  return mpm_sim_in_el_width_of(s->dim);
 }
 
 /* B-bar in point-to-grid: the change of point p's mean stress (its unit
