@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # [HS21] Fig. 19 analogue: the slice through the middle of the draining 3D
 # silo (inputs/silo3d.conf, a quarter with mirror planes x = 0 and z = 0,
-# mu(I); about 3 minutes on 2 cores), at 0.6, 1.2 and 2.4 s: the points with
+# with [HS21]'s hyperelastic NGF as in its Fig. 19; about 15 minutes on one
+# core), at 0.6, 1.2 and 2.4 s: the points with
 # z <= 1 cm, mirrored about x = 0 to show the whole width, coloured by speed
 # (top row) and by plastic shear rate (bottom row).
 #   figures/hs21-fig19.sh OUTDIR
@@ -11,10 +12,11 @@ granmpm=${GRANMPM:-$src/src/app/granmpm}
 out=${1:?usage: hs21-fig19.sh OUTDIR}
 work=$out/hs21-fig19.d
 mkdir -p "$work"
-run=$work/silo3d
+run=$work/silo3d-ngf
 [ -s "$run/diagnostics.csv" ] && grep -q '^2\.4' "$run/diagnostics.csv" ||
   "$granmpm" run "$src/inputs/silo3d.conf" --quiet --force --output "$run" \
-    --set time.t_end=2.4 --set time.frame_dt=0.05
+    --set time.t_end=2.4 --set time.frame_dt=0.05 --set material.model=ngf_hyper \
+    --set material.p_sample=point
 speed= gdp= titles=
 for t in 0.6 1.2 2.4; do
   f=$(awk -v t="$t" 'BEGIN { printf "%d", t / 0.05 + 0.5 }')

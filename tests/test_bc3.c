@@ -282,6 +282,66 @@ START_TEST(disc_outlet_frees_the_nodes_inside)
 }
 END_TEST
 
+/* The unit faces of a rectangular outlet (mpm_bc3_outlet_faces) are exactly
+ * those whose four corners the outlet frees: checked unit by unit against
+ * the nodes counted directly; along the normal the range covers the mesh. A
+ * disc has no range. */
+static void check_outlet_faces(int f, const double a[2], const double b[2])
+{
+  mpm_mesh3 m;
+  mesh_of(&m, 6, 5, 7);
+  int face[6];
+  for (int q = 0; q < 6; q++)
+    face[q] = MPM_BC_NOSLIP;
+  mpm_bc3 bc = {0};
+  mpm_err err = {0};
+  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_NOSLIP, &err) == MPM_OK,
+                "%s", err.msg);
+  int *inside = malloc(sizeof(int) * (size_t)m.nnodes);
+  direct_count(&m, f, 0, a, b, 0.0, inside);
+  int lo[3], hi[3];
+  ck_assert_int_eq(mpm_bc3_outlet_faces(&bc, &m, lo, hi), f);
+  const int n[3] = {m.nx, m.ny, m.nz};
+  ck_assert_int_eq(lo[f / 2], 0);
+  ck_assert_int_eq(hi[f / 2], n[f / 2]);
+  int ax[2];
+  mpm_bc3_face_axes(f, ax);
+  int open = 0;
+  for (int u = 0; u < n[ax[0]]; u++)
+    for (int v = 0; v < n[ax[1]]; v++) {
+      int all = 1;
+      for (int du = 0; du <= 1; du++)
+        for (int dv = 0; dv <= 1; dv++) {
+          int ijk[3];
+          ijk[f / 2] = f % 2 ? n[f / 2] : 0;
+          ijk[ax[0]] = u + du;
+          ijk[ax[1]] = v + dv;
+          all &= inside[mpm_mesh3_node(&m, ijk[0], ijk[1], ijk[2])];
+        }
+      const int in_range = u >= lo[ax[0]] && u < hi[ax[0]] && v >= lo[ax[1]] && v < hi[ax[1]];
+      ck_assert_int_eq(in_range, all);
+      open += all;
+    }
+  ck_assert_int_ge(open, 2);
+  const double c[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+  ck_assert_msg(mpm_bc3_set_outlet_disc(&bc, &m, f, c, 1.0, MPM_BC_NOSLIP, &err) == MPM_OK,
+                "%s", err.msg);
+  ck_assert_int_eq(mpm_bc3_outlet_faces(&bc, &m, lo, hi), -1);
+  ck_assert_int_eq(hi[0] + hi[1] + hi[2], 0);
+  free(inside);
+  mpm_bc3_clear(&bc);
+}
+
+START_TEST(rectangle_outlet_faces_have_four_free_corners)
+{
+  const double lo[2] = {1.7, -1.6}, hi[2] = {3.3, -0.9};
+  check_outlet_faces(MPM_FACE_ZLO, lo, hi);
+  const double lo2[2] = {-1.9, 1.1}, hi2[2] = {-1.1, 2.3};
+  check_outlet_faces(MPM_FACE_XHI, lo2, hi2);
+}
+END_TEST
+
 START_TEST(outlet_refusals)
 {
   mpm_mesh3 m;
@@ -317,6 +377,7 @@ int main(void)
   tcase_add_test(tc, periodic_faces_in_pairs_matching_the_mesh);
   tcase_add_test(tc, rectangle_outlet_frees_the_nodes_inside);
   tcase_add_test(tc, disc_outlet_frees_the_nodes_inside);
+  tcase_add_test(tc, rectangle_outlet_faces_have_four_free_corners);
   tcase_add_test(tc, outlet_refusals);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

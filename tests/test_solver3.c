@@ -32,6 +32,7 @@
 #endif
 
 #include "core/config.h"
+#include "nonlocal/grid.h"
 #include "solver/solver.h"
 #include "sim_config.h"
 
@@ -260,9 +261,65 @@ START_TEST(t_plane)
 END_TEST
 
 /* A box draining through a square orifice in its floor (a disc with
- * _i = 1): points leave only through it, and the mass in the box plus the
- * mass removed stays the initial mass. */
+ * _i = 1; _i = 2: the square under the hyperelastic NGF): points leave only
+ * through it, and the mass in the box plus the mass removed stays the
+ * initial mass. Under NGF the open orifice is a free surface for g: the
+ * field's open faces are the units of the floor whose four corners it
+ * frees (mpm_bc3_outlet_faces), and every g stays finite and >= 0. */
 START_TEST(t_outlet)
+{
+  mpm_config c;
+  box_config(&c, "ugimp", 6, 6, 6);
+  sim_config_material(&c, _i == 2 ? "ngf_hyper" : "mu_i", 1e6);
+  c.bc.left = c.bc.right = c.bc.bottom = c.bc.front = c.bc.back = MPM_BC_NOSLIP;
+  c.bc.top = MPM_BC_FREE;
+  c.gravity.gy = -9.8;
+  c.fill[0].ymax = 0.04;
+  c.outlet.edge = MPM_OUTLET_BOTTOM;
+  c.outlet.closed = MPM_BC_NOSLIP;
+  c.outlet.from = c.outlet.from2 = 0.02;
+  c.outlet.to = c.outlet.to2 = 0.04;
+  c.outlet.shape = _i == 1 ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
+  mpm_sim *s = make(&c);
+  const double m0 = s->mass0;
+  steps(s, 300);
+  const mpm_points *P = s->pts;
+  ck_assert_int_gt(s->nremoved, 10);
+  const mpm_nonlocal_grid *g = mpm_sim3_field_grid(s);
+  ck_assert_int_eq(g != NULL, _i == 2);
+  if (g) {
+    int lo[3], hi[3];
+    ck_assert_int_eq(mpm_bc3_outlet_faces(&s->bc3, &s->mesh3, lo, hi), MPM_FACE_YLO);
+    ck_assert_int_eq(g->open_face, MPM_FACE_YLO);
+    for (int a = 0; a < 3; a++) {
+      ck_assert_int_eq(g->open_lo[a], a == 1 ? 0 : 2);      /* units 2, 3: 0.02 ... 0.04 m */
+      ck_assert_int_eq(g->open_hi[a], a == 1 ? 6 : 4);
+      ck_assert_int_eq(g->open_lo[a], lo[a]);
+      ck_assert_int_eq(g->open_hi[a], hi[a]);
+    }
+    int fluid = 0;
+    for (size_t p = 0; p < P->n; p++) {
+      ck_assert(isfinite(P->g[p]) && P->g[p] >= 0.0);
+      fluid += P->g[p] > 0.0;
+    }
+    ck_assert_int_gt(fluid, 10);
+  }
+  double m = 0.0;
+  for (size_t p = 0; p < P->n; p++) {
+    m += P->mass[p];
+    ck_assert(P->y[p] >= 0.0 && P->x[p] >= 0.0 && P->x[p] <= 0.06 && P->z[p] >= 0.0 &&
+              P->z[p] <= 0.06);
+  }
+  ck_assert_uint_eq(P->n + (size_t)s->nremoved, 6 * 4 * 6 * 8);
+  ck_assert_double_eq_tol(m + s->mass_removed, m0, 1e-13 * m0);
+  mpm_sim_free(s);
+}
+END_TEST
+
+/* stop.mass in 3D: the box of t_outlet run by mpm_sim_run stops once the
+ * mass left in it (kg) falls below half the initial, with that mass as the
+ * stop value. */
+START_TEST(t_stop_mass)
 {
   mpm_config c;
   box_config(&c, "ugimp", 6, 6, 6);
@@ -273,22 +330,22 @@ START_TEST(t_outlet)
   c.fill[0].ymax = 0.04;
   c.outlet.edge = MPM_OUTLET_BOTTOM;
   c.outlet.closed = MPM_BC_NOSLIP;
-  c.outlet.from = c.outlet.from2 = 0.02;
-  c.outlet.to = c.outlet.to2 = 0.04;
-  c.outlet.shape = _i ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
+  c.outlet.from = c.outlet.from2 = 0.0;
+  c.outlet.to = c.outlet.to2 = 0.06;        /* the whole floor opens: free fall */
+  c.stop.mass = 0.5 * 1500 * 0.06 * 0.04 * 0.06;
+  c.region.xmin = c.region.ymin = -1e9;       /* the input's default region: all */
+  c.region.xmax = c.region.ymax = 1e9;
+  c.time.t_end = 1.0;
   mpm_sim *s = make(&c);
-  const double m0 = s->mass0;
-  steps(s, 300);
-  const mpm_points *P = s->pts;
-  ck_assert_int_gt(s->nremoved, 10);
+  mpm_err err = {0};
+  ck_assert_msg(mpm_sim_run(s, NULL, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_int_eq(s->stop, MPM_STOP_MASS);
+  ck_assert(s->t < 0.2);                      /* free fall through 2 cm: about 0.06 s */
   double m = 0.0;
-  for (size_t p = 0; p < P->n; p++) {
-    m += P->mass[p];
-    ck_assert(P->y[p] >= 0.0 && P->x[p] >= 0.0 && P->x[p] <= 0.06 && P->z[p] >= 0.0 &&
-              P->z[p] <= 0.06);
-  }
-  ck_assert_uint_eq(P->n + (size_t)s->nremoved, 6 * 4 * 6 * 8);
-  ck_assert_double_eq_tol(m + s->mass_removed, m0, 1e-13 * m0);
+  for (size_t p = 0; p < s->pts->n; p++)
+    m += s->pts->mass[p];
+  ck_assert(m < c.stop.mass && m > 0.0);
+  ck_assert_double_eq(s->stop_value, m);
   mpm_sim_free(s);
 }
 END_TEST
@@ -732,7 +789,8 @@ int main(void)
   tcase_add_loop_test(tc, t_plane, 0, 6);
   tcase_add_loop_test(tc, t_apic_affine, 0, 3);
   tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
-  tcase_add_loop_test(tc, t_outlet, 0, 2);
+  tcase_add_loop_test(tc, t_outlet, 0, 3);
+  tcase_add_test(tc, t_stop_mass);
   tcase_add_test(tc, t_unit_options);
   tcase_add_test(tc, t_element_uniform);
   tcase_add_test(tc, t_element_forces);

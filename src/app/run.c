@@ -165,8 +165,9 @@ static int report_flow_rate(const run_ctx *c, const mpm_config *cfg, mpm_err *er
     fprintf(stderr, "granmpm: no flow rate: %s\n", ferr.msg);
     return MPM_OK;
   }
-  fprintf(stderr, "granmpm: flow rate Q = %.6g kg/(m s) from %zu frames with %g <= mass <= %g "
-          "kg/m\n", q, n, cfg->region.m_lo, cfg->region.m_hi);
+  const int d3 = cfg->mesh.nz > 0;           /* masses per unit thickness in the plane */
+  fprintf(stderr, "granmpm: flow rate Q = %.6g %s from %zu frames with %g <= mass <= %g %s\n", q,
+          d3 ? "kg/s" : "kg/(m s)", n, cfg->region.m_lo, cfg->region.m_hi, d3 ? "kg" : "kg/m");
   char path[MPM_PATH_MAX + 32];
   snprintf(path, sizeof path, "%s/flow-rate.txt", cfg->output.dir);
   FILE *f = fopen(path, "w");
@@ -232,8 +233,8 @@ static int execute(mpm_app_plan *p, run_ctx *ctx)
             sim->stop_value, cfg->stop.ke);
   else if (sim->stop == MPM_STOP_MASS)
     fprintf(stderr, "granmpm: stopped at t = %.6g s (before t_end = %.6g s): mass in region "
-            "%.6g kg/m < stop.mass = %.6g kg/m\n", sim->t, cfg->time.t_end, sim->stop_value,
-            cfg->stop.mass);
+            "%.6g %s < stop.mass = %.6g %s\n", sim->t, cfg->time.t_end, sim->stop_value,
+            cfg->mesh.nz > 0 ? "kg" : "kg/m", cfg->stop.mass, cfg->mesh.nz > 0 ? "kg" : "kg/m");
   if (cfg->region.m_hi > 0.0 && report_flow_rate(ctx, cfg, &err) != MPM_OK) {
     fprintf(stderr, "granmpm: %s\n", err.msg);
     return MPM_APP_EXIT_RUNTIME;

@@ -171,6 +171,33 @@ void mpm_bc3_open_outlet(mpm_bc3 *bc)
   }
 }
 
+int mpm_bc3_outlet_faces(const mpm_bc3 *bc, const mpm_mesh3 *m, int lo[3], int hi[3])
+{
+  for (int a = 0; a < 3; a++)
+    lo[a] = hi[a] = 0;
+  if (bc->out_face < 0 || bc->out_shape != MPM_OUTLET3_RECTANGLE)
+    return -1;
+  const int f = bc->out_face;
+  const int n[3] = {m->nx, m->ny, m->nz};
+  const double o[3] = {m->x0, m->y0, m->z0}, d[3] = {m->dx, m->dy, m->dz};
+  int ax[2];
+  mpm_bc3_face_axes(f, ax);
+  hi[f / 2] = n[f / 2];                        /* across the face: every layer */
+  for (int k = 0; k < 2; k++) {
+    const int a = ax[k];
+    const double tol = 1e-9 * d[a];            /* as the nodes of set_outlet */
+    for (int u = 0; u < n[a]; u++) {           /* unit u: nodes u and u + 1 */
+      const double s0 = o[a] + u * d[a], s1 = o[a] + (u + 1) * d[a];
+      if (s0 < bc->out_lo[k] - tol || s1 > bc->out_hi[k] + tol)
+        continue;
+      if (hi[a] == 0)
+        lo[a] = u;
+      hi[a] = u + 1;
+    }
+  }
+  return f;
+}
+
 int mpm_bc3_left_through_outlet(const mpm_bc3 *bc, const mpm_mesh3 *m, const double x[3])
 {
   if (!bc->open || bc->out_face < 0)

@@ -60,6 +60,13 @@ int mpm_bc3_set_outlet_disc(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double
                             double r, int closed, mpm_err *err);
 void mpm_bc3_open_outlet(mpm_bc3 *bc);
 
+/* The unit faces of a rectangular outlet: units lo[a] <= c_a < hi[a] along
+ * the face's two axes have all four corners of their face in the outlet
+ * (the rule of the plane's mpm_bc_outlet_faces); along the normal the range
+ * covers the mesh. Returns the face (MPM_FACE_*), or -1 with empty ranges
+ * when there is no outlet or it is a disc. */
+int mpm_bc3_outlet_faces(const mpm_bc3 *bc, const mpm_mesh3 *m, int lo[3], int hi[3]);
+
 /* 1 if a point at x beyond the outlet's face left through the open outlet
  * (its coordinates in the face's axes in the rectangle or disc). */
 int mpm_bc3_left_through_outlet(const mpm_bc3 *bc, const mpm_mesh3 *m, const double x[3]);

@@ -31,7 +31,7 @@ int mpm_diag_region_flow_rate(const double *t, const double *m, size_t n, double
     *nused = k;
   if (k < 2)
     return mpm_err_set(err, MPM_EINVAL,
-                       "flow rate: %zu samples with %g <= mass <= %g kg/m (need 2)", k, m_lo,
+                       "flow rate: %zu samples with m_lo %g <= mass <= m_hi %g (need 2)", k, m_lo,
                        m_hi);
   const double tm = st / (double)k, mm = sm / (double)k;
   double stt = 0.0, stm = 0.0;

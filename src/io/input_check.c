@@ -613,9 +613,9 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     {c->wall_nlist[0] > 0, S_WALL, "x", "no wall polygon"},
     {cfg->outlet.ends != MPM_OUTLET_ENDS_FREE, S_OUTLET, "ends", "\"free\""},
     {cfg->absorb.above < 1e9, S_ABSORB, "above", "no absorbing layer"},
-    {cfg->stop.mass > 0.0, S_STOP, "mass", "0"},
-    {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE, S_OUTLET, "edge",
-     "\"none\" with model \"ngf_hyper\": the fluidity field has no open face yet"},
+    {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE && cfg->outlet.shape == MPM_OUTLET_DISC,
+     S_OUTLET, "shape", "\"rectangle\" with model \"ngf_hyper\": the open faces of the "
+     "fluidity field are a range of units"},
   };
   for (size_t i = 0; i < sizeof no3 / sizeof no3[0]; i++) {
     if (!no3[i].on)

@@ -162,6 +162,9 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err);
 int mpm_sim3_step(mpm_sim *s, mpm_err *err);
 typedef struct mpm_sim3_work mpm_sim3_work;
 void mpm_sim3_work_free(mpm_sim3_work *w);   /* accepts NULL */
+/* The unit grid of a 3D nonlocal model's fluidity field, with the ghost
+ * rules in force (an open outlet's faces included); NULL for a local model. */
+const struct mpm_nonlocal_grid *mpm_sim3_field_grid(const mpm_sim *s);
 
 /* Frame callback of the run driver, called at t = 0, every frame_dt and at the end. */
 typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);

@@ -84,6 +84,11 @@ static int work_alloc(mpm_sim *s, mpm_err *err)
   return mpm_nonlocal3_alloc(&s->w3->nl, m, ghost, err);
 }
 
+const mpm_nonlocal_grid *mpm_sim3_field_grid(const mpm_sim *s)
+{
+  return s->w3 && s->w3->nl ? &s->w3->nl->grid : NULL;
+}
+
 /* Room for the per-point arrays of n points. */
 static int work_reserve(mpm_sim3_work *w, size_t n, mpm_err *err)
 {
@@ -369,8 +374,9 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
         bad = (long)p > bad ? (long)p : bad;
     return bad;
   }
-  for (size_t p = 0; p < n; p++)
-    if (w->unit[p] < 0) {                   /* the fluidity field has no open face */
+  for (size_t p = 0; p < n; p++) {
+    const double x[3] = {P->x[p], P->y[p], P->z[p]};
+    if (w->unit[p] < 0 && !mpm_bc3_left_through_outlet(&s->bc3, &s->mesh3, x)) {
       if (mpm_sim_check_state(s, s->t + s->dt, err) != MPM_OK)
         *rc = MPM_ENONFINITE;
       else
@@ -378,13 +384,16 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
                           "t = %.6g s", P->id[p], P->x[p], P->y[p], P->z[p], s->t + s->dt);
       return -1;
     }
+  }
+  /* a point out through the open outlet (unit -1) leaves at the step's end
+   * (remove.c): it neither enters the unit field nor is updated */
   const int local = s->t < s->par.t_seed - 1e-9 * s->dt;
   const int implicit = s->cfg.material.diffusion == MPM_DIFFUSION_IMPLICIT;
   for (int k = 0; k < s->n_sub; k++) {
 #pragma omp parallel for schedule(static)
     for (size_t p = 0; p < n; p++)
-      w->dense[p] = (unsigned char)s->mat->dense(&s->par, stress_of(P, p),
-                                                 P->mass[p] / P->vol[p]);
+      w->dense[p] = (unsigned char)(w->unit[p] >= 0 &&
+                                    s->mat->dense(&s->par, stress_of(P, p), P->mass[p] / P->vol[p]));
     mpm_nonlocal3_average(w->nl, n, w->unit, P->mass, P->g, w->dense);
     if (local)
       memset(w->nl->lap, 0, w->nl->grid.nu * sizeof *w->nl->lap);
@@ -399,7 +408,7 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
     const double *lap = w->nl->lap;
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++)
-      if (!update_hyper(s, p, w->L + 9 * p, h, lap[w->unit[p]]))
+      if (w->unit[p] >= 0 && !update_hyper(s, p, w->L + 9 * p, h, lap[w->unit[p]]))
         bad = (long)p > bad ? (long)p : bad;
   }
   return bad;
@@ -409,8 +418,15 @@ int mpm_sim3_step(mpm_sim *s, mpm_err *err)
 {
   mpm_points *P = s->pts;
   if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc3.open &&
-      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt)
+      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt) {
     mpm_bc3_open_outlet(&s->bc3);         /* the orifice opens */
+    if (s->w3 && s->w3->nl) {             /* a free surface for g */
+      int lo[3], hi[3];
+      const int f = mpm_bc3_outlet_faces(&s->bc3, &s->mesh3, lo, hi);
+      if (f >= 0)
+        mpm_nonlocal_grid_open_faces(&s->w3->nl->grid, f, lo, hi);
+    }
+  }
   int rc = mpm_shape3_stencil_compute(s->st, s->shape3, &s->mesh3, P, s->t, err);
   if (rc == MPM_EOUTSIDE && mpm_sim_check_state(s, s->t, err) != MPM_OK)
     return MPM_ENONFINITE;                /* "outside" at a non-finite position: say that */
