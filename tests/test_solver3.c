@@ -316,6 +316,43 @@ START_TEST(t_outlet)
 }
 END_TEST
 
+/* absorb ([DK-silo] 7.1) in 3D: after a step, a point at or above the line
+ * that moves up has its vy scaled by the factor; a point below it, or moving
+ * down, keeps its velocity (a stress-free periodic box under no gravity:
+ * the first step's nodal forces vanish, so FLIP leaves every velocity as it
+ * was). Points at y = 2.5, 7.5, 12.5 and 17.5 mm, the line at 10 mm. */
+START_TEST(t_absorb_layer)
+{
+  const double factor[2] = {0.0, 0.5};
+  for (int k = 0; k < 2; k++) {
+    mpm_config c;
+    box_config(&c, shapes[_i], 2, 2, 2);
+    c.absorb.above = 0.01;
+    c.absorb.factor = factor[k];
+    mpm_sim *s = make(&c);
+    mpm_points *P = s->pts;
+    ck_assert_uint_eq(P->n, 64);
+    for (size_t p = 0; p < P->n; p++) {
+      P->vx[p] = 0.3;
+      P->vy[p] = (P->id[p] & 1) ? 0.2 : -0.2; /* up and down in every row */
+      P->vz[p] = -0.1;
+    }
+    steps(s, 1);
+    int scaled = 0;
+    for (size_t p = 0; p < P->n; p++) {
+      const int high = P->y[p] >= 0.01, up = (int)(P->id[p] & 1);
+      const double vy = up ? 0.2 : -0.2;
+      scaled += high && up;
+      ck_assert_double_eq_tol(P->vy[p], high && up ? factor[k] * vy : vy, 1e-12);
+      ck_assert_double_eq_tol(P->vx[p], 0.3, 1e-12);
+      ck_assert_double_eq_tol(P->vz[p], -0.1, 1e-12);
+    }
+    ck_assert_int_eq(scaled, 16);
+    mpm_sim_free(s);
+  }
+}
+END_TEST
+
 /* stop.mass in 3D: the box of t_outlet run by mpm_sim_run stops once the
  * mass left in it (kg) falls below half the initial, with that mass as the
  * stop value. */
@@ -791,6 +828,7 @@ int main(void)
   tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
   tcase_add_loop_test(tc, t_outlet, 0, 3);
   tcase_add_test(tc, t_stop_mass);
+  tcase_add_loop_test(tc, t_absorb_layer, 0, 3);
   tcase_add_test(tc, t_unit_options);
   tcase_add_test(tc, t_element_uniform);
   tcase_add_test(tc, t_element_forces);

@@ -278,7 +278,8 @@ static int update_hyper(mpm_sim *s, size_t p, const double L[9], double h, doubl
 
 /* Step 7 for point p moved by the grid velocity vg: the walls hold it (a
  * disconnected point's velocity into a wall limited to the grid's, as in
- * the plane), periodic axes wrap it. */
+ * the plane), periodic axes wrap it, and the absorbing layer takes its
+ * upward velocity as in the plane. */
 static void bookkeeping(mpm_sim *s, size_t p, const double vg[3])
 {
   mpm_points *P = s->pts;
@@ -302,6 +303,7 @@ static void bookkeeping(mpm_sim *s, size_t p, const double vg[3])
     if (P->state[p] != MPM_STATE_DENSE)
       *v[d] = vd;
   }
+  *v[1] = mpm_sim_in_absorbed(s->cfg.absorb.above, s->cfg.absorb.factor, *x[1], *v[1]);
 }
 
 enum { CHUNK3 = 64 };

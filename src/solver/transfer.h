@@ -261,6 +261,14 @@ static inline void mpm_sim_in_advance(mpm_sim *s, size_t a, size_t b, const doub
     }
 }
 
+/* The absorbing layer of [DK-silo] section 7.1 (absorb.above, .factor):
+ * the upward velocity vy of a point at height y at or above the line,
+ * scaled by the factor; any other unchanged. */
+static inline double mpm_sim_in_absorbed(double above, double factor, double y, double vy)
+{
+  return y >= above && vy > 0.0 ? vy * factor : vy;
+}
+
 /* Step 7 for points [a, b), each moved by the grid velocity
  * (vgx, vgy)[p - a]: walls hold, the absorbing layer of [DK-silo] section
  * 7.1 (upward motion high in a silo is elastic waves), periodic wrap. */
@@ -293,7 +301,7 @@ static inline void mpm_sim_in_bookkeeping(mpm_sim *s, size_t a, size_t b, const 
   if (above < m.y0 + m.ly) {         /* the absorbing layer lies in the mesh */
 #pragma omp simd
     for (size_t p = a; p < b; p++)
-      vy[p] = y[p] >= above && vy[p] > 0.0 ? vy[p] * factor : vy[p];
+      vy[p] = mpm_sim_in_absorbed(above, factor, y[p], vy[p]);
   }
   if (m.periodic_x || m.periodic_y)
     for (size_t p = a; p < b; p++)
