@@ -390,6 +390,47 @@ START_TEST(t_uniaxial_hencky)
 }
 END_TEST
 
+/* The elastic state of an initial stress (mpm_material_hyper_F_of_stress):
+ * for random compressive stresses, turned by random rotations, up to 10 %
+ * of K in pressure and deviator, F is symmetric and gives the stress back
+ * (to the banner's tolerance); the lithostatic state of a fill (sigma_yy =
+ * -1e4 Pa, sigma_xx = sigma_zz = K0 sigma_yy) a diagonal stretch along y
+ * alone to first order (uniaxial strain), and a zero stress the identity. */
+START_TEST(t_F_of_stress)
+{
+  const mpm_material_params par = params(MPM_NGF_DK);
+  const mpm_mat3 I = mpm_mat3_identity();
+  unsigned long s = 77;
+  for (int k = 0; k < 200; k++) {
+    const double p = 0.1 * par.K * lcg(&s);
+    mpm_sym3 d = mpm_sym3_dev(rand_sym(&s, 0.1 * par.K));
+    mpm_mat3 q = rand_rotation(&s);
+    const mpm_sym3 sig = mpm_sym3_add_iso(mpm_sym3_congruence(&q, d), -p);
+    const mpm_mat3 F = mpm_material_hyper_F_of_stress(&par, sig);
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        ck_assert(fabs(F.m[i][j] - F.m[j][i]) <= 16.0 * EPS);
+    const mpm_sym3 back = mpm_material_hyper_stress(&par, &F, &I);
+    ck_assert_msg(sym3_maxdiff(back, sig) <= stress_tol(&par), "%d: %g", k,
+                  sym3_maxdiff(back, sig));
+  }
+  const double k0 = par.nu / (1.0 - par.nu);
+  const mpm_sym3 lith = {k0 * -1e4, -1e4, k0 * -1e4, 0, 0, 0};
+  const mpm_mat3 F = mpm_material_hyper_F_of_stress(&par, lith);
+  ck_assert(F.m[0][1] == 0.0 && F.m[1][2] == 0.0 && F.m[0][2] == 0.0);
+  /* K0 is the uniaxial strain state: to first order only y shortens, by
+   * sigma_yy / (K + 4G/3) = -7.4e-3; the rest is second order in p / K */
+  ck_assert_double_eq_tol(F.m[1][1] - 1.0, -1e4 / (par.K + 4.0 * par.G / 3.0), 1e-4);
+  ck_assert_double_eq_tol(F.m[0][0], 1.0, 1e-4);
+  ck_assert_double_eq_tol(F.m[0][0], F.m[2][2], 1e-15);
+  ck_assert(sym3_maxdiff(mpm_material_hyper_stress(&par, &F, &I), lith) <= stress_tol(&par));
+  const mpm_mat3 F0 = mpm_material_hyper_F_of_stress(&par, mpm_sym3_zero());
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      ck_assert(F0.m[i][j] == (i == j ? 1.0 : 0.0));
+}
+END_TEST
+
 /* A dense state: F_n = R0 (0.99 I + 0.003 X) (compressed, sheared, turned),
  * Fp_n = exp of a small deviator (isochoric), sigma_n its stress (p_n > 0). */
 static mpm_material_hyper_point dense_state(const mpm_material_params *par, unsigned long *s,
@@ -727,6 +768,7 @@ int main(void)
   tcase_add_test(tc, t_polar);
   tcase_add_test(tc, t_log_exp);
   tcase_add_test(tc, t_uniaxial_hencky);
+  tcase_add_test(tc, t_F_of_stress);
   tcase_add_test(tc, t_objectivity);
   tcase_add_test(tc, t_F_update_order);
   tcase_add_test(tc, t_rate_independence);

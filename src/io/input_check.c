@@ -652,13 +652,10 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   for (int f = 0; f < cfg->nfill; f++) {
     const mpm_fill_config *fc = &cfg->fill[f];
     const int k = key_index(S_FILL, "shape");
-    if (fc->shape == MPM_FILL_POLYGON || fc->lithostatic || fc->pressure > 0.0) {
-      const int kb = fc->shape == MPM_FILL_POLYGON ? k : key_index(S_FILL, fc->lithostatic ?
-                                                                      "lithostatic" : "pressure");
-      where w = {.at = c->at[f][kb], .sec = S_FILL, .key = kb, .fill = f, .title = fc->name};
+    if (fc->shape == MPM_FILL_POLYGON) {
+      where w = {.at = c->at[f][k], .sec = S_FILL, .key = k, .fill = f, .title = fc->name};
       return mpm_io_in_fail_key(c, &w, "not available in a 3D run (allowed: shape "
-                                "\"rectangle\" (a box) or \"disc\" (a cylinder along z), no "
-                                "initial stress)");
+                                "\"rectangle\" (a box) or \"disc\" (a cylinder along z))");
     }
     if (!is_set(c, kz0, f) || !is_set(c, kz1, f)) {
       const int km = is_set(c, kz0, f) ? kz1 : kz0;

@@ -277,6 +277,37 @@ mpm_sym3 mpm_material_hyper_stress(const mpm_material_params *par, const mpm_mat
   return hyper_cauchy(&t, 1.0);
 }
 
+mpm_mat3 mpm_material_hyper_F_of_stress(const mpm_material_params *par, mpm_sym3 sigma)
+{
+  /* Fe = Ue = exp(Ee) coaxial with sigma, Re = I: Me = J sigma, so
+   * Ee = J dev(sigma) / 2G + (ln J / 3) I with J = exp(tr Ee) the root of
+   * ln J = J s, s = tr(sigma) / 3K (Newton from J = 1; for compression
+   * s < 0 the root is unique and Newton converges from there) */
+  const double sv = mpm_sym3_trace(sigma) / (3.0 * par->K);
+  double J = 1.0;
+  for (int k = 0; k < 50; k++) {
+    const double step = (log(J) - J * sv) / (1.0 / J - sv);
+    J -= step;
+    if (!(J > 0.0) || fabs(step) <= 1e-16 * J)
+      break;
+  }
+  mpm_mat3 F;
+  if (!(J > 0.0) || !isfinite(J)) {                   /* no elastic state: NaN */
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        F.m[i][j] = NAN;
+    return F;
+  }
+  const mpm_sym3 Ee = mpm_sym3_add_iso(mpm_sym3_scale(mpm_sym3_dev(sigma), J / (2.0 * par->G)),
+                                       log(J) / 3.0);
+  const mpm_sym3 U = mpm_material_hyper_exp(Ee);
+  const double u[3][3] = {{U.xx, U.xy, U.zx}, {U.xy, U.yy, U.yz}, {U.zx, U.yz, U.zz}};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      F.m[i][j] = u[i][j];
+  return F;
+}
+
 mpm_material_hyper_point mpm_material_hyper_elastic_step(const mpm_material_params *par,
                                                          const mpm_mat3 *L, double dt,
                                                          mpm_material_hyper_point pt)

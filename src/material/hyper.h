@@ -48,6 +48,12 @@ void mpm_material_hyper_polar(const mpm_mat3 *f, mpm_mat3 *r, mpm_sym3 *u);
 mpm_sym3 mpm_material_hyper_stress(const mpm_material_params *par, const mpm_mat3 *F,
                                    const mpm_mat3 *Fp);
 
+/* The elastic state of a given Cauchy stress: F = Fe = Ue symmetric
+ * (Fp = I, no rotation) with mpm_material_hyper_stress(F, I) = sigma, for an
+ * initial stress; NaN entries when none exists (a tension beyond
+ * tr(sigma) / 3K = 1/e). */
+mpm_mat3 mpm_material_hyper_F_of_stress(const mpm_material_params *par, mpm_sym3 sigma);
+
 /* One step dt of the NGF point with the velocity gradient L
  * (L_ij = d v_i / d x_j) and pt.lap, pt.isp, pt.rho given: MODEL.md section 7,
  * the choices in hyper.c. */

@@ -55,31 +55,42 @@ int mpm_scenario_inside(const mpm_fill_config *f, double x, double y)
   }
 }
 
-/* sigma_yy = rho gy (y_top - y) for every point appended since `first`; y_top is
- * the highest point of the same sub-column plus half a sub-cell. */
-static int lithostatic(mpm_points *pts, size_t first, const mpm_mesh *m, int n,
-                       const mpm_fill_config *f, const mpm_material_params *par, double gy)
+int mpm_scenario_in_prestress(mpm_points *pts, size_t first, const mpm_fill_config *f,
+                              const mpm_material_params *par, double gy, const double o[2],
+                              const double h[3], const long nc[2])
 {
-  size_t ncol = (size_t)m->nx * (size_t)n;
-  double *ytop = malloc(ncol * sizeof *ytop);
-  if (!ytop)
+  if (!f->lithostatic && !(f->pressure > 0.0))
+    return MPM_OK;
+  const size_t ncol = (size_t)nc[0] * (size_t)nc[1];
+  double *ytop = NULL;
+  if (f->lithostatic && !(ytop = malloc(ncol * sizeof *ytop)))
     return MPM_ENOMEM;
-  double hx = m->dx / n, hy = m->dy / n;
-  for (size_t c = 0; c < ncol; c++)
+  /* the sub-column of a point: along x, and along z in 3D */
+#define COLUMN(p)                                                                         \
+  ((size_t)floor((pts->x[p] - o[0]) / h[0]) +                                            \
+   (pts->z ? (size_t)nc[0] * (size_t)floor((pts->z[p] - o[1]) / h[2]) : 0))
+  for (size_t c = 0; ytop && c < ncol; c++)
     ytop[c] = -INFINITY;
-  for (size_t p = first; p < pts->n; p++) {
-    size_t c = (size_t)floor((pts->x[p] - m->x0) / hx);
-    if (pts->y[p] > ytop[c]) ytop[c] = pts->y[p];
+  for (size_t p = first; ytop && p < pts->n; p++) {
+    const size_t c = COLUMN(p);
+    if (pts->y[p] > ytop[c])
+      ytop[c] = pts->y[p];
   }
-  double k0 = par->nu / (1.0 - par->nu);                    /* K0 = nu / (1 - nu) */
+  const double k0 = par->nu / (1.0 - par->nu);              /* K0 = nu / (1 - nu) */
   for (size_t p = first; p < pts->n; p++) {
-    size_t c = (size_t)floor((pts->x[p] - m->x0) / hx);
-    double syy = f->density * gy * (ytop[c] + 0.5 * hy - pts->y[p]);  /* gy < 0: compression */
-    pts->syy[p] = syy;
-    pts->sxx[p] = pts->szz[p] = k0 * syy;
-    double pr = -(1.0 + 2.0 * k0) * syy / 3.0;               /* p = -tr(sigma)/3 */
-    pts->mass[p] *= exp(pr / par->K);                         /* rho = rho_fill exp(p/K) */
+    double pr;
+    if (ytop) {
+      const double syy = f->density * gy * (ytop[COLUMN(p)] + 0.5 * h[1] - pts->y[p]);
+      pts->syy[p] = syy;                                    /* gy < 0: compression */
+      pts->sxx[p] = pts->szz[p] = k0 * syy;
+      pr = -(1.0 + 2.0 * k0) * syy / 3.0;                   /* p = -tr(sigma)/3 */
+    } else {
+      pts->sxx[p] = pts->syy[p] = pts->szz[p] = -f->pressure; /* sigma = -p I */
+      pr = f->pressure;
+    }
+    pts->mass[p] *= exp(pr / par->K);                       /* rho = rho_fill exp(p/K) */
   }
+#undef COLUMN
   free(ytop);
   return MPM_OK;
 }
@@ -127,13 +138,10 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
   }
   if (pts->n == first)
     return mpm_err_set(err, MPM_EINPUT, "fill: region contains no point centre at ppu = %d", n);
-  if (f->lithostatic && lithostatic(pts, first, m, n, f, par, gy) != MPM_OK)
+  const double o[2] = {m->x0, 0.0}, h[3] = {hx, hy, 0.0};
+  const long nc[2] = {(long)m->nx * n, 1};
+  if (mpm_scenario_in_prestress(pts, first, f, par, gy, o, h, nc) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory");
-  if (f->pressure > 0.0)
-    for (size_t p = first; p < pts->n; p++) {               /* sigma = -p I */
-      pts->sxx[p] = pts->syy[p] = pts->szz[p] = -f->pressure;
-      pts->mass[p] *= exp(f->pressure / par->K);            /* rho = rho_fill exp(p/K) */
-    }
   return MPM_OK;
 }
 

@@ -6,13 +6,17 @@
  * sub-cell centre, scenario_internal.h): V_p = dx dy dz / n^3,
  * m_p = rho V_p, uGIMP extent r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0),
  * r3 = (0, 0, dz/2n). Regions: an axis-aligned box and a cylinder whose axis
- * is x, y or z. The stress starts at zero. A region must lie in the mesh,
+ * is x, y or z. The stress starts at zero; mpm_scenario_prestress3 then sets
+ * the fill's lithostatic or isotropic pre-stress as the plane fill does
+ * (scenario_internal.h), for the hyperelastic model through the elastic
+ * deformation F = Fe that carries it. A region must lie in the mesh,
  * periodic axes included: a fill that only covers the mesh's part of it
  * would silently lose material. */
 #include <string.h>
 
 #include "scenario/scenario.h"
 #include "scenario/scenario_internal.h"
+#include "material/hyper.h"
 
 #include <math.h>
 
@@ -173,6 +177,30 @@ int mpm_scenario_fill3(mpm_points *pts, const mpm_mesh3 *m, const mpm_fill3_regi
   if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill3: out of memory for %zu points", pts->n + count);
   visit(f, m, pts);
+  return MPM_OK;
+}
+
+int mpm_scenario_prestress3(mpm_points *pts, size_t first, const mpm_mesh3 *m,
+                            const mpm_fill_config *f, const mpm_material_params *par, double gy,
+                            int hyper, mpm_err *err)
+{
+  const int n = f->ppu;
+  const double o[2] = {m->x0, m->z0}, h[3] = {m->dx / n, m->dy / n, m->dz / n};
+  const long nc[2] = {(long)m->nx * n, (long)m->nz * n};
+  if (mpm_scenario_in_prestress(pts, first, f, par, gy, o, h, nc) != MPM_OK)
+    return mpm_err_set(err, MPM_ENOMEM, "fill3: out of memory for the pre-stress");
+  if (!hyper || (!f->lithostatic && !(f->pressure > 0.0)))
+    return MPM_OK;
+  for (size_t p = first; p < pts->n; p++) {           /* the elastic state of the stress */
+    const mpm_mat3 F = mpm_material_hyper_F_of_stress(par, mpm_points_stress(pts, p));
+    double *const fp[9] = {&pts->fxx[p], &pts->fxy[p], &pts->fxz[p], &pts->fyx[p], &pts->fyy[p],
+                           &pts->fyz[p], &pts->fzx[p], &pts->fzy[p], &pts->fzz[p]};
+    for (int k = 0; k < 9; k++)
+      *fp[k] = F.m[k / 3][k % 3];
+    if (!isfinite(F.m[0][0] + F.m[1][1] + F.m[2][2]))
+      return mpm_err_set(err, MPM_EINPUT, "fill3: point %zu: no elastic state gives its "
+                         "initial stress", p);
+  }
   return MPM_OK;
 }
 

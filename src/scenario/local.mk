@@ -13,4 +13,5 @@ check_PROGRAMS += tests/test_fill3
 TESTS += tests/test_fill3
 tests_test_fill3_SOURCES = tests/test_fill3.c
 tests_test_fill3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_fill3_LDADD = libmpm_scenario.la libmpm_mesh.la libmpm_core.la $(CHECK_LIBS) -lm
+tests_test_fill3_LDADD = libmpm_scenario.la libmpm_material.la libmpm_mesh.la libmpm_core.la \
+	$(CHECK_LIBS) -lm

@@ -58,6 +58,16 @@ int mpm_scenario_inside3(const mpm_fill3_region *f, const double x[3]);
 int mpm_scenario_fill3(mpm_points *pts, const mpm_mesh3 *m, const mpm_fill3_region *f,
                        mpm_err *err);
 
+/* The pre-stress of fill f (lithostatic or pressure, as the plane fill:
+ * sigma and the mass times exp(p/K)) on the points [first, pts->n) that
+ * mpm_scenario_fill3 just appended on m, the sub-columns along x and z;
+ * with hyper, also F = Fe of that stress (mpm_material_hyper_F_of_stress,
+ * Fp = I). Nothing without a pre-stress. MPM_ENOMEM, MPM_EINPUT when no
+ * elastic state carries the stress. */
+int mpm_scenario_prestress3(mpm_points *pts, size_t first, const mpm_mesh3 *m,
+                            const mpm_fill_config *f, const mpm_material_params *par, double gy,
+                            int hyper, mpm_err *err);
+
 /* The number of points mpm_scenario_fill3 appends for f on m (0 when it
  * would refuse f). */
 size_t mpm_scenario_count3(const mpm_fill3_region *f, const mpm_mesh3 *m);

@@ -144,7 +144,11 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++) {
     mpm_fill3_region r;
     mpm_scenario_region3(&cfg->fill[f], &r);
+    const size_t first = s->pts->n;
     rc = mpm_scenario_fill3(s->pts, m, &r, err);
+    if (rc == MPM_OK)
+      rc = mpm_scenario_prestress3(s->pts, first, m, &cfg->fill[f], &s->par, cfg->gravity.gy,
+                                   s->mat->hyper, err);
   }
   if (rc != MPM_OK)
     return rc;
