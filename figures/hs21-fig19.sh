@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # [HS21] Fig. 19 analogue: the slice through the middle of the draining 3D
 # silo (inputs/silo3d.conf, a quarter with mirror planes x = 0 and z = 0,
-# with [HS21]'s hyperelastic NGF as in its Fig. 19; about 15 minutes on one
+# with [HS21]'s hyperelastic NGF as in its Fig. 19; about 7 minutes on one
 # core), at 0.6, 1.2 and 2.4 s: the points with
 # z <= 1 cm, mirrored about x = 0 to show the whole width, coloured by speed
 # (top row) and by plastic shear rate (bottom row).
