@@ -3,7 +3,8 @@
  * n^3 points per unit, one at every sub-cell centre, with the volume and
  * mass of the box and the extents dx/2n, dy/2n, dz/2n; a cylinder along
  * each axis gets exactly the sub-cell centres inside it, and its volume
- * tends to pi R^2 L within a bound derived below; regions that leave the
+ * tends to pi R^2 L within a bound derived below; a prism gets the centres
+ * inside its polygon and z range; regions that leave the
  * mesh and 2D stores are refused. */
 #define _DEFAULT_SOURCE /* M_PI */
 #include <check.h>
@@ -224,6 +225,55 @@ START_TEST(cylinder_converges)
 }
 END_TEST
 
+/* A prism (a plane polygon extruded along z): a triangle in x-y over a z
+ * range gets exactly the sub-cell centres inside it, counted directly with
+ * the test's own barycentric test (no centre lies on a side here), all with
+ * m = rho V; mpm_scenario_count3 agrees. */
+START_TEST(prism_appends_the_centres_inside)
+{
+  mpm_mesh3 m;
+  mesh_of(&m);                          /* [1, 3] x [-2, -1.25] x [0.5, 2.5] */
+  mpm_fill_config poly;
+  memset(&poly, 0, sizeof poly);
+  poly.shape = MPM_FILL_POLYGON;
+  poly.nvert = 3;
+  const double vx[3] = {1.1, 2.93, 1.37}, vy[3] = {-1.97, -1.81, -1.3};
+  memcpy(poly.px, vx, sizeof vx);
+  memcpy(poly.py, vy, sizeof vy);
+  poly.zmin = 0.71;
+  poly.zmax = 2.03;
+  poly.ppu = 3;
+  poly.density = 1800.0;
+  mpm_fill3_region f;
+  mpm_scenario_region3(&poly, &f);
+  ck_assert_int_eq(f.shape, MPM_FILL3_PRISM);
+  mpm_points *pts = mpm_points_alloc_dim(0, 3);
+  mpm_err err = {0};
+  ck_assert_msg(mpm_scenario_fill3(pts, &m, &f, &err) == MPM_OK, "%s", err.msg);
+  const int n = 3;
+  size_t want = 0;
+  for (long k = 0; k < (long)m.nz * n; k++)
+    for (long j = 0; j < (long)m.ny * n; j++)
+      for (long i = 0; i < (long)m.nx * n; i++) {
+        const double x = m.x0 + (i + 0.5) * (m.dx / n), y = m.y0 + (j + 0.5) * (m.dy / n);
+        const double z = m.z0 + (k + 0.5) * (m.dz / n);
+        const double det = (vy[1] - vy[2]) * (vx[0] - vx[2]) + (vx[2] - vx[1]) * (vy[0] - vy[2]);
+        const double l0 = ((vy[1] - vy[2]) * (x - vx[2]) + (vx[2] - vx[1]) * (y - vy[2])) / det;
+        const double l1 = ((vy[2] - vy[0]) * (x - vx[2]) + (vx[0] - vx[2]) * (y - vy[2])) / det;
+        want += l0 > 0 && l1 > 0 && 1 - l0 - l1 > 0 && z >= 0.71 && z <= 2.03;
+      }
+  ck_assert_uint_gt(want, 100);
+  ck_assert_uint_eq(pts->n, want);
+  ck_assert_uint_eq(mpm_scenario_count3(&f, &m), want);
+  for (size_t p = 0; p < pts->n; p++) {
+    const double x[3] = {pts->x[p], pts->y[p], pts->z[p]};
+    ck_assert(mpm_scenario_inside3(&f, x));
+    ck_assert(near(pts->mass[p], 1800.0 * pts->vol[p], REL));
+  }
+  mpm_points_free(pts);
+}
+END_TEST
+
 START_TEST(refused)
 {
   mpm_mesh3 m;
@@ -286,6 +336,7 @@ int main(void)
   tcase_add_test(tc, box_of_whole_units);
   tcase_add_test(tc, box_appends);
   tcase_add_test(tc, cylinder_converges);
+  tcase_add_test(tc, prism_appends_the_centres_inside);
   tcase_add_test(tc, refused);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

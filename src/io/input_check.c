@@ -651,12 +651,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   const int kz0 = key_index(S_FILL, "zmin"), kz1 = key_index(S_FILL, "zmax");
   for (int f = 0; f < cfg->nfill; f++) {
     const mpm_fill_config *fc = &cfg->fill[f];
-    const int k = key_index(S_FILL, "shape");
-    if (fc->shape == MPM_FILL_POLYGON) {
-      where w = {.at = c->at[f][k], .sec = S_FILL, .key = k, .fill = f, .title = fc->name};
-      return mpm_io_in_fail_key(c, &w, "not available in a 3D run (allowed: shape "
-                                "\"rectangle\" (a box) or \"disc\" (a cylinder along z))");
-    }
     if (!is_set(c, kz0, f) || !is_set(c, kz1, f)) {
       const int km = is_set(c, kz0, f) ? kz1 : kz0;
       where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .fill = f, .title = fc->name};

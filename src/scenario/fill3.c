@@ -5,8 +5,8 @@
  * sub-grid of every unit whose sub-cell centre lies in the region (the same
  * sub-cell centre, scenario_internal.h): V_p = dx dy dz / n^3,
  * m_p = rho V_p, uGIMP extent r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0),
- * r3 = (0, 0, dz/2n). Regions: an axis-aligned box and a cylinder whose axis
- * is x, y or z. The stress starts at zero; mpm_scenario_prestress3 then sets
+ * r3 = (0, 0, dz/2n). Regions: an axis-aligned box, a cylinder whose axis
+ * is x, y or z, and a prism: a plane polygon extruded along z. The stress starts at zero; mpm_scenario_prestress3 then sets
  * the fill's lithostatic or isotropic pre-stress as the plane fill does
  * (scenario_internal.h), for the hyperelastic model through the elastic
  * deformation F = Fe that carries it. A region must lie in the mesh,
@@ -34,6 +34,8 @@ int mpm_scenario_inside3(const mpm_fill3_region *f, const double x[3])
     return fabs(x[a] - f->centre[a]) <= 0.5 * f->length &&
            eb * eb + ec * ec <= f->radius * f->radius;
   }
+  case MPM_FILL3_PRISM:
+    return x[2] >= f->lo[2] && x[2] <= f->hi[2] && mpm_scenario_inside(f->polygon, x[0], x[1]);
   default:
     return 0;
   }
@@ -42,6 +44,20 @@ int mpm_scenario_inside3(const mpm_fill3_region *f, const double x[3])
 /* The region's bounding box, lo[d] .. hi[d]. */
 static void bounds(const mpm_fill3_region *f, double lo[3], double hi[3])
 {
+  if (f->shape == MPM_FILL3_PRISM) {
+    const mpm_fill_config *q = f->polygon;
+    lo[0] = hi[0] = q->px[0];
+    lo[1] = hi[1] = q->py[0];
+    for (int k = 1; k < q->nvert; k++) {
+      lo[0] = fmin(lo[0], q->px[k]);
+      hi[0] = fmax(hi[0], q->px[k]);
+      lo[1] = fmin(lo[1], q->py[k]);
+      hi[1] = fmax(hi[1], q->py[k]);
+    }
+    lo[2] = f->lo[2];
+    hi[2] = f->hi[2];
+    return;
+  }
   for (int d = 0; d < 3; d++) {
     if (f->shape == MPM_FILL3_BOX) {
       lo[d] = f->lo[d];
@@ -82,6 +98,17 @@ static int check(const mpm_fill3_region *f, const mpm_mesh3 *m, mpm_err *err)
       if (!isfinite(f->centre[d]))
         return mpm_err_set(err, MPM_EINPUT, "fill3: cylinder centre %c = %g is not finite",
                            axis_name[d], f->centre[d]);
+  } else if (f->shape == MPM_FILL3_PRISM) {
+    const mpm_fill_config *q = f->polygon;
+    if (!q || q->nvert < 3 || q->nvert > MPM_MAX_POLY)
+      return mpm_err_set(err, MPM_EINPUT, "fill3: prism with %d vertices (allowed: 3 ... %d)",
+                         q ? q->nvert : 0, MPM_MAX_POLY);
+    for (int k = 0; k < q->nvert; k++)
+      if (!isfinite(q->px[k]) || !isfinite(q->py[k]))
+        return mpm_err_set(err, MPM_EINPUT, "fill3: prism vertex %d is not finite", k);
+    if (!(f->lo[2] < f->hi[2]) || !isfinite(f->lo[2]) || !isfinite(f->hi[2]))
+      return mpm_err_set(err, MPM_EINPUT, "fill3: prism z range [%g, %g] m is empty", f->lo[2],
+                         f->hi[2]);
   } else {
     return mpm_err_set(err, MPM_EINPUT, "fill3: unknown region shape %d", f->shape);
   }
@@ -207,7 +234,12 @@ int mpm_scenario_prestress3(mpm_points *pts, size_t first, const mpm_mesh3 *m,
 void mpm_scenario_region3(const mpm_fill_config *f, mpm_fill3_region *r)
 {
   memset(r, 0, sizeof *r);
-  if (f->shape == MPM_FILL_DISC) {
+  if (f->shape == MPM_FILL_POLYGON) {
+    r->shape = MPM_FILL3_PRISM;
+    r->polygon = f;
+    r->lo[2] = f->zmin;
+    r->hi[2] = f->zmax;
+  } else if (f->shape == MPM_FILL_DISC) {
     r->shape = MPM_FILL3_CYLINDER;
     r->axis = 2;
     r->centre[0] = f->cx;

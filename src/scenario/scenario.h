@@ -35,12 +35,15 @@ int mpm_scenario_inside(const mpm_fill_config *f, double x, double y);
 
 /* ---- 3D ------------------------------------------------------------------ */
 
-enum mpm_fill3_shape { MPM_FILL3_BOX = 0, MPM_FILL3_CYLINDER };
+enum mpm_fill3_shape { MPM_FILL3_BOX = 0, MPM_FILL3_CYLINDER, MPM_FILL3_PRISM };
 
 /* A region of a 3D fill and its material. */
 typedef struct mpm_fill3_region {
   int shape;                   /* enum mpm_fill3_shape */
-  double lo[3], hi[3];         /* box [lo_x, hi_x] x [lo_y, hi_y] x [lo_z, hi_z] [m] */
+  double lo[3], hi[3];         /* box [lo_x, hi_x] x [lo_y, hi_y] x [lo_z, hi_z] [m];
+                                  prism: the z range (lo[2], hi[2]) */
+  const mpm_fill_config *polygon;  /* prism: the plane polygon (nvert, px, py) extruded
+                                      along z; not owned */
   int axis;                    /* cylinder axis: 0 x, 1 y, 2 z */
   double centre[3];            /* cylinder centre: on the axis, mid-length [m] */
   double radius, length;       /* cylinder radius and extent along the axis [m] */
@@ -73,7 +76,8 @@ int mpm_scenario_prestress3(mpm_points *pts, size_t first, const mpm_mesh3 *m,
 size_t mpm_scenario_count3(const mpm_fill3_region *f, const mpm_mesh3 *m);
 
 /* The 3D region of a fill section of a 3D input (mesh.nz > 0): a rectangle
- * extruded over [zmin, zmax] is a box, a disc a cylinder along z. */
+ * extruded over [zmin, zmax] is a box, a disc a cylinder along z, a polygon
+ * a prism along z (r->polygon points to f). */
 void mpm_scenario_region3(const mpm_fill_config *f, mpm_fill3_region *r);
 
 #endif
