@@ -342,6 +342,63 @@ START_TEST(rectangle_outlet_faces_have_four_free_corners)
 }
 END_TEST
 
+/* A wall polygon in 3D is its prism along z: the right triangle of the
+ * plane test (test_silo.c: nodes with i + j <= 4 held on 8 x 8 units of
+ * 0.25) at every z layer, holding z too where it holds x and y (no-slip, or
+ * solid), and only the side's normal (45 degrees) at the nodes of units the
+ * side cuts: there a vector keeps its component along the side and along z. */
+START_TEST(wall_polygon_is_a_prism)
+{
+  mpm_mesh3 m;
+  memset(&m, 0, sizeof m);
+  m.nx = m.ny = 8;
+  m.nz = 3;
+  m.dx = m.dy = 0.25;
+  m.dz = 0.1;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_mesh3_setup(&m, &err) == MPM_OK, "%s", err.msg);
+  int face[6];
+  for (int q = 0; q < 6; q++)
+    face[q] = MPM_BC_FREE;
+  const double px[3] = {0.0, 1.0, 0.0}, py[3] = {0.0, 0.0, 1.0};
+  const unsigned char all = MPM_FIX_X | MPM_FIX_Y | MPM_FIX_Z;
+  for (int kind = MPM_BC_NOSLIP; kind <= MPM_BC_FRICTIONLESS; kind++) {
+    mpm_bc3 bc = {0};
+    int held = -1;
+    ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+    ck_assert_msg(mpm_bc3_add_polygon(&bc, &m, 3, px, py, kind, &held, &err) == MPM_OK, "%s",
+                  err.msg);
+    ck_assert_int_eq(held, 15 * 4);
+    int oblique = 0;
+    for (int k = 0; k <= m.nz; k++)
+      for (int j = 0; j <= m.ny; j++)
+        for (int i = 0; i <= m.nx; i++) {
+          const int id = mpm_mesh3_node(&m, i, j, k);
+          const unsigned char f = bc.fix[id];
+          if (i + j > 4)
+            ck_assert_int_eq(f, 0);
+          else if (kind == MPM_BC_NOSLIP || i + j < 3)
+            ck_assert_int_eq(f, all);
+          else if (i > 0 && j > 0) {
+            ck_assert_int_eq(f, MPM_FIX_N);
+            ck_assert_double_eq_tol(fabs(bc.normal[2 * id]), sqrt(0.5), 1e-15);
+            ck_assert_double_eq_tol(fabs(bc.normal[2 * id + 1]), sqrt(0.5), 1e-15);
+            double v[3] = {1.0, 2.0, 3.0};
+            mpm_bc3_apply_node(&bc, id, v);
+            ck_assert_double_eq_tol(v[0] * bc.normal[2 * id] + v[1] * bc.normal[2 * id + 1], 0.0,
+                                    1e-15);
+            ck_assert_double_eq_tol(v[0] - v[1], -1.0, 1e-15);   /* along the side: kept */
+            ck_assert(v[2] == 3.0);
+            oblique++;
+          }
+        }
+    ck_assert_int_eq(oblique, kind == MPM_BC_FRICTIONLESS ? 5 * 4 : 0);   /* 5 nodes a layer */
+    mpm_bc3_clear(&bc);
+    ck_assert_ptr_null(bc.normal);
+  }
+}
+END_TEST
+
 START_TEST(outlet_refusals)
 {
   mpm_mesh3 m;
@@ -378,6 +435,7 @@ int main(void)
   tcase_add_test(tc, rectangle_outlet_frees_the_nodes_inside);
   tcase_add_test(tc, disc_outlet_frees_the_nodes_inside);
   tcase_add_test(tc, rectangle_outlet_faces_have_four_free_corners);
+  tcase_add_test(tc, wall_polygon_is_a_prism);
   tcase_add_test(tc, outlet_refusals);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

@@ -77,15 +77,17 @@ void mpm_bc_clear(mpm_bc *bc);  /* frees the mask; safe on a zeroed struct */
  * x and y, or the normal one, (ax, ay) -= ((ax, ay) . n) n. */
 void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay);
 
-/* The same for the vector (*ax, *ay) of node i alone (inline: the grid
- * update applies it node by node). */
-static inline void mpm_bc_apply_node(const mpm_bc *bc, int i, double *ax, double *ay)
+/* The x-y part of mask f of node i on (*ax, *ay): x and y held, or the
+ * component along the node's unit wall normal (normal[2i], normal[2i+1]),
+ * (ax, ay) -= ((ax, ay) . n) n; with x or y held as well, both. The plane
+ * and the 3D nodes (whose walls are prisms along z) share it. */
+static inline void mpm_bc_apply_xy(unsigned char f, const double *normal, int i, double *ax,
+                                   double *ay)
 {
-  unsigned char f = bc->fix[i];
   if ((f & MPM_FIX_N) && (f & (MPM_FIX_X | MPM_FIX_Y)))
     f = MPM_FIX_X | MPM_FIX_Y;                    /* two independent normals */
   if (f & MPM_FIX_N) {
-    const double nx = bc->normal[2 * i], ny = bc->normal[2 * i + 1];
+    const double nx = normal[2 * i], ny = normal[2 * i + 1];
     const double an = *ax * nx + *ay * ny;
     *ax -= an * nx;
     *ay -= an * ny;
@@ -94,6 +96,13 @@ static inline void mpm_bc_apply_node(const mpm_bc *bc, int i, double *ax, double
     *ax = 0.0;
   if (f & MPM_FIX_Y)
     *ay = 0.0;
+}
+
+/* The same for the vector (*ax, *ay) of node i alone (inline: the grid
+ * update applies it node by node). */
+static inline void mpm_bc_apply_node(const mpm_bc *bc, int i, double *ax, double *ay)
+{
+  mpm_bc_apply_xy(bc->fix[i], bc->normal, i, ax, ay);
 }
 
 /* 1 if (x, y) lies outside the mesh's closed rectangle (a point there may

@@ -8,6 +8,7 @@
 
 #include "bc/bc_internal.h"
 #include "core/config.h"
+#include "mesh/mesh.h"
 
 static const char *const face_names[] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 
@@ -70,6 +71,8 @@ void mpm_bc3_clear(mpm_bc3 *bc)
 {
   free(bc->mask[0]);
   free(bc->mask[1]);
+  free(bc->normal);
+  bc->normal = NULL;
   bc->fix = bc->mask[0] = bc->mask[1] = NULL;
   bc->nnodes = 0;
   bc->out_face = -1;
@@ -210,4 +213,65 @@ int mpm_bc3_left_through_outlet(const mpm_bc3 *bc, const mpm_mesh3 *m, const dou
   mpm_bc3_face_axes(f, ax);
   const double s[2] = {x[ax[0]], x[ax[1]]};
   return in_outlet(bc, s, 0.0);
+}
+
+int mpm_bc3_add_polygon(mpm_bc3 *bc, const mpm_mesh3 *m, int nv, const double *px,
+                        const double *py, int kind, int *nheld, mpm_err *err)
+{
+  if (!bc->mask[0])
+    return mpm_err_set(err, MPM_EINVAL, "wall: boundary not set up");
+  /* the plane rule on the x-y mesh, its edges free (or periodic) */
+  mpm_mesh m2;
+  memset(&m2, 0, sizeof m2);
+  m2.nx = m->nx;
+  m2.ny = m->ny;
+  m2.x0 = m->x0;
+  m2.y0 = m->y0;
+  m2.dx = m->dx;
+  m2.dy = m->dy;
+  m2.topology = MPM_TOPO_Q4;
+  m2.periodic_x = m->periodic_x;
+  m2.periodic_y = m->periodic_y;
+  int rc = mpm_mesh_setup(&m2, err);
+  if (rc != MPM_OK)
+    return rc;
+  const int ex = m->periodic_x ? MPM_BC_PERIODIC : MPM_BC_FREE;
+  const int ey = m->periodic_y ? MPM_BC_PERIODIC : MPM_BC_FREE;
+  const int edge[4] = {ex, ex, ey, ey};
+  mpm_bc b2 = {0};
+  int held = 0;
+  if ((rc = mpm_bc_setup(&b2, &m2, edge, err)) != MPM_OK ||
+      (rc = mpm_bc_add_polygon(&b2, &m2, nv, px, py, kind, NULL, err)) != MPM_OK) {
+    mpm_bc_clear(&b2);
+    return rc;
+  }
+  if (b2.normal && !bc->normal && !(bc->normal = calloc(2 * (size_t)bc->nnodes,
+                                                        sizeof *bc->normal))) {
+    mpm_bc_clear(&b2);
+    return mpm_err_set(err, MPM_ENOMEM, "wall: no memory for node normals");
+  }
+  for (int j = 0; j <= m->ny; j++)
+    for (int i = 0; i <= m->nx; i++) {
+      const int id2 = mpm_mesh_node(&m2, i, j);
+      unsigned char bits = b2.fix[id2];
+      if (!bits)
+        continue;
+      if ((bits & (MPM_FIX_X | MPM_FIX_Y)) == (MPM_FIX_X | MPM_FIX_Y))
+        bits |= MPM_FIX_Z;                       /* held whole: solid, or no-slip */
+      for (int k = 0; k <= m->nz; k++) {
+        const int id = mpm_mesh3_node(m, i, j, k);
+        bc->mask[0][id] |= bits;
+        if (bc->mask[1])
+          bc->mask[1][id] |= bits;
+        if (bits & MPM_FIX_N) {
+          bc->normal[2 * id] = b2.normal[2 * id2];
+          bc->normal[2 * id + 1] = b2.normal[2 * id2 + 1];
+        }
+        held += k < m->nz || !m->periodic_z;      /* an aliased layer once */
+      }
+    }
+  mpm_bc_clear(&b2);
+  if (nheld)
+    *nheld = held;
+  return MPM_OK;
 }

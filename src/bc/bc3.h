@@ -28,6 +28,8 @@ typedef struct mpm_bc3 {
   int nnodes;
   unsigned char *fix;      /* [nnodes] the mask in force (mask[0], or mask[1]
                               once the outlet is open) */
+  double *normal;          /* owned, [2 nnodes]: unit normal (x, y) of the MPM_FIX_N
+                              nodes of a wall prism; NULL when no side is oblique */
   unsigned char *mask[2];  /* owned: outlet closed, outlet open (NULL: no outlet) */
   int out_face;            /* MPM_FACE_* of the outlet, -1: none */
   int out_shape;           /* enum mpm_bc3_outlet_shape */
@@ -76,12 +78,19 @@ int mpm_bc3_left_through_outlet(const mpm_bc3 *bc, const mpm_mesh3 *m, const dou
 static inline void mpm_bc3_apply_node(const mpm_bc3 *bc, int i, double v[3])
 {
   const unsigned char f = bc->fix[i];
-  if (f & MPM_FIX_X)
-    v[0] = 0.0;
-  if (f & MPM_FIX_Y)
-    v[1] = 0.0;
+  mpm_bc_apply_xy(f, bc->normal, i, &v[0], &v[1]);
   if (f & MPM_FIX_Z)
     v[2] = 0.0;
 }
+
+/* Staircase wall: the prism along z of the plane polygon (nv vertices px,
+ * py), every node whose (x, y) the plane rule holds (mpm_bc_add_polygon on
+ * the x-y mesh, at every z). No-slip and the solid nodes hold x, y and z; a
+ * frictionless node at an open unit holds only the normal of the nearest
+ * side (x, y, or MPM_FIX_N for an oblique one), so material slides along
+ * the side and along z. Returns the number of nodes held in *nheld (may be
+ * NULL). Call after the outlet. */
+int mpm_bc3_add_polygon(mpm_bc3 *bc, const mpm_mesh3 *m, int nv, const double *px,
+                        const double *py, int kind, int *nheld, mpm_err *err);
 
 #endif

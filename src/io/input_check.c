@@ -610,7 +610,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     {cfg->material.state_density != MPM_DENSITY_POINT &&
          cfg->material.state_density != MPM_DENSITY_UNIT,
      S_MATERIAL, "state_density", "\"point\", \"unit\""},
-    {c->wall_nlist[0] > 0, S_WALL, "x", "no wall polygon"},
     {cfg->outlet.ends != MPM_OUTLET_ENDS_FREE, S_OUTLET, "ends", "\"free\""},
     {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE && cfg->outlet.shape == MPM_OUTLET_DISC,
      S_OUTLET, "shape", "\"rectangle\" with model \"ngf_hyper\": the open faces of the "

@@ -137,6 +137,9 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
       rc = mpm_bc3_set_outlet_rectangle(&s->bc3, m, f, lo, hi, cfg->outlet.closed, err);
     }
   }
+  if (rc == MPM_OK && cfg->wall.nvert > 0)    /* the wall's prism along z */
+    rc = mpm_bc3_add_polygon(&s->bc3, m, cfg->wall.nvert, cfg->wall.px, cfg->wall.py,
+                             cfg->wall.kind, NULL, err);
   if (rc == MPM_OK && !(s->shape3 = mpm_shape3_lookup(cfg->mesh.shape)))
     rc = mpm_err_set(err, MPM_EINPUT, "mesh.shape '%s' unknown in 3D", cfg->mesh.shape);
   if (rc == MPM_OK && !(s->pts = mpm_points_alloc_dim(1024, 3)))
