@@ -460,6 +460,59 @@ START_TEST(t_absorb_layer)
 }
 END_TEST
 
+/* material.state_density under the hyperelastic NGF: a column filled at
+ * rho_c collapses. With "unit" every dense point lies in a box whose
+ * points' mass over their volume, sum m / sum V, is at least rho_c, and
+ * some dense points are below rho_c on their own; with "point" no point
+ * below rho_c is dense (_i = 0: unit, 1: point). */
+START_TEST(t_hyper_state_density)
+{
+  mpm_config c;
+  column_config(&c, "ugimp", 2, "ngf_hyper");
+  c.material.state_density = _i ? MPM_DENSITY_POINT : MPM_DENSITY_UNIT;
+  c.material.rho_c = 1500.0;                    /* the fill's density */
+  mpm_sim *s = make(&c);
+  const mpm_points *P = s->pts;
+  const mpm_mesh3 *m = &s->mesh3;
+  const size_t nu = (size_t)m->nx * m->ny * m->nz;
+  double *sm = malloc(nu * sizeof *sm), *sv = malloc(nu * sizeof *sv);
+  size_t *unit = malloc(P->n * sizeof *unit);
+  int lone = 0, dense = 0;
+  for (int k = 0; k < 100; k++) {
+    steps(s, 1);
+    for (size_t e = 0; e < nu; e++)
+      sm[e] = sv[e] = 0.0;
+    for (size_t p = 0; p < P->n; p++) {
+      const double x[3] = {P->x[p], P->y[p], P->z[p]};
+      int u[3];
+      double l[3];
+      ck_assert_int_eq(mpm_mesh3_locate(m, x, u, l), 0);
+      unit[p] = (size_t)u[0] + (size_t)m->nx * (u[1] + (size_t)m->ny * u[2]);
+      sm[unit[p]] += P->mass[p];
+      sv[unit[p]] += P->vol[p];
+    }
+    for (size_t p = 0; p < P->n; p++) {
+      if (P->state[p] != MPM_STATE_DENSE)
+        continue;
+      dense++;
+      const int below = P->mass[p] / P->vol[p] < 1500.0;
+      lone += below;
+      if (_i == 0)
+        ck_assert_double_ge(sm[unit[p]] / sv[unit[p]], 1500.0 * (1.0 - 1e-12));
+      else
+        ck_assert(!below);
+    }
+  }
+  ck_assert_int_gt(dense, 1000);
+  if (_i == 0)
+    ck_assert_int_gt(lone, 0);
+  free(sm);
+  free(sv);
+  free(unit);
+  mpm_sim_free(s);
+}
+END_TEST
+
 /* stop.mass in 3D: the box of t_outlet run by mpm_sim_run stops once the
  * mass left in it (kg) falls below half the initial, with that mass as the
  * stop value. */
@@ -936,6 +989,7 @@ int main(void)
   tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
   tcase_add_loop_test(tc, t_outlet, 0, 3);
   tcase_add_test(tc, t_stop_mass);
+  tcase_add_loop_test(tc, t_hyper_state_density, 0, 2);
   tcase_add_loop_test(tc, t_lithostatic, 0, 2);
   tcase_add_loop_test(tc, t_absorb_layer, 0, 3);
   tcase_add_test(tc, t_unit_options);

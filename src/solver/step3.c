@@ -257,7 +257,8 @@ static int update_local(mpm_sim *s, size_t p, const double L[9], double h, doubl
 
 /* One substep h of the hyperelastic NGF update of point p (L fixed, lap the
  * Laplacian of g of its unit). Returns 0 if its stress became non-finite. */
-static int update_hyper(mpm_sim *s, size_t p, const double L[9], double h, double lap)
+static int update_hyper(mpm_sim *s, size_t p, const double L[9], double h, double lap,
+                        double rho)
 {
   mpm_points *P = s->pts;
   const mpm_mat3 Lm = mat3_of(L);
@@ -266,7 +267,7 @@ static int update_hyper(mpm_sim *s, size_t p, const double L[9], double h, doubl
            {P->fzx[p], P->fzy[p], P->fzz[p]}}},
     .Fp = {{{P->fpxx[p], P->fpxy[p], P->fpxz[p]}, {P->fpyx[p], P->fpyy[p], P->fpyz[p]},
             {P->fpzx[p], P->fpzy[p], P->fpzz[p]}}},
-    .sigma = stress_of(P, p), .rho = P->mass[p] / P->vol[p], .g = P->g[p], .lap = lap,
+    .sigma = stress_of(P, p), .rho = rho, .g = P->g[p], .lap = lap,
     .isp = 0.0, .gdp = P->gdp[p], .state = P->state[p]};
   hp = mpm_material_hyper_step(&s->par, &Lm, h, hp);
   double *const F[9] = {P->fxx, P->fxy, P->fxz, P->fyx, P->fyy, P->fyz, P->fzx, P->fzy, P->fzz};
@@ -374,9 +375,11 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
     mpm_sim_in_unit_dilatation(s);
   mpm_sim_in_boxes(s, w->unit);            /* the units of x_{n+1}; -1: leaving */
   long bad = -1;
-  if (!w->nl) {                             /* a local model: its density, its update */
-    mpm_material_density_compute(w->dens, NULL, w->dens ? MPM_DENSITY_UNIT : MPM_DENSITY_POINT,
-                                 n, P->x, P->y, w->unit, P->mass, P->vol, w->rho);
+  /* the density that decides each point's state (material.state_density),
+   * at x_{n+1}, the same over the substeps */
+  mpm_material_density_compute(w->dens, NULL, w->dens ? MPM_DENSITY_UNIT : MPM_DENSITY_POINT, n,
+                               P->x, P->y, w->unit, P->mass, P->vol, w->rho);
+  if (!w->nl) {                             /* a local model: its update */
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++)
       if (!update_local(s, p, w->L + 9 * p, h, w->rho[p]))
@@ -402,7 +405,7 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
 #pragma omp parallel for schedule(static)
     for (size_t p = 0; p < n; p++)
       w->dense[p] = (unsigned char)(w->unit[p] >= 0 &&
-                                    s->mat->dense(&s->par, stress_of(P, p), P->mass[p] / P->vol[p]));
+                                    s->mat->dense(&s->par, stress_of(P, p), w->rho[p]));
     mpm_nonlocal3_average(w->nl, n, w->unit, P->mass, P->g, w->dense);
     if (local)
       memset(w->nl->lap, 0, w->nl->grid.nu * sizeof *w->nl->lap);
@@ -417,7 +420,7 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
     const double *lap = w->nl->lap;
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++)
-      if (w->unit[p] >= 0 && !update_hyper(s, p, w->L + 9 * p, h, lap[w->unit[p]]))
+      if (w->unit[p] >= 0 && !update_hyper(s, p, w->L + 9 * p, h, lap[w->unit[p]], w->rho[p]))
         bad = (long)p > bad ? (long)p : bad;
   }
   return bad;
