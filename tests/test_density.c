@@ -197,6 +197,57 @@ START_TEST(t_density_hybrid_block)
 }
 END_TEST
 
+/* The element and hybrid rules on a 3D grid of 5 x 4 x 5 boxes (the 3D
+ * step gives every point's box, e = i + nx (j + ny k)): one point at the
+ * centre of each box of i 1..3, j 0..2, k 0..3. Element: m / V_e in every
+ * box. Hybrid: the element density only where all 26 neighbours hold points
+ * or lie beyond a non-periodic face, i = 2, j 0..1 and k 0..2 (k = -1 is
+ * beyond the face); with z periodic, box k = 0 sees the empty k = 4, so
+ * k 1..2 only. */
+START_TEST(t_density_3d_grid)
+{
+  const int n[3] = {5, 4, 5};
+  const double vol = 1e-3;                          /* 0.1 m boxes */
+  enum { NP = 3 * 3 * 4 };
+  double x[NP], y[NP], mass[NP], v[NP], rho[NP];
+  int unit[NP], at[NP][3], np = 0;
+  for (int k = 0; k <= 3; k++)
+    for (int j = 0; j <= 2; j++)
+      for (int i = 1; i <= 3; i++, np++) {
+        x[np] = 0.1 * i + 0.05;
+        y[np] = 0.1 * j + 0.05;
+        mass[np] = PM;
+        v[np] = PV;
+        unit[np] = i + n[0] * (j + n[1] * k);
+        at[np][0] = i;
+        at[np][1] = j;
+        at[np][2] = k;
+      }
+  ck_assert_int_eq(np, NP);
+  for (int pz = 0; pz <= 1; pz++) {
+    const int periodic[3] = {0, 0, pz};
+    mpm_material_density *ws = NULL;
+    mpm_err err = {0};
+    ck_assert_int_eq(mpm_material_density_alloc_grid(&ws, n, periodic, vol, &err), MPM_OK);
+    mpm_material_density_compute(ws, NULL, MPM_DENSITY_ELEMENT, NP, x, y, unit, mass, v, rho);
+    for (int p = 0; p < NP; p++)
+      ck_assert(near_rel(rho[p], PM / vol));
+    mpm_material_density_compute(ws, NULL, MPM_DENSITY_HYBRID, NP, x, y, unit, mass, v, rho);
+    int inner = 0;
+    for (int p = 0; p < NP; p++) {
+      const int k0 = pz ? 1 : 0;
+      const int in = at[p][0] == 2 && at[p][1] <= 1 && at[p][2] >= k0 && at[p][2] <= 2;
+      inner += in;
+      ck_assert_msg(in ? near_rel(rho[p], PM / vol) : rho[p] == PM / PV,
+                    "z periodic %d, box (%d, %d, %d): %g", pz, at[p][0], at[p][1], at[p][2],
+                    rho[p]);
+    }
+    ck_assert_int_eq(inner, pz ? 4 : 6);
+    mpm_material_density_free(ws);
+  }
+}
+END_TEST
+
 /* Hybrid at mesh edges: beyond a non-periodic edge is not empty (a corner
  * block of 3 x 2 units has interior units (0, 0) and (1, 0)); across a
  * periodic edge the unit on the other side counts (a layer of units
@@ -240,6 +291,7 @@ int main(void)
   tcase_add_test(tc, t_density_names);
   tcase_add_test(tc, t_density_element_block);
   tcase_add_test(tc, t_density_hybrid_block);
+  tcase_add_test(tc, t_density_3d_grid);
   tcase_add_test(tc, t_density_hybrid_edges);
   tcase_add_test(tc, t_density_unit_block);
   suite_add_tcase(s, tc);

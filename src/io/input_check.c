@@ -607,9 +607,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   /* what the plane run has and the 3D one has not (yet): named, not ignored */
   struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
     {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
-    {cfg->material.state_density != MPM_DENSITY_POINT &&
-         cfg->material.state_density != MPM_DENSITY_UNIT,
-     S_MATERIAL, "state_density", "\"point\", \"unit\""},
     {cfg->outlet.ends != MPM_OUTLET_ENDS_FREE, S_OUTLET, "ends", "\"free\""},
     {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE && cfg->outlet.shape == MPM_OUTLET_DISC,
      S_OUTLET, "shape", "\"rectangle\" with model \"ngf_hyper\": the open faces of the "

@@ -12,7 +12,7 @@
  * A point belongs to the unit containing its centre. The thesis finds boundary
  * units by a Sobel filter of the point counts with an unstated threshold; here a
  * unit holding points is a boundary unit when one of the eight units around it
- * (the 3 x 3 support of that filter) holds none. A partially filled unit at a
+ * (the 3 x 3 support of that filter; 26 and 3 x 3 x 3 in 3D) holds none. A partially filled unit at a
  * free surface has empty units above it, so it is a boundary unit. Units beyond
  * a non-periodic mesh edge do not count as empty (material resting on a wall is
  * not at a free boundary); periodic edges wrap.
@@ -58,25 +58,26 @@ int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mp
   *out = NULL;
   if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
     return mpm_err_set(err, MPM_EINVAL, "density: mesh not set up (%d x %d units)", m->nx, m->ny);
-  int rc = mpm_material_density_alloc_units(out, (size_t)m->nx * (size_t)m->ny, m->dx * m->dy,
-                                            err);
-  if (rc == MPM_OK) {
-    (*out)->nx = m->nx;
-    (*out)->ny = m->ny;
-  }
-  return rc;
+  const int n[3] = {m->nx, m->ny, 1}, periodic[3] = {m->periodic_x, m->periodic_y, 0};
+  return mpm_material_density_alloc_grid(out, n, periodic, m->dx * m->dy, err);
 }
 
-int mpm_material_density_alloc_units(mpm_material_density **out, size_t nu, double volume,
-                                     mpm_err *err)
+int mpm_material_density_alloc_grid(mpm_material_density **out, const int n[3],
+                                    const int periodic[3], double volume, mpm_err *err)
 {
   *out = NULL;
+  const size_t nu = (size_t)(n[0] > 0 ? n[0] : 0) * (size_t)(n[1] > 0 ? n[1] : 0) *
+                    (size_t)(n[2] > 0 ? n[2] : 0);
   if (nu < 1 || nu > (size_t)INT_MAX || !(volume > 0.0))
-    return mpm_err_set(err, MPM_EINVAL, "density: %zu units of volume %g", nu, volume);
+    return mpm_err_set(err, MPM_EINVAL, "density: %d x %d x %d units of volume %g", n[0], n[1],
+                       n[2], volume);
   mpm_material_density *ws = calloc(1, sizeof *ws);
   if (ws) {
-    ws->nx = (int)nu;
-    ws->ny = 1;
+    ws->nx = n[0];
+    ws->ny = n[1];
+    ws->nz = n[2];
+    for (int a = 0; a < 3; a++)
+      ws->periodic[a] = periodic[a];
     ws->area = volume;
     ws->sm = calloc(nu, sizeof *ws->sm);
     ws->sv = calloc(nu, sizeof *ws->sv);
@@ -107,7 +108,7 @@ static long unit_of(const mpm_mesh *m, const int *unit, const double *x, const d
 static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, size_t n, const double *x,
                       const double *y, const int *unit, const double *mass, const double *vol)
 {
-  size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  size_t nu = (size_t)ws->nx * (size_t)ws->ny * (size_t)ws->nz;
   memset(ws->sm, 0, nu * sizeof *ws->sm);
   memset(ws->sv, 0, nu * sizeof *ws->sv);
   memset(ws->count, 0, nu * sizeof *ws->count);
@@ -122,34 +123,37 @@ static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, size_t n, con
   }
 }
 
-/* Count of unit (i, j) seen from inside: -1 beyond a non-periodic edge. */
-static int count_at(const mpm_material_density *ws, const mpm_mesh *m, int i, int j)
+/* Count of unit c seen from inside: -1 beyond a non-periodic edge. */
+static int count_at(const mpm_material_density *ws, int c[3])
 {
-  if (i < 0 || i >= ws->nx) {
-    if (!m->periodic_x)
-      return -1;
-    i = (i + ws->nx) % ws->nx;
-  }
-  if (j < 0 || j >= ws->ny) {
-    if (!m->periodic_y)
-      return -1;
-    j = (j + ws->ny) % ws->ny;
-  }
-  return ws->count[(size_t)i + (size_t)ws->nx * (size_t)j];
+  const int n[3] = {ws->nx, ws->ny, ws->nz};
+  for (int a = 0; a < 3; a++)
+    if (c[a] < 0 || c[a] >= n[a]) {
+      if (!ws->periodic[a])
+        return -1;
+      c[a] = (c[a] + n[a]) % n[a];
+    }
+  return ws->count[(size_t)c[0] + (size_t)ws->nx * ((size_t)c[1] + (size_t)ws->ny * (size_t)c[2])];
 }
 
-/* edge[e] = 1 for a unit with points and an empty unit among its 8 neighbours. */
-static void mark_edges(mpm_material_density *ws, const mpm_mesh *m)
+/* edge[e] = 1 for a unit with points and an empty unit among its 8
+ * neighbours (26 in 3D). */
+static void mark_edges(mpm_material_density *ws)
 {
-  for (int j = 0; j < ws->ny; j++)
-    for (int i = 0; i < ws->nx; i++) {
-      size_t e = (size_t)i + (size_t)ws->nx * (size_t)j;
-      int edge = 0;
-      for (int dj = -1; dj <= 1 && ws->count[e] > 0; dj++)
-        for (int di = -1; di <= 1; di++)
-          edge |= count_at(ws, m, i + di, j + dj) == 0;
-      ws->edge[e] = (unsigned char)edge;
-    }
+  const int dk = ws->nz > 1 || ws->periodic[2];         /* the plane: one layer */
+  size_t e = 0;
+  for (int k = 0; k < ws->nz; k++)
+    for (int j = 0; j < ws->ny; j++)
+      for (int i = 0; i < ws->nx; i++, e++) {
+        int edge = 0;
+        for (int c2 = -dk; c2 <= dk && ws->count[e] > 0; c2++)
+          for (int c1 = -1; c1 <= 1; c1++)
+            for (int c0 = -1; c0 <= 1; c0++) {
+              int c[3] = {i + c0, j + c1, k + c2};
+              edge |= count_at(ws, c) == 0;
+            }
+        ws->edge[e] = (unsigned char)edge;
+      }
 }
 
 void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule, size_t n,
@@ -162,8 +166,12 @@ void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, i
     return;
   }
   unit_sums(ws, m, n, x, y, unit, mass, vol);
+  if (m) {                                            /* the plane: the mesh's axes */
+    ws->periodic[0] = m->periodic_x;
+    ws->periodic[1] = m->periodic_y;
+  }
   if (rule == MPM_DENSITY_HYBRID)
-    mark_edges(ws, m);
+    mark_edges(ws);
   const double iarea = 1.0 / ws->area;
 #pragma omp parallel for schedule(static)
   for (size_t p = 0; p < n; p++) {

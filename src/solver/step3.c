@@ -37,7 +37,7 @@
  * density. */
 struct mpm_sim3_work {
   mpm_nonlocal3 *nl;         /* NULL for a local model */
-  mpm_material_density *dens;  /* material.state_density = "unit", else NULL */
+  mpm_material_density *dens;  /* material.state_density's unit sums; NULL: "point" */
   double *L;                 /* [9 cap] */
   int *unit;                 /* [cap] */
   unsigned char *dense;      /* [cap] */
@@ -60,15 +60,17 @@ void mpm_sim3_work_free(mpm_sim3_work *w)
 
 /* The workspace: the unit field of a nonlocal model, with the ghost rules
  * of the faces (no-slip: g = 0 unless material.g_wall = "neumann"), and the
- * unit sums of the unit density. */
+ * unit sums of the state density. */
 static int work_alloc(mpm_sim *s, mpm_err *err)
 {
   if (!(s->w3 = calloc(1, sizeof *s->w3)))
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the 3D workspace");
   const mpm_mesh3 *m = &s->mesh3;
-  if (s->cfg.material.state_density == MPM_DENSITY_UNIT) {
-    const size_t nu = (size_t)m->nx * (size_t)m->ny * (size_t)m->nz;
-    const int rc = mpm_material_density_alloc_units(&s->w3->dens, nu, m->dx * m->dy * m->dz, err);
+  if (s->cfg.material.state_density != MPM_DENSITY_POINT) {
+    const int n[3] = {m->nx, m->ny, m->nz};
+    const int periodic[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
+    const int rc = mpm_material_density_alloc_grid(&s->w3->dens, n, periodic,
+                                                   m->dx * m->dy * m->dz, err);
     if (rc != MPM_OK)
       return rc;
   }
@@ -165,7 +167,7 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
        (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
         !(s->uel = calloc(mpm_sim_in_el_width(s) * nu, sizeof *s->uel)))))
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the unit sums");
-  return s->mat->nonlocal || s->cfg.material.state_density == MPM_DENSITY_UNIT || s->usum
+  return s->mat->nonlocal || s->cfg.material.state_density != MPM_DENSITY_POINT || s->usum
              ? work_alloc(s, err) : MPM_OK;
 }
 
@@ -377,8 +379,8 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
   long bad = -1;
   /* the density that decides each point's state (material.state_density),
    * at x_{n+1}, the same over the substeps */
-  mpm_material_density_compute(w->dens, NULL, w->dens ? MPM_DENSITY_UNIT : MPM_DENSITY_POINT, n,
-                               P->x, P->y, w->unit, P->mass, P->vol, w->rho);
+  mpm_material_density_compute(w->dens, NULL, s->cfg.material.state_density, n, P->x, P->y,
+                               w->unit, P->mass, P->vol, w->rho);
   if (!w->nl) {                             /* a local model: its update */
 #pragma omp parallel for schedule(static) reduction(max : bad)
     for (size_t p = 0; p < n; p++)
