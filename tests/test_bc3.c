@@ -282,10 +282,11 @@ START_TEST(disc_outlet_frees_the_nodes_inside)
 }
 END_TEST
 
-/* The unit faces of a rectangular outlet (mpm_bc3_outlet_faces) are exactly
- * those whose four corners the outlet frees: checked unit by unit against
- * the nodes counted directly; along the normal the range covers the mesh. A
- * disc has no range. */
+/* The unit faces of an outlet are exactly those whose four corners the
+ * outlet frees, checked unit by unit against the nodes counted directly:
+ * for a rectangle the range of mpm_bc3_outlet_faces (along the normal it
+ * covers the mesh), for a disc mpm_bc3_outlet_face_open, within that range
+ * (their bounding box). */
 static void check_outlet_faces(int f, const double a[2], const double b[2])
 {
   mpm_mesh3 m;
@@ -324,16 +325,47 @@ static void check_outlet_faces(int f, const double a[2], const double b[2])
       open += all;
     }
   ck_assert_int_ge(open, 2);
-  const double c[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
-  ck_assert_msg(mpm_bc3_set_outlet_disc(&bc, &m, f, c, 1.0, MPM_BC_NOSLIP, &err) == MPM_OK,
+  /* a disc: mpm_bc3_outlet_face_open marks exactly the unit faces with four
+   * corners in it, and the range is their bounding box */
+  const double c[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])}, r = 0.93;
+  ck_assert_msg(mpm_bc3_set_outlet_disc(&bc, &m, f, c, r, MPM_BC_NOSLIP, &err) == MPM_OK,
                 "%s", err.msg);
-  ck_assert_int_eq(mpm_bc3_outlet_faces(&bc, &m, lo, hi), -1);
-  ck_assert_int_eq(hi[0] + hi[1] + hi[2], 0);
+  direct_count(&m, f, 1, c, c, r, inside);
+  ck_assert_int_eq(mpm_bc3_outlet_faces(&bc, &m, lo, hi), f);
+  int blo[2] = {1 << 20, 1 << 20}, bhi[2] = {-1, -1};
+  open = 0;
+  for (int u = 0; u < n[ax[0]]; u++)
+    for (int v = 0; v < n[ax[1]]; v++) {
+      int all = 1, ijk[3];
+      for (int du = 0; du <= 1; du++)
+        for (int dv = 0; dv <= 1; dv++) {
+          ijk[f / 2] = f % 2 ? n[f / 2] : 0;
+          ijk[ax[0]] = u + du;
+          ijk[ax[1]] = v + dv;
+          all &= inside[mpm_mesh3_node(&m, ijk[0], ijk[1], ijk[2])];
+        }
+      int cu[3] = {0, 0, 0};
+      cu[ax[0]] = u;
+      cu[ax[1]] = v;
+      ck_assert_int_eq(mpm_bc3_outlet_face_open(&bc, &m, cu), all);
+      if (all) {
+        open++;
+        blo[0] = u < blo[0] ? u : blo[0];
+        blo[1] = v < blo[1] ? v : blo[1];
+        bhi[0] = u + 1 > bhi[0] ? u + 1 : bhi[0];
+        bhi[1] = v + 1 > bhi[1] ? v + 1 : bhi[1];
+      }
+    }
+  ck_assert_int_ge(open, 2);
+  ck_assert_int_eq(lo[ax[0]], blo[0]);
+  ck_assert_int_eq(hi[ax[0]], bhi[0]);
+  ck_assert_int_eq(lo[ax[1]], blo[1]);
+  ck_assert_int_eq(hi[ax[1]], bhi[1]);
   free(inside);
   mpm_bc3_clear(&bc);
 }
 
-START_TEST(rectangle_outlet_faces_have_four_free_corners)
+START_TEST(outlet_faces_have_four_free_corners)
 {
   const double lo[2] = {1.7, -1.6}, hi[2] = {3.3, -0.9};
   check_outlet_faces(MPM_FACE_ZLO, lo, hi);
@@ -434,7 +466,7 @@ int main(void)
   tcase_add_test(tc, periodic_faces_in_pairs_matching_the_mesh);
   tcase_add_test(tc, rectangle_outlet_frees_the_nodes_inside);
   tcase_add_test(tc, disc_outlet_frees_the_nodes_inside);
-  tcase_add_test(tc, rectangle_outlet_faces_have_four_free_corners);
+  tcase_add_test(tc, outlet_faces_have_four_free_corners);
   tcase_add_test(tc, wall_polygon_is_a_prism);
   tcase_add_test(tc, outlet_refusals);
   suite_add_tcase(s, tc);

@@ -304,16 +304,18 @@ START_TEST(t_plane_ramp)
 END_TEST
 
 /* A box draining through a square orifice in its floor (a disc with
- * _i = 1; _i = 2: the square under the hyperelastic NGF): points leave only
- * through it, and the mass in the box plus the mass removed stays the
- * initial mass. Under NGF the open orifice is a free surface for g: the
- * field's open faces are the units of the floor whose four corners it
- * frees (mpm_bc3_outlet_faces), and every g stays finite and >= 0. */
+ * _i = 1; _i = 2, 3: the square and a wider disc under the hyperelastic
+ * NGF): points leave only through it, and the mass in the box plus the
+ * mass removed stays the initial mass. Under NGF the open orifice is a
+ * free surface for g: the field's open faces are the units of the floor
+ * whose four corners it frees (mpm_bc3_outlet_faces, and for the disc
+ * mpm_bc3_outlet_face_open unit by unit), and every g stays finite and
+ * >= 0. */
 START_TEST(t_outlet)
 {
   mpm_config c;
   box_config(&c, "ugimp", 6, 6, 6);
-  sim_config_material(&c, _i == 2 ? "ngf_hyper" : "mu_i", 1e6);
+  sim_config_material(&c, _i >= 2 ? "ngf_hyper" : "mu_i", 1e6);
   c.bc.left = c.bc.right = c.bc.bottom = c.bc.front = c.bc.back = MPM_BC_NOSLIP;
   c.bc.top = MPM_BC_FREE;
   c.gravity.gy = -9.8;
@@ -322,24 +324,45 @@ START_TEST(t_outlet)
   c.outlet.closed = MPM_BC_NOSLIP;
   c.outlet.from = c.outlet.from2 = 0.02;
   c.outlet.to = c.outlet.to2 = 0.04;
-  c.outlet.shape = _i == 1 ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
+  c.outlet.shape = _i % 2 ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
+  if (_i == 3) {                                /* a disc of radius 2.5 cm round (3, 3) cm */
+    c.outlet.from = c.outlet.from2 = 0.005;
+    c.outlet.to = c.outlet.to2 = 0.055;
+  }
   mpm_sim *s = make(&c);
   const double m0 = s->mass0;
   steps(s, 300);
   const mpm_points *P = s->pts;
   ck_assert_int_gt(s->nremoved, 10);
   const mpm_nonlocal_grid *g = mpm_sim3_field_grid(s);
-  ck_assert_int_eq(g != NULL, _i == 2);
+  ck_assert_int_eq(g != NULL, _i >= 2);
   if (g) {
     int lo[3], hi[3];
     ck_assert_int_eq(mpm_bc3_outlet_faces(&s->bc3, &s->mesh3, lo, hi), MPM_FACE_YLO);
     ck_assert_int_eq(g->open_face, MPM_FACE_YLO);
+    /* the square: floor units 2, 3 along x and z (0.02 ... 0.04 m); the
+     * disc: units 1 ... 4, of which the 12 whose four corners lie within
+     * 2.5 cm of the centre (not the 4 corner units: 2.83 cm) */
+    const int u0 = _i == 3 ? 1 : 2, u1 = _i == 3 ? 5 : 4;
     for (int a = 0; a < 3; a++) {
-      ck_assert_int_eq(g->open_lo[a], a == 1 ? 0 : 2);      /* units 2, 3: 0.02 ... 0.04 m */
-      ck_assert_int_eq(g->open_hi[a], a == 1 ? 6 : 4);
+      ck_assert_int_eq(g->open_lo[a], a == 1 ? 0 : u0);
+      ck_assert_int_eq(g->open_hi[a], a == 1 ? 6 : u1);
       ck_assert_int_eq(g->open_lo[a], lo[a]);
       ck_assert_int_eq(g->open_hi[a], hi[a]);
     }
+    int cu[3] = {0, 0, 0}, open = 0;
+    for (cu[2] = u0; cu[2] < u1; cu[2]++)
+      for (cu[0] = u0; cu[0] < u1; cu[0]++) {
+        const size_t e = mpm_nonlocal_grid_index(g, cu);
+        const int o = mpm_bc3_outlet_face_open(&s->bc3, &s->mesh3, cu);
+        const double none = 0.0;               /* beyond the floor: sm is not read */
+        size_t nb;
+        /* the floor's rule for g: zero flux (+1) on an open face, g = 0 (-1) */
+        ck_assert_int_eq(mpm_nonlocal_grid_side(g, &none, cu, e, MPM_FACE_YLO, &nb), o ? 1 : -1);
+        open += o;
+      }
+    ck_assert_int_eq(open, _i == 3 ? 12 : 4);
+    ck_assert_int_eq(g->open_mask != NULL, _i == 3);
     int fluid = 0;
     for (size_t p = 0; p < P->n; p++) {
       ck_assert(isfinite(P->g[p]) && P->g[p] >= 0.0);
@@ -987,7 +1010,7 @@ int main(void)
   tcase_add_loop_test(tc, t_plane_ramp, 0, 4);
   tcase_add_loop_test(tc, t_apic_affine, 0, 3);
   tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
-  tcase_add_loop_test(tc, t_outlet, 0, 3);
+  tcase_add_loop_test(tc, t_outlet, 0, 4);
   tcase_add_test(tc, t_stop_mass);
   tcase_add_loop_test(tc, t_hyper_state_density, 0, 2);
   tcase_add_loop_test(tc, t_lithostatic, 0, 2);

@@ -174,29 +174,51 @@ void mpm_bc3_open_outlet(mpm_bc3 *bc)
   }
 }
 
+int mpm_bc3_outlet_face_open(const mpm_bc3 *bc, const mpm_mesh3 *m, const int c[3])
+{
+  if (bc->out_face < 0)
+    return 0;
+  int ax[2];
+  mpm_bc3_face_axes(bc->out_face, ax);
+  const double o[3] = {m->x0, m->y0, m->z0}, d[3] = {m->dx, m->dy, m->dz};
+  const double tol = 1e-9 * (d[ax[0]] < d[ax[1]] ? d[ax[0]] : d[ax[1]]);  /* set_outlet's */
+  for (int k = 0; k < 4; k++) {                /* the four corners of the unit's face */
+    const double s[2] = {o[ax[0]] + (c[ax[0]] + (k & 1)) * d[ax[0]],
+                         o[ax[1]] + (c[ax[1]] + (k >> 1)) * d[ax[1]]};
+    if (!in_outlet(bc, s, tol))
+      return 0;
+  }
+  return 1;
+}
+
 int mpm_bc3_outlet_faces(const mpm_bc3 *bc, const mpm_mesh3 *m, int lo[3], int hi[3])
 {
   for (int a = 0; a < 3; a++)
     lo[a] = hi[a] = 0;
-  if (bc->out_face < 0 || bc->out_shape != MPM_OUTLET3_RECTANGLE)
+  if (bc->out_face < 0)
     return -1;
   const int f = bc->out_face;
   const int n[3] = {m->nx, m->ny, m->nz};
-  const double o[3] = {m->x0, m->y0, m->z0}, d[3] = {m->dx, m->dy, m->dz};
   int ax[2];
   mpm_bc3_face_axes(f, ax);
-  hi[f / 2] = n[f / 2];                        /* across the face: every layer */
-  for (int k = 0; k < 2; k++) {
-    const int a = ax[k];
-    const double tol = 1e-9 * d[a];            /* as the nodes of set_outlet */
-    for (int u = 0; u < n[a]; u++) {           /* unit u: nodes u and u + 1 */
-      const double s0 = o[a] + u * d[a], s1 = o[a] + (u + 1) * d[a];
-      if (s0 < bc->out_lo[k] - tol || s1 > bc->out_hi[k] + tol)
+  int first = 1;
+  for (int v = 0; v < n[ax[1]]; v++)
+    for (int u = 0; u < n[ax[0]]; u++) {
+      int c[3] = {0, 0, 0};
+      c[ax[0]] = u;
+      c[ax[1]] = v;
+      if (!mpm_bc3_outlet_face_open(bc, m, c))
         continue;
-      if (hi[a] == 0)
-        lo[a] = u;
-      hi[a] = u + 1;
+      for (int k = 0; k < 2; k++) {
+        const int a = ax[k];
+        lo[a] = first || c[a] < lo[a] ? c[a] : lo[a];
+        hi[a] = first || c[a] + 1 > hi[a] ? c[a] + 1 : hi[a];
+      }
+      first = 0;
     }
+  if (!first) {
+    lo[f / 2] = 0;                             /* across the face: every layer */
+    hi[f / 2] = n[f / 2];
   }
   return f;
 }

@@ -62,11 +62,16 @@ int mpm_bc3_set_outlet_disc(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double
                             double r, int closed, mpm_err *err);
 void mpm_bc3_open_outlet(mpm_bc3 *bc);
 
-/* The unit faces of a rectangular outlet: units lo[a] <= c_a < hi[a] along
- * the face's two axes have all four corners of their face in the outlet
- * (the rule of the plane's mpm_bc_outlet_faces); along the normal the range
- * covers the mesh. Returns the face (MPM_FACE_*), or -1 with empty ranges
- * when there is no outlet or it is a disc. */
+/* 1 if the face of unit c on the outlet's face has its four corners in the
+ * outlet (the rule of the plane's mpm_bc_outlet_faces: an open unit face);
+ * only the coordinates of c along the face are read. */
+int mpm_bc3_outlet_face_open(const mpm_bc3 *bc, const mpm_mesh3 *m, const int c[3]);
+
+/* The range of the open unit faces: units lo[a] <= c_a < hi[a] along the
+ * face's two axes bound those of mpm_bc3_outlet_face_open (for a rectangle
+ * they are the whole range, for a disc the ones inside it); along the
+ * normal the range covers the mesh. Returns the face (MPM_FACE_*), or -1
+ * with empty ranges when there is no outlet. */
 int mpm_bc3_outlet_faces(const mpm_bc3 *bc, const mpm_mesh3 *m, int lo[3], int hi[3]);
 
 /* 1 if a point at x beyond the outlet's face left through the open outlet

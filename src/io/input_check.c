@@ -608,9 +608,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
     {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
     {cfg->outlet.ends != MPM_OUTLET_ENDS_FREE, S_OUTLET, "ends", "\"free\""},
-    {t && t->hyper && cfg->outlet.edge != MPM_OUTLET_NONE && cfg->outlet.shape == MPM_OUTLET_DISC,
-     S_OUTLET, "shape", "\"rectangle\" with model \"ngf_hyper\": the open faces of the "
-     "fluidity field are a range of units"},
   };
   for (size_t i = 0; i < sizeof no3 / sizeof no3[0]; i++) {
     if (!no3[i].on)

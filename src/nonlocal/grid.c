@@ -64,14 +64,21 @@ void mpm_nonlocal_grid_open_faces(mpm_nonlocal_grid *g, int face, const int lo[3
   g->stamp++;
 }
 
-/* 1 if unit c lies in the open range of its face on axis a (the axes along
- * the face; the range of axis a itself covers the grid). */
-static inline int in_open(const mpm_nonlocal_grid *g, const int c[3], int dim)
+void mpm_nonlocal_grid_open_mask(mpm_nonlocal_grid *g, const unsigned char *mask)
+{
+  g->open_mask = mask;
+  g->stamp++;
+}
+
+/* 1 if unit c (index e) lies in the open range of its face on axis a (the
+ * axes along the face; the range of axis a itself covers the grid) and, with
+ * a mask, is marked in it. */
+static inline int in_open(const mpm_nonlocal_grid *g, const int c[3], size_t e, int dim)
 {
   for (int b = 0; b < dim; b++)
     if (c[b] < g->open_lo[b] || c[b] >= g->open_hi[b])
       return 0;
-  return 1;
+  return !g->open_mask || g->open_mask[e];
 }
 
 /* The side rule (grid.h, mpm_nonlocal_grid_side) for dim axes. */
@@ -81,7 +88,7 @@ static inline int side(const mpm_nonlocal_grid *g, int dim, const double *sm, co
   const int a = face >> 1;
   int cc = c[a] + ((face & 1) ? 1 : -1);
   if (cc < 0 || cc >= g->n[a]) {
-    if (face == g->open_face && in_open(g, c, dim))
+    if (face == g->open_face && in_open(g, c, e, dim))
       return 1;                                        /* open outlet: free surface */
     if (g->ghost[face] == MPM_GHOST_DIRICHLET)
       return -1;                                       /* g_ghost = -g_e: g = 0 on the face */

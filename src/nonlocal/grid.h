@@ -53,7 +53,9 @@ typedef struct mpm_nonlocal_grid {
   int ghost[MPM_NONLOCAL_FACES];  /* faces -x, +x, -y, +y, -z, +z: enum mpm_nonlocal_ghost */
   int open_face;              /* face with an open outlet, -1: none ... */
   int open_lo[3], open_hi[3]; /* ... whose units with open_lo[b] <= c_b < open_hi[b] on
-                                 every axis b along it have a Neumann face there */
+                                 every axis b along it have a Neumann face there ... */
+  const unsigned char *open_mask;  /* ... and, when not NULL, open_mask[e] = 1 (a disc's
+                                      faces within that range); not owned */
   unsigned stamp;             /* changes whenever the ghost rules do */
 } mpm_nonlocal_grid;
 
@@ -72,6 +74,11 @@ int mpm_nonlocal_grid_set(mpm_nonlocal_grid *g, int dim, const int n[], const do
  * face's rule (one open face at a time). */
 void mpm_nonlocal_grid_open_faces(mpm_nonlocal_grid *g, int face, const int lo[3],
                                   const int hi[3]);
+
+/* Narrow the open faces to the units e of the open range with mask[e] = 1
+ * (nu entries, kept by the caller while the grid is used; NULL: the whole
+ * range). */
+void mpm_nonlocal_grid_open_mask(mpm_nonlocal_grid *g, const unsigned char *mask);
 
 /* Unit index of c (0 <= c_a < n_a; c[2] = 0 in 2D). */
 static inline size_t mpm_nonlocal_grid_index(const mpm_nonlocal_grid *g, const int c[3])

@@ -43,6 +43,7 @@ struct mpm_sim3_work {
   unsigned char *dense;      /* [cap] */
   double *rho;               /* [cap] rho_{n+1} of the state decision */
   size_t cap;
+  unsigned char *open;       /* [units] a disc outlet's open unit faces for g, or NULL */
 };
 
 void mpm_sim3_work_free(mpm_sim3_work *w)
@@ -55,6 +56,7 @@ void mpm_sim3_work_free(mpm_sim3_work *w)
   free(w->unit);
   free(w->dense);
   free(w->rho);
+  free(w->open);
   free(w);
 }
 
@@ -428,18 +430,42 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
   return bad;
 }
 
+/* The open outlet's unit faces become zero-flux faces of the fluidity
+ * field: their range, and for a disc the faces inside it unit by unit. */
+static int open_field_faces(mpm_sim *s, mpm_err *err)
+{
+  mpm_nonlocal_grid *g = &s->w3->nl->grid;
+  int lo[3], hi[3];
+  const int f = mpm_bc3_outlet_faces(&s->bc3, &s->mesh3, lo, hi);
+  if (f < 0)
+    return MPM_OK;
+  mpm_nonlocal_grid_open_faces(g, f, lo, hi);
+  if (s->bc3.out_shape != MPM_OUTLET3_DISC)
+    return MPM_OK;
+  unsigned char *open = calloc(g->nu, 1);
+  if (!open)
+    return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the outlet's unit faces");
+  int c[3];
+  for (c[2] = lo[2]; c[2] < hi[2]; c[2]++)
+    for (c[1] = lo[1]; c[1] < hi[1]; c[1]++)
+      for (c[0] = lo[0]; c[0] < hi[0]; c[0]++)
+        open[mpm_nonlocal_grid_index(g, c)] =
+            (unsigned char)mpm_bc3_outlet_face_open(&s->bc3, &s->mesh3, c);
+  free(s->w3->open);
+  s->w3->open = open;
+  mpm_nonlocal_grid_open_mask(g, open);
+  return MPM_OK;
+}
+
 int mpm_sim3_step(mpm_sim *s, mpm_err *err)
 {
   mpm_points *P = s->pts;
   if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc3.open &&
       s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt) {
     mpm_bc3_open_outlet(&s->bc3);         /* the orifice opens */
-    if (s->w3 && s->w3->nl) {             /* a free surface for g */
-      int lo[3], hi[3];
-      const int f = mpm_bc3_outlet_faces(&s->bc3, &s->mesh3, lo, hi);
-      if (f >= 0)
-        mpm_nonlocal_grid_open_faces(&s->w3->nl->grid, f, lo, hi);
-    }
+    const int rc = s->w3 && s->w3->nl ? open_field_faces(s, err) : MPM_OK;
+    if (rc != MPM_OK)
+      return rc;
   }
   int rc = mpm_shape3_stencil_compute(s->st, s->shape3, &s->mesh3, P, s->t, err);
   if (rc == MPM_EOUTSIDE && mpm_sim_check_state(s, s->t, err) != MPM_OK)
