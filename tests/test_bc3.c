@@ -210,17 +210,24 @@ static int direct_count(const mpm_mesh3 *m, int f, int disc, const double a[2],
   return count;
 }
 
+/* The outlet tests' mesh of 6 x 5 x 7 boxes with no-slip faces. */
+static void noslip_box(mpm_mesh3 *m, mpm_bc3 *bc)
+{
+  mesh_of(m, 6, 5, 7);
+  int face[6];
+  for (int q = 0; q < 6; q++)
+    face[q] = MPM_BC_NOSLIP;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_bc3_setup(bc, m, face, &err) == MPM_OK, "%s", err.msg);
+}
+
 static void check_outlet(int f, int disc, const double a[2], const double b[2], double r,
                          int min_count)
 {
   mpm_mesh3 m;
-  mesh_of(&m, 6, 5, 7);
-  int face[6];
-  for (int q = 0; q < 6; q++)
-    face[q] = MPM_BC_NOSLIP;
   mpm_bc3 bc = {0};
   mpm_err err = {0};
-  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  noslip_box(&m, &bc);
   int rc = disc ? mpm_bc3_set_outlet_disc(&bc, &m, f, a, r, MPM_BC_FRICTIONLESS, &err)
                 : mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_FRICTIONLESS, &err);
   ck_assert_msg(rc == MPM_OK, "%s", err.msg);
@@ -290,13 +297,9 @@ END_TEST
 static void check_outlet_faces(int f, const double a[2], const double b[2])
 {
   mpm_mesh3 m;
-  mesh_of(&m, 6, 5, 7);
-  int face[6];
-  for (int q = 0; q < 6; q++)
-    face[q] = MPM_BC_NOSLIP;
   mpm_bc3 bc = {0};
   mpm_err err = {0};
-  ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+  noslip_box(&m, &bc);
   ck_assert_msg(mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_NOSLIP, &err) == MPM_OK,
                 "%s", err.msg);
   int *inside = malloc(sizeof(int) * (size_t)m.nnodes);

@@ -303,6 +303,23 @@ START_TEST(t_plane_ramp)
 }
 END_TEST
 
+/* A box of 6 x 6 x 6 units of 1 cm with no-slip walls, filled 4 cm deep,
+ * under gravity, with a square orifice [from, to]^2 in its floor open from
+ * the start. */
+static void draining_box(mpm_config *c, const char *model, double from, double to)
+{
+  box_config(c, "ugimp", 6, 6, 6);
+  sim_config_material(c, model, 1e6);
+  c->bc.left = c->bc.right = c->bc.bottom = c->bc.front = c->bc.back = MPM_BC_NOSLIP;
+  c->bc.top = MPM_BC_FREE;
+  c->gravity.gy = -9.8;
+  c->fill[0].ymax = 0.04;
+  c->outlet.edge = MPM_OUTLET_BOTTOM;
+  c->outlet.closed = MPM_BC_NOSLIP;
+  c->outlet.from = c->outlet.from2 = from;
+  c->outlet.to = c->outlet.to2 = to;
+}
+
 /* A box draining through a square orifice in its floor (a disc with
  * _i = 1; _i = 2, 3: the square and a wider disc under the hyperelastic
  * NGF): points leave only through it, and the mass in the box plus the
@@ -314,16 +331,7 @@ END_TEST
 START_TEST(t_outlet)
 {
   mpm_config c;
-  box_config(&c, "ugimp", 6, 6, 6);
-  sim_config_material(&c, _i >= 2 ? "ngf_hyper" : "mu_i", 1e6);
-  c.bc.left = c.bc.right = c.bc.bottom = c.bc.front = c.bc.back = MPM_BC_NOSLIP;
-  c.bc.top = MPM_BC_FREE;
-  c.gravity.gy = -9.8;
-  c.fill[0].ymax = 0.04;
-  c.outlet.edge = MPM_OUTLET_BOTTOM;
-  c.outlet.closed = MPM_BC_NOSLIP;
-  c.outlet.from = c.outlet.from2 = 0.02;
-  c.outlet.to = c.outlet.to2 = 0.04;
+  draining_box(&c, _i >= 2 ? "ngf_hyper" : "mu_i", 0.02, 0.04);
   c.outlet.shape = _i % 2 ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
   if (_i == 3) {                                /* a disc of radius 2.5 cm round (3, 3) cm */
     c.outlet.from = c.outlet.from2 = 0.005;
@@ -542,16 +550,7 @@ END_TEST
 START_TEST(t_stop_mass)
 {
   mpm_config c;
-  box_config(&c, "ugimp", 6, 6, 6);
-  sim_config_material(&c, "mu_i", 1e6);
-  c.bc.left = c.bc.right = c.bc.bottom = c.bc.front = c.bc.back = MPM_BC_NOSLIP;
-  c.bc.top = MPM_BC_FREE;
-  c.gravity.gy = -9.8;
-  c.fill[0].ymax = 0.04;
-  c.outlet.edge = MPM_OUTLET_BOTTOM;
-  c.outlet.closed = MPM_BC_NOSLIP;
-  c.outlet.from = c.outlet.from2 = 0.0;
-  c.outlet.to = c.outlet.to2 = 0.06;        /* the whole floor opens: free fall */
+  draining_box(&c, "mu_i", 0.0, 0.06);         /* the whole floor opens: free fall */
   c.stop.mass = 0.5 * 1500 * 0.06 * 0.04 * 0.06;
   c.region.xmin = c.region.ymin = -1e9;       /* the input's default region: all */
   c.region.xmax = c.region.ymax = 1e9;
