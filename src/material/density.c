@@ -2,7 +2,7 @@
  *
  *   point   rho_p = m_p / V_p, V_p *= exp(dt tr L_p)     (local rule, eq. 3.34; [DK15])
  *   element rho_e = m_e / V_e, m_e = sum_{p in e} m_p,   (eq. 3.36-3.38; plane strain,
- *           V_e = dx dy                                  per unit thickness)
+ *           V_e = dx dy (dx dy dz in 3D)                 per unit thickness)
  *   hybrid  point rule in boundary units, element rule in the interior (§3.4.1).
  *   unit    rho_u = sum_{p in e} m_p / sum_{p in e} V_p: the element rule with
  *           the volume the points occupy in place of the unit area, so neither
@@ -10,12 +10,12 @@
  *           point of a unit gets the same state: a unit carries stress only
  *           when its points are dense on average.
  * A point belongs to the unit containing its centre. The thesis finds boundary
- * units by a Sobel filter of the point counts with an unstated threshold; here a
- * unit holding points is a boundary unit when one of the eight units around it
- * (the 3 x 3 support of that filter; 26 and 3 x 3 x 3 in 3D) holds none. A partially filled unit at a
- * free surface has empty units above it, so it is a boundary unit. Units beyond
- * a non-periodic mesh edge do not count as empty (material resting on a wall is
- * not at a free boundary); periodic edges wrap.
+ * units by a Sobel filter of the point counts with an unstated threshold; here
+ * a unit holding points is a boundary unit when one of the eight units around
+ * it (the 3 x 3 support of that filter; 26 and 3 x 3 x 3 in 3D) holds none. A
+ * partially filled unit at a free surface has empty units above it, so it is a
+ * boundary unit. Units beyond a non-periodic mesh edge do not count as empty
+ * (material resting on a wall is not at a free boundary); periodic edges wrap.
  * Only the state decision reads this density: V_p keeps its local update, so
  * mass is conserved point by point. The unit sums run over the points in index
  * order on one thread, so the result does not depend on the thread count. */

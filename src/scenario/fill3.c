@@ -1,17 +1,17 @@
 /* fill3.c: fill regions of a 3D mesh of boxes with material points (initial
  * state of the 3D module).
  *
- * As the 2D fill (fill.c): points sit at the centres of an n x n x n
- * sub-grid of every unit whose sub-cell centre lies in the region (the same
- * sub-cell centre, scenario_internal.h): V_p = dx dy dz / n^3,
- * m_p = rho V_p, uGIMP extent r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0),
- * r3 = (0, 0, dz/2n). Regions: an axis-aligned box, a cylinder whose axis
- * is x, y or z, and a prism: a plane polygon extruded along z. The stress starts at zero; mpm_scenario_prestress3 then sets
- * the fill's lithostatic or isotropic pre-stress as the plane fill does
- * (scenario_internal.h), for the hyperelastic model through the elastic
- * deformation F = Fe that carries it. A region must lie in the mesh,
- * periodic axes included: a fill that only covers the mesh's part of it
- * would silently lose material. */
+ * As the 2D fill (fill.c): points sit at the centres of an n x n x n sub-grid
+ * of every unit whose sub-cell centre lies in the region (the same sub-cell
+ * centre, scenario_internal.h): V_p = dx dy dz / n^3, m_p = rho V_p, uGIMP
+ * extent r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0), r3 = (0, 0, dz/2n). Regions:
+ * an axis-aligned box, a cylinder whose axis is x, y or z, and a prism: a
+ * plane polygon extruded along z. The stress starts at zero;
+ * mpm_scenario_prestress3 then sets the fill's lithostatic or isotropic
+ * pre-stress as the plane fill does (scenario_internal.h), for the
+ * hyperelastic model through the elastic deformation F = Fe that carries it. A
+ * region must lie in the mesh, periodic axes included: a fill that only covers
+ * the mesh's part of it would silently lose material. */
 #include <string.h>
 
 #include "scenario/scenario.h"

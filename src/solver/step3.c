@@ -11,7 +11,7 @@
  * 3x3 tensors), then the walls
  * (mpm_bc_clamp_axis per axis; not for a point leaving through the open
  * outlet) and periodic wraps; points out through the outlet are removed
- * after the step (remove.c). With the hyperelastic NGF, the unit density or
+ * after the step (remove.c). With the hyperelastic NGF, a per-unit state density or
  * the B-bar dilatation every point moves first (moved_phase), then the unit
  * sums run in point order and the points are updated. y is the vertical as
  * in the plane, z the third axis. Results do not depend on the thread count:
