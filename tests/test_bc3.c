@@ -228,8 +228,8 @@ static void check_outlet(int f, int disc, const double a[2], const double b[2], 
   mpm_bc3 bc = {0};
   mpm_err err = {0};
   noslip_box(&m, &bc);
-  int rc = disc ? mpm_bc3_set_outlet_disc(&bc, &m, f, a, r, MPM_BC_FRICTIONLESS, &err)
-                : mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_FRICTIONLESS, &err);
+  int rc = disc ? mpm_bc3_set_outlet_disc(&bc, &m, f, a, r, MPM_BC_FRICTIONLESS, 0, &err)
+                : mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_FRICTIONLESS, 0, &err);
   ck_assert_msg(rc == MPM_OK, "%s", err.msg);
   int *inside = malloc(sizeof(int) * (size_t)m.nnodes);
   const int want = direct_count(&m, f, disc, a, b, r, inside);
@@ -300,7 +300,7 @@ static void check_outlet_faces(int f, const double a[2], const double b[2])
   mpm_bc3 bc = {0};
   mpm_err err = {0};
   noslip_box(&m, &bc);
-  ck_assert_msg(mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_NOSLIP, &err) == MPM_OK,
+  ck_assert_msg(mpm_bc3_set_outlet_rectangle(&bc, &m, f, a, b, MPM_BC_NOSLIP, 0, &err) == MPM_OK,
                 "%s", err.msg);
   int *inside = malloc(sizeof(int) * (size_t)m.nnodes);
   direct_count(&m, f, 0, a, b, 0.0, inside);
@@ -331,7 +331,7 @@ static void check_outlet_faces(int f, const double a[2], const double b[2])
   /* a disc: mpm_bc3_outlet_face_open marks exactly the unit faces with four
    * corners in it, and the range is their bounding box */
   const double c[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])}, r = 0.93;
-  ck_assert_msg(mpm_bc3_set_outlet_disc(&bc, &m, f, c, r, MPM_BC_NOSLIP, &err) == MPM_OK,
+  ck_assert_msg(mpm_bc3_set_outlet_disc(&bc, &m, f, c, r, MPM_BC_NOSLIP, 0, &err) == MPM_OK,
                 "%s", err.msg);
   direct_count(&m, f, 1, c, c, r, inside);
   ck_assert_int_eq(mpm_bc3_outlet_faces(&bc, &m, lo, hi), f);
@@ -434,6 +434,44 @@ START_TEST(wall_polygon_is_a_prism)
 }
 END_TEST
 
+/* Held ends (outlet.ends = "fixed"): a rectangle from node to node on the
+ * -z face, x in [1.5, 2.5] and y in [-1.75, -1.25] (3 x 3 nodes), frees its
+ * 9 nodes, or with the ends held only the one strictly inside, (2, -1.5),
+ * the 8 on its boundary keeping the face's no-slip; the open unit faces are
+ * the same 2 x 2 either way. */
+START_TEST(held_ends_keep_the_boundary_nodes)
+{
+  const double lo[2] = {1.5, -1.75}, hi[2] = {2.5, -1.25};
+  for (int held = 0; held <= 1; held++) {
+    mpm_mesh3 m;
+    mpm_bc3 bc = {0};
+    mpm_err err = {0};
+    noslip_box(&m, &bc);
+    ck_assert_msg(mpm_bc3_set_outlet_rectangle(&bc, &m, MPM_FACE_ZLO, lo, hi, MPM_BC_NOSLIP,
+                                               held, &err) == MPM_OK, "%s", err.msg);
+    mpm_bc3_open_outlet(&bc);
+    int freed = 0;
+    for (int j = 0; j <= m.ny; j++)
+      for (int i = 0; i <= m.nx; i++) {
+        const int id = mpm_mesh3_node(&m, i, j, 0);
+        const double x = m.x0 + i * m.dx, y = m.y0 + j * m.dy;
+        const int inside = x > 1.5 - 1e-9 && x < 2.5 + 1e-9 && y > -1.75 - 1e-9 &&
+                           y < -1.25 + 1e-9;
+        const int strict = x > 1.5 + 1e-9 && x < 2.5 - 1e-9 && y > -1.75 + 1e-9 &&
+                           y < -1.25 - 1e-9;
+        const int free_node = bc.fix[id] == 0;
+        ck_assert_int_eq(free_node, held ? strict : inside);
+        freed += free_node;
+      }
+    ck_assert_int_eq(freed, held ? 1 : 9);
+    int flo[3], fhi[3];
+    ck_assert_int_eq(mpm_bc3_outlet_faces(&bc, &m, flo, fhi), MPM_FACE_ZLO);
+    ck_assert(flo[0] == 1 && fhi[0] == 3 && flo[1] == 1 && fhi[1] == 3);
+    mpm_bc3_clear(&bc);
+  }
+}
+END_TEST
+
 START_TEST(outlet_refusals)
 {
   mpm_mesh3 m;
@@ -445,11 +483,12 @@ START_TEST(outlet_refusals)
   ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
   const double lo[2] = {1.0, -2.0}, hi[2] = {1.0, -1.0}, c[2] = {2.0, -1.5};
   ck_assert_int_eq(mpm_bc3_set_outlet_rectangle(&bc, &m, MPM_FACE_ZLO, lo, hi, MPM_BC_NOSLIP,
-                                                &err), MPM_EINVAL);
-  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_ZLO, c, 0.0, MPM_BC_NOSLIP, &err),
+                                                0, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_ZLO, c, 0.0, MPM_BC_NOSLIP, 0, &err),
                    MPM_EINVAL);
-  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, 6, c, 0.5, MPM_BC_NOSLIP, &err), MPM_EINVAL);
-  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_ZLO, c, 0.5, MPM_BC_SYMMETRY, &err),
+  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, 6, c, 0.5, MPM_BC_NOSLIP, 0, &err), MPM_EINVAL);
+  ck_assert_int_eq(mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_ZLO, c, 0.5, MPM_BC_SYMMETRY, 0,
+                                           &err),
                    MPM_EINVAL);
   ck_assert_ptr_null(bc.mask[1]);
   ck_assert_int_eq(bc.out_face, -1);
@@ -471,6 +510,7 @@ int main(void)
   tcase_add_test(tc, disc_outlet_frees_the_nodes_inside);
   tcase_add_test(tc, outlet_faces_have_four_free_corners);
   tcase_add_test(tc, wall_polygon_is_a_prism);
+  tcase_add_test(tc, held_ends_keep_the_boundary_nodes);
   tcase_add_test(tc, outlet_refusals);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

@@ -97,7 +97,8 @@ static int in_outlet(const mpm_bc3 *bc, const double s[2], double tol)
  * masks: the outlet's nodes closed hold the other faces' bits and the closed
  * wall's, open only the other faces'. Nothing changes on an error. */
 static int set_outlet(mpm_bc3 *bc, const mpm_mesh3 *m, int f, int closed, int shape,
-                      const double a[2], const double b[2], double r, mpm_err *err)
+                      const double a[2], const double b[2], double r, int held_ends,
+                      mpm_err *err)
 {
   if (!bc->mask[0])
     return mpm_err_set(err, MPM_EINVAL, "outlet: boundary not set up");
@@ -143,8 +144,8 @@ static int set_outlet(mpm_bc3 *bc, const mpm_mesh3 *m, int f, int closed, int sh
         double x[3];
         mpm_mesh3_node_pos(m, ijk[0], ijk[1], ijk[2], x);
         const double s[2] = {x[ax[0]], x[ax[1]]};
-        if (!in_outlet(bc, s, tol))
-          continue;
+        if (!in_outlet(bc, s, held_ends ? -tol : tol))
+          continue;                  /* held ends: the boundary's nodes keep the face's */
         const int id = mpm_mesh3_node(m, ijk[0], ijk[1], ijk[2]);
         const unsigned char others = node_bits(bc, m, ijk, f);
         open[id] = others;
@@ -155,15 +156,15 @@ static int set_outlet(mpm_bc3 *bc, const mpm_mesh3 *m, int f, int closed, int sh
 }
 
 int mpm_bc3_set_outlet_rectangle(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double lo[2],
-                                 const double hi[2], int closed, mpm_err *err)
+                                 const double hi[2], int closed, int held_ends, mpm_err *err)
 {
-  return set_outlet(bc, m, f, closed, MPM_OUTLET3_RECTANGLE, lo, hi, 0.0, err);
+  return set_outlet(bc, m, f, closed, MPM_OUTLET3_RECTANGLE, lo, hi, 0.0, held_ends, err);
 }
 
 int mpm_bc3_set_outlet_disc(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double c[2],
-                            double r, int closed, mpm_err *err)
+                            double r, int closed, int held_ends, mpm_err *err)
 {
-  return set_outlet(bc, m, f, closed, MPM_OUTLET3_DISC, c, c, r, err);
+  return set_outlet(bc, m, f, closed, MPM_OUTLET3_DISC, c, c, r, held_ends, err);
 }
 
 void mpm_bc3_open_outlet(mpm_bc3 *bc)

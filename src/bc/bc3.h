@@ -55,11 +55,15 @@ void mpm_bc3_clear(mpm_bc3 *bc);  /* frees the masks; safe on a zeroed struct */
  * unit) become a wall of kind `closed` (noslip or frictionless) until
  * mpm_bc3_open_outlet, and carry no condition of face f afterwards (a
  * perpendicular face meeting the outlet at an edge keeps its own, as in
- * 2D). One outlet: a second call replaces the first. */
+ * 2D). With held_ends the nodes on the outlet's boundary (to 1e-9 of a
+ * unit) keep the face's own condition and only those strictly inside are
+ * freed ([DK-silo] section 7.1's orifice measured between held nodes, the
+ * plane's outlet.ends = "fixed"); the open unit faces are the same either
+ * way. One outlet: a second call replaces the first. */
 int mpm_bc3_set_outlet_rectangle(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double lo[2],
-                                 const double hi[2], int closed, mpm_err *err);
+                                 const double hi[2], int closed, int held_ends, mpm_err *err);
 int mpm_bc3_set_outlet_disc(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double c[2],
-                            double r, int closed, mpm_err *err);
+                            double r, int closed, int held_ends, mpm_err *err);
 void mpm_bc3_open_outlet(mpm_bc3 *bc);
 
 /* 1 if the face of unit c on the outlet's face has its four corners in the

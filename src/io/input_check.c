@@ -462,6 +462,23 @@ static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int
   return MPM_OK;
 }
 
+/* Held ends (outlet.ends = "fixed"): along axis a of the outlet's face (0
+ * x, 1 y, 2 z), the first node past `from` must lie before `to`. */
+static int check_held_ends(in_ctx *c, const mpm_config *cfg, int a, double from, double to,
+                           int kt)
+{
+  const double h = a == 0 ? cfg->mesh.dx : a == 1 ? cfg->mesh.dy : cfg->mesh.dz;
+  const double o = a == 0 ? cfg->mesh.x0 : a == 1 ? cfg->mesh.y0 : cfg->mesh.z0;
+  const double first = o + (floor((from - o) / h + GEOM_TOL) + 1.0) * h;
+  if (first < to - GEOM_TOL * h)
+    return MPM_OK;
+  where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
+  return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free between the held ends "
+                            "at %s and %s m (allowed: a node strictly between from and to, "
+                            "or ends = \"free\")", mpm_io_in_approx(from).s,
+                            mpm_io_in_approx(to).s);
+}
+
 /* Outlet: an extent on a non-periodic edge (a rectangle or disc on a face
  * in 3D), inside it; closed by a wall. */
 static int check_outlet(in_ctx *c, const mpm_config *cfg)
@@ -496,22 +513,16 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   const int a1 = e == MPM_OUTLET_FRONT || e == MPM_OUTLET_BACK ? 1 : 2;
   if (check_outlet_span(c, cfg, e, a0, kf, kt, cfg->outlet.from, cfg->outlet.to) != MPM_OK)
     return MPM_EINPUT;
-  if (!dim3 && cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED) {
-    /* held ends: the first node past `from` must lie before `to` */
-    const double h = a0 ? cfg->mesh.dy : cfg->mesh.dx, o = a0 ? cfg->mesh.y0 : cfg->mesh.x0;
-    const double first = o + (floor((cfg->outlet.from - o) / h + GEOM_TOL) + 1.0) * h;
-    if (!(first < cfg->outlet.to - GEOM_TOL * h)) {
-      where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
-      return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free between the held ends "
-                                "at %s and %s m (allowed: a node strictly between from and to, "
-                                "or ends = \"free\")", mpm_io_in_approx(cfg->outlet.from).s,
-                                mpm_io_in_approx(cfg->outlet.to).s);
-    }
-  }
+  if (cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED &&
+      check_held_ends(c, cfg, a0, cfg->outlet.from, cfg->outlet.to, kt) != MPM_OK)
+    return MPM_EINPUT;
   if (!dim3)
     return MPM_OK;
   const int kf2 = key_index(S_OUTLET, "from2"), kt2 = key_index(S_OUTLET, "to2");
   if (check_outlet_span(c, cfg, e, a1, kf2, kt2, cfg->outlet.from2, cfg->outlet.to2) != MPM_OK)
+    return MPM_EINPUT;
+  if (cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED &&
+      check_held_ends(c, cfg, a1, cfg->outlet.from2, cfg->outlet.to2, kt2) != MPM_OK)
     return MPM_EINPUT;
   const double w0 = cfg->outlet.to - cfg->outlet.from, w1 = cfg->outlet.to2 - cfg->outlet.from2;
   if (cfg->outlet.shape == MPM_OUTLET_DISC && fabs(w0 - w1) > 1e-9 * (w0 > w1 ? w0 : w1)) {
@@ -519,6 +530,22 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
     return mpm_io_in_fail_key(c, &w, "shape = \"disc\" on %s x %s m (allowed: a square, "
                               "to - from = to2 - from2: the disc is the inscribed one)",
                               mpm_io_in_approx(w0).s, mpm_io_in_approx(w1).s);
+  }
+  if (cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED && cfg->outlet.shape == MPM_OUTLET_DISC) {
+    /* a node strictly inside the disc: the one nearest its centre */
+    const double h[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
+    const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
+    const double c0 = 0.5 * (cfg->outlet.from + cfg->outlet.to);
+    const double c1 = 0.5 * (cfg->outlet.from2 + cfg->outlet.to2);
+    const double r = 0.5 * (cfg->outlet.to - cfg->outlet.from);
+    const double d0 = o[a0] + round((c0 - o[a0]) / h[a0]) * h[a0] - c0;
+    const double d1 = o[a1] + round((c1 - o[a1]) / h[a1]) * h[a1] - c1;
+    if (!(hypot(d0, d1) < r - GEOM_TOL * fmin(h[a0], h[a1]))) {
+      where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt2);
+      return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free inside the disc of "
+                                "radius %s m (allowed: a node strictly inside it, or ends = "
+                                "\"free\")", mpm_io_in_approx(r).s);
+    }
   }
   return MPM_OK;
 }
@@ -607,7 +634,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   /* what the plane run has and the 3D one has not (yet): named, not ignored */
   struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
     {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
-    {cfg->outlet.ends != MPM_OUTLET_ENDS_FREE, S_OUTLET, "ends", "\"free\""},
   };
   for (size_t i = 0; i < sizeof no3 / sizeof no3[0]; i++) {
     if (!no3[i].on)

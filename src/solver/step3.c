@@ -133,12 +133,13 @@ int mpm_sim3_build(mpm_sim *s, mpm_err *err)
     const int f = e - MPM_OUTLET_LEFT + MPM_FACE_XLO;
     const double lo[2] = {cfg->outlet.from, cfg->outlet.from2};
     const double hi[2] = {cfg->outlet.to, cfg->outlet.to2};
+    const int held = cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED;
     if (cfg->outlet.shape == MPM_OUTLET_DISC) {
       const double c[2] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
       rc = mpm_bc3_set_outlet_disc(&s->bc3, m, f, c, 0.5 * (hi[0] - lo[0]), cfg->outlet.closed,
-                                   err);
+                                   held, err);
     } else {
-      rc = mpm_bc3_set_outlet_rectangle(&s->bc3, m, f, lo, hi, cfg->outlet.closed, err);
+      rc = mpm_bc3_set_outlet_rectangle(&s->bc3, m, f, lo, hi, cfg->outlet.closed, held, err);
     }
   }
   if (rc == MPM_OK && cfg->wall.nvert > 0)    /* the wall's prism along z */
