@@ -93,6 +93,16 @@ static int in_outlet(const mpm_bc3 *bc, const double s[2], double tol)
   return 1;
 }
 
+/* The tolerance of "on the outlet's boundary" on face f: 1e-9 of the
+ * smaller unit size along it. */
+static double outlet_tol(const mpm_mesh3 *m, int f)
+{
+  int ax[2];
+  mpm_bc3_face_axes(f, ax);
+  const double d[3] = {m->dx, m->dy, m->dz};
+  return 1e-9 * (d[ax[0]] < d[ax[1]] ? d[ax[0]] : d[ax[1]]);
+}
+
 /* Checks, then the outlet (shape, a, b, r as stored in mpm_bc3) and the two
  * masks: the outlet's nodes closed hold the other faces' bits and the closed
  * wall's, open only the other faces'. Nothing changes on an error. */
@@ -132,8 +142,7 @@ static int set_outlet(mpm_bc3 *bc, const mpm_mesh3 *m, int f, int closed, int sh
 
   int ax[2];
   mpm_bc3_face_axes(f, ax);
-  const double d[3] = {m->dx, m->dy, m->dz};
-  const double tol = 1e-9 * (d[ax[0]] < d[ax[1]] ? d[ax[0]] : d[ax[1]]);
+  const double tol = outlet_tol(m, f);
   const unsigned char wall = mpm_bc_wall_bits(closed, f / 2, 3);
   int ijk[3];
   for (ijk[2] = 0; ijk[2] <= m->nz; ijk[2]++)
@@ -182,7 +191,7 @@ int mpm_bc3_outlet_face_open(const mpm_bc3 *bc, const mpm_mesh3 *m, const int c[
   int ax[2];
   mpm_bc3_face_axes(bc->out_face, ax);
   const double o[3] = {m->x0, m->y0, m->z0}, d[3] = {m->dx, m->dy, m->dz};
-  const double tol = 1e-9 * (d[ax[0]] < d[ax[1]] ? d[ax[0]] : d[ax[1]]);  /* set_outlet's */
+  const double tol = outlet_tol(m, bc->out_face);
   for (int k = 0; k < 4; k++) {                /* the four corners of the unit's face */
     const double s[2] = {o[ax[0]] + (c[ax[0]] + (k & 1)) * d[ax[0]],
                          o[ax[1]] + (c[ax[1]] + (k >> 1)) * d[ax[1]]};

@@ -436,15 +436,27 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
                             e.msg);
 }
 
+/* The mesh along axis a (0 x, 1 y, 2 z): origin, unit size, units. */
+typedef struct mesh_axis {
+  double o, d;
+  int n;
+} mesh_axis;
+
+static mesh_axis axis_of(const mpm_config *cfg, int a)
+{
+  const double d[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
+  const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
+  const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
+  return (mesh_axis){o[a], d[a], n[a]};
+}
+
 /* One extent of an outlet, lo ... hi (keys klo, khi), inside the mesh along
  * axis a (0 x, 1 y, 2 z) of the face of edge e. */
 static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int klo, int khi,
                              double lo, double hi)
 {
-  const double d[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
-  const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
-  const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
-  const double m0 = o[a], m1 = m0 + n[a] * d[a], tol = GEOM_TOL * d[a];
+  const mesh_axis ax = axis_of(cfg, a);
+  const double m0 = ax.o, m1 = m0 + ax.n * ax.d, tol = GEOM_TOL * ax.d;
   if (!(hi > lo)) {
     where w = blame(c, cfg, -1, khi, klo);
     return mpm_io_in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)",
@@ -467,10 +479,9 @@ static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int
 static int check_held_ends(in_ctx *c, const mpm_config *cfg, int a, double from, double to,
                            int kt)
 {
-  const double h = a == 0 ? cfg->mesh.dx : a == 1 ? cfg->mesh.dy : cfg->mesh.dz;
-  const double o = a == 0 ? cfg->mesh.x0 : a == 1 ? cfg->mesh.y0 : cfg->mesh.z0;
-  const double first = o + (floor((from - o) / h + GEOM_TOL) + 1.0) * h;
-  if (first < to - GEOM_TOL * h)
+  const mesh_axis ax = axis_of(cfg, a);
+  const double first = ax.o + (floor((from - ax.o) / ax.d + GEOM_TOL) + 1.0) * ax.d;
+  if (first < to - GEOM_TOL * ax.d)
     return MPM_OK;
   where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
   return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free between the held ends "
@@ -533,14 +544,13 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   }
   if (cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED && cfg->outlet.shape == MPM_OUTLET_DISC) {
     /* a node strictly inside the disc: the one nearest its centre */
-    const double h[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
-    const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
+    const mesh_axis x0 = axis_of(cfg, a0), x1 = axis_of(cfg, a1);
     const double c0 = 0.5 * (cfg->outlet.from + cfg->outlet.to);
     const double c1 = 0.5 * (cfg->outlet.from2 + cfg->outlet.to2);
     const double r = 0.5 * (cfg->outlet.to - cfg->outlet.from);
-    const double d0 = o[a0] + round((c0 - o[a0]) / h[a0]) * h[a0] - c0;
-    const double d1 = o[a1] + round((c1 - o[a1]) / h[a1]) * h[a1] - c1;
-    if (!(hypot(d0, d1) < r - GEOM_TOL * fmin(h[a0], h[a1]))) {
+    const double d0 = x0.o + round((c0 - x0.o) / x0.d) * x0.d - c0;
+    const double d1 = x1.o + round((c1 - x1.o) / x1.d) * x1.d - c1;
+    if (!(hypot(d0, d1) < r - GEOM_TOL * fmin(x0.d, x1.d))) {
       where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt2);
       return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free inside the disc of "
                                 "radius %s m (allowed: a node strictly inside it, or ends = "

@@ -392,8 +392,10 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
     return bad;
   }
   for (size_t p = 0; p < n; p++) {
+    if (w->unit[p] >= 0)
+      continue;
     const double x[3] = {P->x[p], P->y[p], P->z[p]};
-    if (w->unit[p] < 0 && !mpm_bc3_left_through_outlet(&s->bc3, &s->mesh3, x)) {
+    if (!mpm_bc3_left_through_outlet(&s->bc3, &s->mesh3, x)) {
       if (mpm_sim_check_state(s, s->t + s->dt, err) != MPM_OK)
         *rc = MPM_ENONFINITE;
       else
