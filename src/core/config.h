@@ -60,7 +60,9 @@ typedef struct mpm_fill_config {
   double zmin, zmax;           /* 3D (mesh.nz > 0): the z range of the fill, which
                                   extrudes its plane shape along z [m] */
   double vz;                   /* 3D: initial velocity z [m/s] */
-  int lithostatic;             /* 1: pre-stress from the weight above (K0 = nu/(1-nu)) */
+  int lithostatic;             /* 1: pre-stress from the weight above */
+  double k0;                   /* lithostatic: sigma_xx = sigma_zz = k0 sigma_yy (0: the
+                                  uniaxial-strain value nu/(1-nu)) */
   double pressure;             /* isotropic initial pressure [Pa] (0: none) */
   char name[MPM_NAME_MAX];     /* title of the fill section ("fill NAME { ... }") */
 } mpm_fill_config;

@@ -397,6 +397,15 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
                               "lithostatic = false)",
                               mpm_io_in_num(cfg->gravity.t_ramp).s);
   }
+  int kk = key_index(S_FILL, "k0");
+  if (!f->lithostatic && f->k0 > 0.0) {
+    where w = {.at = c->at[i][kk], .sec = S_FILL, .key = kk, .fill = i, .title = f->name};
+    return mpm_io_in_fail_key(c, &w,
+                              "k0 = %s without lithostatic = true: the lateral stress ratio "
+                              "belongs to the lithostatic pre-stress (allowed: lithostatic = "
+                              "true, or no k0)",
+                              mpm_io_in_num(f->k0).s);
+  }
   int kp = key_index(S_FILL, "pressure");
   if (f->lithostatic && f->pressure > 0.0) {
     where w = blame(c, cfg, i, kp, kl);

@@ -97,7 +97,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 104
+#define NKEYS 105
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];

@@ -119,6 +119,7 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_FILL, KT_REAL, "zmax", F_(zmax), 0, -1e9, 1e9, KF_3D, "m"),
     NUM(S_FILL, KT_REAL, "vz", F_(vz), 0, -1e4, 1e4, KF_3D, "m/s"),
     NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
+    NUM(S_FILL, KT_REAL, "k0", F_(k0), 0, 0.01, 10, KF_ZERO_OFF, "-"),
     NUM(S_FILL, KT_REAL, "pressure", F_(pressure), 0, 0, 1e9, 0, "Pa"),
 
     NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),

@@ -4,7 +4,8 @@
  * sub-cell centre lies in the region: V_p = dx dy / n^2, m_p = rho V_p,
  * uGIMP extent r1 = (dx/2n, 0), r2 = (0, dy/2n). A lithostatic pre-stress sets
  * sigma_yy = rho g_y (y_top - y) with y_top the top of the fill above the point
- * and sigma_xx = sigma_zz = K0 sigma_yy, K0 = nu / (1 - nu) (uniaxial strain).
+ * and sigma_xx = sigma_zz = K0 sigma_yy, K0 = fill.k0, by default nu / (1 - nu)
+ * (uniaxial strain); K0 = 1 is isotropic, sigma = -p I.
  * An isotropic pre-stress (`pressure`) sets sigma = -p I ([D-thesis] ch. 4:
  * "initially isotropically compressed").
  * The pre-stressed material is compressed consistently with the hypoelastic
@@ -76,7 +77,7 @@ int mpm_scenario_in_prestress(mpm_points *pts, size_t first, const mpm_fill_conf
     if (pts->y[p] > ytop[c])
       ytop[c] = pts->y[p];
   }
-  const double k0 = par->nu / (1.0 - par->nu);              /* K0 = nu / (1 - nu) */
+  const double k0 = f->k0 > 0.0 ? f->k0 : par->nu / (1.0 - par->nu);  /* K0 */
   for (size_t p = first; p < pts->n; p++) {
     double pr;
     if (ytop) {
