@@ -199,7 +199,8 @@ END_TEST
 /* Jacobi eigenpairs: a v = v diag(lam) and v^T v = I to 16 eps |a| and
  * 16 eps (each rotation is orthogonal to a few eps and a 3x3 needs about a
  * dozen), for random matrices, matrices with a double or triple eigenvalue,
- * graded ones and the zero matrix. */
+ * graded ones, one whose rotation angle has theta = 5e159 (beyond the range
+ * where theta^2 is finite) and the zero matrix. */
 START_TEST(t_eigen)
 {
   unsigned long s = 5u;
@@ -235,6 +236,15 @@ START_TEST(t_eigen)
   }
   double lam[3];
   mpm_mat3 v, I = mpm_mat3_identity();
+  const mpm_sym3 wide = {1.0, 1e-300, 0.5, 1e-160, 0.0, 0.0};    /* a_xy above the drop bar */
+  mpm_material_hyper_eigen(wide, lam, &v);
+  mpm_mat3 W = mpm_sym3_full(wide), wv = mpm_mat3_mul(&W, &v), wl = v;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      wl.m[i][j] *= lam[j];
+  ck_assert_msg(mat3_maxdiff(&wv, &wl) <= 16.0 * EPS, "theta = 5e159: residual %g",
+                mat3_maxdiff(&wv, &wl));
+  ck_assert_msg(orth_err(&v) <= 16.0 * EPS, "theta = 5e159: v^T v - I = %g", orth_err(&v));
   mpm_material_hyper_eigen(mpm_sym3_zero(), lam, &v);
   ck_assert(lam[0] == 0.0 && lam[1] == 0.0 && lam[2] == 0.0 && mat3_maxdiff(&v, &I) == 0.0);
 }

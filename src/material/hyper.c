@@ -84,12 +84,14 @@ static const int jacobi_planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
 /* One Jacobi rotation in the plane (p, q) that zeroes a[p][q], accumulated
  * into the columns of v: a <- J^T a J, v <- v J with J_pp = J_qq = c,
  * J_pq = -J_qp = s, t = s/c the smaller root of t^2 + 2 theta t - 1 = 0,
- * theta = (a_qq - a_pp) / (2 a_pq). */
+ * theta = (a_qq - a_pp) / (2 a_pq). sqrt(1 + theta^2) is |theta| itself in
+ * double above 1e150 (where theta^2 would overflow), so no hypot is needed. */
 static void jacobi_rotate(double a[3][3], mpm_mat3 *v, int p, int q)
 {
   const double apq = a[p][q];
-  const double theta = (a[q][q] - a[p][p]) / (2.0 * apq);
-  const double t = copysign(1.0 / (fabs(theta) + hypot(theta, 1.0)), theta);
+  const double theta = (a[q][q] - a[p][p]) / (2.0 * apq), at = fabs(theta);
+  const double root = at < 1e150 ? sqrt(1.0 + at * at) : at;      /* sqrt(1 + theta^2) */
+  const double t = copysign(1.0 / (at + root), theta);
   const double c = 1.0 / sqrt(1.0 + t * t), s = t * c;
   const double h = s / (1.0 + c);                                  /* tan(angle/2) */
   a[p][p] -= t * apq;                                              /* a_pp - t a_pq */
