@@ -106,17 +106,12 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
     return mpm_err_set(err, MPM_EINPUT, "fill: density = %g must be > 0 kg/m^3", f->density);
   double hx = m->dx / n, hy = m->dy / n;
   double vol = hx * hy;                                    /* V_p = dx dy / n^2 */
-  if (mpm_points_reserve(pts, pts->n + mpm_scenario_count(f, m)) != MPM_OK)
-    return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points",
-                       pts->n + mpm_scenario_count(f, m));
-  int state = (par->rho_c > 0.0 && f->density < par->rho_c) ? MPM_STATE_DISCONNECTED
-                                                             : MPM_STATE_DENSE;
-  size_t first = pts->n, count = 0;
-  for (int j = 0; j < m->ny * n; j++)             /* room for exactly the points to come */
-    for (int i = 0; i < m->nx * n; i++)
-      count += mpm_scenario_inside(f, m->x0 + (i + 0.5) * hx, m->y0 + (j + 0.5) * hy) != 0;
+  const size_t count = mpm_scenario_count(f, m);   /* room for exactly the points to come */
   if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points", pts->n + count);
+  int state = (par->rho_c > 0.0 && f->density < par->rho_c) ? MPM_STATE_DISCONNECTED
+                                                             : MPM_STATE_DENSE;
+  size_t first = pts->n;
   for (int j = 0; j < m->ny * n; j++) {
     double y = mpm_scenario_in_sub_centre(m->y0, m->dy, n, j);
     for (int i = 0; i < m->nx * n; i++) {
