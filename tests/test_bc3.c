@@ -472,6 +472,56 @@ START_TEST(held_ends_keep_the_boundary_nodes)
 }
 END_TEST
 
+/* Held ends on a quarter silo: symmetry faces at x = x0 and z = z0, the rest
+ * no-slip; the rectangle [x0, x0 + 2 dx] x [z0, z0 + 2 dz] on the floor. Its
+ * sides on the symmetry faces are the mirror images of inner nodes and are
+ * freed: the 2 x 2 nodes with i, k <= 1 (the corner node keeping both
+ * symmetry normals, the others one), the 5 on the far sides held. With
+ * frictionless faces instead only (1, 1) is freed; a disc of radius 2 dx
+ * about the corner node (on a square mesh along the face) frees the nodes
+ * strictly inside its arc either way. */
+START_TEST(held_ends_on_symmetry_faces)
+{
+  for (int sym = 0; sym <= 1; sym++)
+    for (int disc = 0; disc <= 1; disc++) {
+      mpm_mesh3 m;
+      mesh_of(&m, 6, 5, 7);
+      if (disc) {                                  /* square along x and z: a round disc */
+        m.dz = m.dx;
+        mpm_err e0 = {0};
+        ck_assert_msg(mpm_mesh3_setup(&m, &e0) == MPM_OK, "%s", e0.msg);
+      }
+      const int k = sym ? MPM_BC_SYMMETRY : MPM_BC_FRICTIONLESS;
+      int face[6] = {k, MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP, k, MPM_BC_NOSLIP};
+      mpm_bc3 bc = {0};
+      mpm_err err = {0};
+      ck_assert_msg(mpm_bc3_setup(&bc, &m, face, &err) == MPM_OK, "%s", err.msg);
+      const double lo[2] = {m.x0, m.z0}, hi[2] = {m.x0 + 2 * m.dx, m.z0 + 2 * m.dz};
+      const int rc = disc ? mpm_bc3_set_outlet_disc(&bc, &m, MPM_FACE_YLO, lo, 2 * m.dx,
+                                                    MPM_BC_NOSLIP, 1, &err)
+                          : mpm_bc3_set_outlet_rectangle(&bc, &m, MPM_FACE_YLO, lo, hi,
+                                                         MPM_BC_NOSLIP, 1, &err);
+      ck_assert_msg(rc == MPM_OK, "%s", err.msg);
+      mpm_bc3_open_outlet(&bc);
+      int freed = 0;
+      for (int kk = 0; kk <= m.nz; kk++)
+        for (int i = 0; i <= m.nx; i++) {
+          const unsigned char f = bc.fix[mpm_mesh3_node(&m, i, 0, kk)];
+          const int want = disc ? i * i + kk * kk < 4 : (sym ? i <= 1 && kk <= 1 : i == 1 && kk == 1);
+          const unsigned char side = (unsigned char)((i == 0 ? MPM_FIX_X : 0) |
+                                                     (kk == 0 ? MPM_FIX_Z : 0));
+          if (want)
+            ck_assert_msg(f == side, "node (%d, 0, %d): bits %d, want %d", i, kk, f, side);
+          else
+            ck_assert_msg(f & MPM_FIX_Y, "node (%d, 0, %d) should stay held", i, kk);
+          freed += want;
+        }
+      ck_assert_int_eq(freed, disc ? 4 : (sym ? 4 : 1));
+      mpm_bc3_clear(&bc);
+    }
+}
+END_TEST
+
 START_TEST(outlet_refusals)
 {
   mpm_mesh3 m;
@@ -511,6 +561,7 @@ int main(void)
   tcase_add_test(tc, outlet_faces_have_four_free_corners);
   tcase_add_test(tc, wall_polygon_is_a_prism);
   tcase_add_test(tc, held_ends_keep_the_boundary_nodes);
+  tcase_add_test(tc, held_ends_on_symmetry_faces);
   tcase_add_test(tc, outlet_refusals);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);

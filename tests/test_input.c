@@ -508,7 +508,10 @@ START_TEST(t_bad_override_list)
 END_TEST
 
 /* outlet.ends = "fixed" keeps the nodes at from and to held: an outlet of
- * one unit then frees no node, which the input refuses; two units free one. */
+ * one unit then frees no node, which the input refuses; two units free one.
+ * An end on a symmetry edge is freed (a half silo's centre), so one unit
+ * from the symmetry line is accepted, and refused beside a frictionless
+ * wall. */
 START_TEST(t_outlet_ends)
 {
   const char *text = BASE "outlet {\n  edge = bottom\n  from = 0.2\n  to = 0.4\n"
@@ -521,6 +524,13 @@ START_TEST(t_outlet_ends)
                "--set 'outlet.to=0.3': key 'outlet.to': \"fixed\" leaves no node free between "
                "the held ends at 0.2 and 0.3 m (allowed: a node strictly between from and to, "
                "or ends = \"free\")");
+  const char *half = BASE "boundary {\n  left = symmetry\n}\n"
+                          "outlet {\n  edge = bottom\n  from = 0\n  to = 0.1\n  ends = fixed\n}\n";
+  ck_assert_int_eq(load_text(half, NULL, 0, &cfg, &err), MPM_OK);
+  expect_error(half, "boundary.left=frictionless",
+               "test_input.tmp/case.conf:23: key 'outlet.ends': \"fixed\" leaves no node "
+               "free between the held ends at 0 and 0.1 m (allowed: a node strictly between "
+               "from and to, or ends = \"free\")");
 }
 END_TEST
 

@@ -221,6 +221,38 @@ START_TEST(t_outlet_held_ends)
 }
 END_TEST
 
+/* Held ends on a half silo: the floor's outlet [0, 0.3] beside a symmetry
+ * line at x = 0 frees the nodes at 0, 0.1 and 0.2 m (the one at 0 is the
+ * full orifice's centre, a mirror image of inner nodes; it keeps the line's
+ * normal), holds the one at 0.3; [0.7, 1] beside a symmetry line at x = 1
+ * alike. Beside a frictionless wall the end node stays held. */
+START_TEST(t_outlet_held_ends_symmetry)
+{
+  mpm_mesh m;
+  unit_mesh(&m, 10, 4, 0.1);
+  const unsigned char both = MPM_FIX_X | MPM_FIX_Y;
+  for (int side = 0; side <= 1; side++)
+    for (int sym = 0; sym <= 1; sym++) {
+      int edges[4] = {MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_FREE};
+      edges[side ? MPM_EDGE_RIGHT : MPM_EDGE_LEFT] = sym ? MPM_BC_SYMMETRY : MPM_BC_FRICTIONLESS;
+      mpm_bc bc;
+      mpm_err err = {0};
+      ck_assert_int_eq(mpm_bc_setup(&bc, &m, edges, &err), MPM_OK);
+      const double from = side ? 0.7 : 0.0, to = side ? 1.0 : 0.3;
+      ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, from, to, MPM_BC_NOSLIP, 1,
+                                         &err), MPM_OK);
+      mpm_bc_open_outlet(&bc);
+      const int corner = side ? 10 : 0, inner[2] = {side ? 8 : 1, side ? 9 : 2};
+      const int end = side ? 7 : 3;
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, corner, 0)], sym ? MPM_FIX_X : both);
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, inner[0], 0)], 0);
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, inner[1], 0)], 0);
+      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, end, 0)], both);
+      mpm_bc_clear(&bc);
+    }
+}
+END_TEST
+
 /* A 0.4 x 0.2 m block of stress-free elastic material at rest, 0.1 m above
  * the floor of a 1 x 1 m box whose whole floor is an outlet opening at 0 s;
  * gravity -9.8 without a ramp. */
@@ -422,6 +454,7 @@ int main(void)
   tcase_add_test(tc, t_staircase_triangle);
   tcase_add_test(tc, t_outlet_masks);
   tcase_add_test(tc, t_outlet_held_ends);
+  tcase_add_test(tc, t_outlet_held_ends_symmetry);
   tcase_add_test(tc, t_bookkeeping_through_outlet);
   tcase_add_test(tc, t_bookkeeping_through_outlet_ngf);
   tcase_add_test(tc, t_remove_below_level);

@@ -151,7 +151,9 @@ void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, dou
  * a wall of kind `closed` (noslip or frictionless) until mpm_bc_open_outlet,
  * and carry no condition of that edge afterwards (a perpendicular edge
  * meeting the outlet at a corner, such as a symmetry line, keeps its own);
- * with held_ends the nodes at from and to keep the edge's own condition.
+ * with held_ends the nodes at from and to keep the edge's own condition,
+ * unless that end is a corner on a symmetry line (a half silo's centre: the
+ * mirror image of an inner node), which is freed.
  * The orifice size to - from is then the distance between the first and
  * last free node ([DK15] section 4.2) or between the held nodes that bound
  * it ([DK-silo] section 7.1). Its unit faces (mpm_bc_outlet_faces) are those

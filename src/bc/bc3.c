@@ -93,6 +93,31 @@ static int in_outlet(const mpm_bc3 *bc, const double s[2], double tol)
   return 1;
 }
 
+/* 1 if node ijk of face f, at s in the face's axes ax, is freed when the
+ * outlet opens: in it (to tol), or with held ends strictly inside it, or on a
+ * rectangle's side that lies on a symmetry face (the mirror image of an
+ * inner node: the orifice's centre lines in a quarter or half silo); a
+ * node at a corner is freed when each of its sides is. A disc's boundary
+ * is its arc: a node on a symmetry face inside the arc is strictly inside. */
+static int frees_node(const mpm_bc3 *bc, const mpm_mesh3 *m, const int ijk[3], const int ax[2],
+                      const double s[2], double tol, int held)
+{
+  if (!in_outlet(bc, s, tol))
+    return 0;
+  if (!held || in_outlet(bc, s, -tol))
+    return 1;
+  if (bc->out_shape == MPM_OUTLET3_DISC)
+    return 0;
+  for (int d = 0; d < 2; d++) {
+    if (s[d] > bc->out_lo[d] + tol && s[d] < bc->out_hi[d] - tol)
+      continue;                                          /* inside along this axis */
+    const int side = 2 * ax[d] + (s[d] >= bc->out_hi[d] - tol);   /* the face at that end */
+    if (!on_face(m, side, ijk) || bc->face[side] != MPM_BC_SYMMETRY)
+      return 0;
+  }
+  return 1;
+}
+
 /* The tolerance of "on the outlet's boundary" on face f: 1e-9 of the
  * smaller unit size along it. */
 static double outlet_tol(const mpm_mesh3 *m, int f)
@@ -153,7 +178,7 @@ static int set_outlet(mpm_bc3 *bc, const mpm_mesh3 *m, int f, int closed, int sh
         double x[3];
         mpm_mesh3_node_pos(m, ijk[0], ijk[1], ijk[2], x);
         const double s[2] = {x[ax[0]], x[ax[1]]};
-        if (!in_outlet(bc, s, held_ends ? -tol : tol))
+        if (!frees_node(bc, m, ijk, ax, s, tol, held_ends))
           continue;                  /* held ends: the boundary's nodes keep the face's */
         const int id = mpm_mesh3_node(m, ijk[0], ijk[1], ijk[2]);
         const unsigned char others = node_bits(bc, m, ijk, f);

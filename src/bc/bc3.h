@@ -58,8 +58,10 @@ void mpm_bc3_clear(mpm_bc3 *bc);  /* frees the masks; safe on a zeroed struct */
  * 2D). With held_ends the nodes on the outlet's boundary (to 1e-9 of a
  * unit) keep the face's own condition and only those strictly inside are
  * freed ([DK-silo] section 7.1's orifice measured between held nodes, the
- * plane's outlet.ends = "fixed"); the open unit faces are the same either
- * way. One outlet: a second call replaces the first. */
+ * plane's outlet.ends = "fixed"), except on a rectangle's sides that lie on
+ * a symmetry face: those are the mirror images of inner nodes (a quarter
+ * silo's orifice centre lines) and are freed. The open unit faces are the
+ * same either way. One outlet: a second call replaces the first. */
 int mpm_bc3_set_outlet_rectangle(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double lo[2],
                                  const double hi[2], int closed, int held_ends, mpm_err *err);
 int mpm_bc3_set_outlet_disc(mpm_bc3 *bc, const mpm_mesh3 *m, int f, const double c[2],

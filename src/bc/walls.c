@@ -51,11 +51,21 @@ static int in_outlet(const mpm_bc *bc, const mpm_mesh *m, double s)
   return in_outlet_by(bc, m, s, 1e-9);
 }
 
-/* 1 if a node at coordinate s is freed when the outlet opens: in [from, to],
- * or strictly inside it when the ends are held (mpm_bc_set_outlet). */
-static int frees_node(const mpm_bc *bc, const mpm_mesh *m, double s)
+/* 1 if node (i, j) of edge e, at coordinate s along it, is freed when the
+ * outlet opens: in [from, to], or with held ends strictly inside it or at an
+ * end on a perpendicular symmetry line (the mirror image of an inner node:
+ * a half silo's orifice centre; mpm_bc_set_outlet). */
+static int frees_node(const mpm_bc *bc, const mpm_mesh *m, int e, int i, int j, double s)
 {
-  return in_outlet_by(bc, m, s, bc->out_held_ends ? -1e-9 : 1e-9);
+  if (!bc->out_held_ends || in_outlet_by(bc, m, s, -1e-9))
+    return in_outlet(bc, m, s);
+  if (!in_outlet(bc, m, s))
+    return 0;
+  if (edge_is_vertical(e))
+    return (j == 0 && bc->edge[MPM_EDGE_BOTTOM] == MPM_BC_SYMMETRY) ||
+           (j == m->ny && bc->edge[MPM_EDGE_TOP] == MPM_BC_SYMMETRY);
+  return (i == 0 && bc->edge[MPM_EDGE_LEFT] == MPM_BC_SYMMETRY) ||
+         (i == m->nx && bc->edge[MPM_EDGE_RIGHT] == MPM_BC_SYMMETRY);
 }
 
 int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double to,
@@ -85,7 +95,7 @@ int mpm_bc_set_outlet(mpm_bc *bc, const mpm_mesh *m, int e, double from, double 
         continue;
       double x, y;
       mpm_mesh_node_pos(m, i, j, &x, &y);
-      if (!frees_node(bc, m, vert ? y : x))
+      if (!frees_node(bc, m, e, i, j, vert ? y : x))
         continue;
       const int id = mpm_mesh_node(m, i, j);
       /* open: only what a perpendicular edge meeting the outlet at a corner

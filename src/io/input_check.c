@@ -484,13 +484,20 @@ static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int
 }
 
 /* Held ends (outlet.ends = "fixed"): along axis a of the outlet's face (0
- * x, 1 y, 2 z), the first node past `from` must lie before `to`. */
+ * x, 1 y, 2 z), the first node past `from` must lie before `to`, unless an
+ * end lies on a symmetry boundary (its node is then freed: bc.h). */
 static int check_held_ends(in_ctx *c, const mpm_config *cfg, int a, double from, double to,
                            int kt)
 {
   const mesh_axis ax = axis_of(cfg, a);
+  const int lo_kind[3] = {cfg->bc.left, cfg->bc.bottom, cfg->bc.front};
+  const int hi_kind[3] = {cfg->bc.right, cfg->bc.top, cfg->bc.back};
+  const double tol = GEOM_TOL * ax.d;
+  if ((lo_kind[a] == MPM_BC_SYMMETRY && from <= ax.o + tol) ||
+      (hi_kind[a] == MPM_BC_SYMMETRY && to >= ax.o + ax.n * ax.d - tol))
+    return MPM_OK;
   const double first = ax.o + (floor((from - ax.o) / ax.d + GEOM_TOL) + 1.0) * ax.d;
-  if (first < to - GEOM_TOL * ax.d)
+  if (first < to - tol)
     return MPM_OK;
   where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
   return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free between the held ends "
