@@ -27,7 +27,14 @@
  *     random fields with every ghost kind, holes and an open face, bitwise;
  *   - in 2D the grid code gives bitwise the explicit lap_e and the implicit
  *     triplets, factor and solution of the 2D code before it (copied here),
- *     on random fields with every edge kind and an open outlet. */
+ *     on random fields with every edge kind and an open outlet;
+ *   - the extent rule's shares (mpm_nonlocal_grid_parts) are the overlap
+ *     volumes of the box with the units over the box's volume inside the
+ *     mesh, written out by hand for a box over four units, one clipped by a
+ *     non-periodic face and one wrapped across a periodic one; a box inside
+ *     its unit gives it 1; and the unit sums with these shares
+ *     (mpm_nonlocal3_average_parts) keep the dense mass and return a
+ *     uniform g, and a constant f is its own parts mean. */
 #define _DEFAULT_SOURCE /* M_PI */
 #include <check.h>
 #include <float.h>
@@ -800,6 +807,91 @@ START_TEST(t_2d_bitwise_old_code)
 }
 END_TEST
 
+/* ---- extent rule ------------------------------------------------------------ */
+
+/* Boxes of half-width 0.25 unit on a 4 x 4 x 4 grid, faces -x, +x Neumann,
+ * -y, +y Dirichlet, -z, +z periodic (x fastest in the slots, then y, z):
+ *  (a) centre (0.9, 0.1, 0.5) of unit (1, 1, 1): along x 0.35 in unit 1 and
+ *      0.15 in 2, along y 0.35 in 1 and 0.15 in 0, along z all in 1; shares
+ *      0.35^2, 0.15 0.35, 0.35 0.15, 0.15^2 over 0.25 = 0.49, 0.21, 0.21,
+ *      0.09;
+ *  (b) centre (0.1, 0.5, 0.5) of unit (0, 2, 2): x's part in unit -1 is
+ *      beyond a non-periodic face: unit (0, 2, 2) alone, share 1;
+ *  (c) centre (0.5, 0.5, 0.1) of unit (2, 2, 0): z's part wraps to unit 3,
+ *      0.35 / 0.5 and 0.15 / 0.5 = 0.7, 0.3;
+ *  (d) centre (0.5, 0.5, 0.5), half-widths 0.5: inside, share 1. */
+START_TEST(t_extent_parts)
+{
+  const int n[3] = {4, 4, 4};
+  const double h[3] = {0.1, 0.2, 0.3};
+  const int ghost[6] = {N, N, D, D, P, P};
+  mpm_mesh3 m = make_mesh3(n, h, ghost);
+  mpm_nonlocal3 *ws = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_nonlocal3_alloc(&ws, &m, ghost, &err), MPM_OK);
+  const mpm_nonlocal_grid *g = &ws->grid;
+  struct { int c[3]; double u[3], hw; int nz; int unit[4][3]; double w[4]; } cs[4] = {
+    {{1, 1, 1}, {0.9, 0.1, 0.5}, 0.25, 4,
+     {{1, 1, 1}, {2, 1, 1}, {1, 0, 1}, {2, 0, 1}}, {0.49, 0.21, 0.21, 0.09}},
+    {{0, 2, 2}, {0.1, 0.5, 0.5}, 0.25, 1, {{0, 2, 2}}, {1.0}},
+    {{2, 2, 0}, {0.5, 0.5, 0.1}, 0.25, 2, {{2, 2, 0}, {2, 2, 3}}, {0.7, 0.3}},
+    {{3, 0, 3}, {0.5, 0.5, 0.5}, 0.5, 1, {{3, 0, 3}}, {1.0}},
+  };
+  for (int t = 0; t < 4; t++) {
+    int part[MPM_NONLOCAL3_PARTS];
+    double w[MPM_NONLOCAL3_PARTS];
+    const double hw[3] = {cs[t].hw, cs[t].hw, cs[t].hw};
+    mpm_nonlocal_grid_parts(g, cs[t].c, cs[t].u, hw, part, w);
+    double sum = 0.0;
+    for (int k = 0; k < MPM_NONLOCAL3_PARTS; k++) {
+      if (k < cs[t].nz) {
+        ck_assert_int_eq(part[k], (int)mpm_nonlocal_grid_index(g, cs[t].unit[k]));
+        ck_assert_double_eq_tol(w[k], cs[t].w[k], 1e-15);
+      } else {
+        ck_assert_int_eq(part[k], (int)mpm_nonlocal_grid_index(g, cs[t].c));
+        ck_assert(w[k] == 0.0);
+      }
+      sum += w[k];
+    }
+    ck_assert_double_eq_tol(sum, 1.0, 1e-15);
+  }
+  /* unit sums: 3 dense points of masses 1, 2, 4 and g 5 (and one not dense,
+   * g 99) with the shares of (a), (c) and (d) */
+  int part[4 * MPM_NONLOCAL3_PARTS];
+  double w[4 * MPM_NONLOCAL3_PARTS];
+  const double mass[4] = {1.0, 2.0, 4.0, 8.0}, gp[4] = {5.0, 5.0, 5.0, 99.0};
+  const unsigned char dense[4] = {1, 1, 1, 0};
+  const int use[4] = {0, 2, 3, 1};
+  for (int p = 0; p < 4; p++) {
+    const double hw[3] = {cs[use[p]].hw, cs[use[p]].hw, cs[use[p]].hw};
+    mpm_nonlocal_grid_parts(g, cs[use[p]].c, cs[use[p]].u, hw, part + MPM_NONLOCAL3_PARTS * p,
+                            w + MPM_NONLOCAL3_PARTS * p);
+  }
+  mpm_nonlocal3_average_parts(ws, 4, part, w, mass, gp, dense);
+  double total = 0.0;
+  int filled = 0;
+  for (size_t e = 0; e < g->nu; e++) {
+    total += ws->sm[e];
+    if (ws->sm[e] > 0.0) {
+      filled++;
+      ck_assert_double_eq_tol(ws->ge[e], 5.0, 1e-14);
+    } else
+      ck_assert(ws->ge[e] == 0.0);
+  }
+  ck_assert_double_eq_tol(total, 7.0, 1e-14);
+  ck_assert_int_eq(filled, 4 + 2 + 1);
+  const int u0[3] = {2, 1, 1};
+  ck_assert_double_eq_tol(ws->sm[mpm_nonlocal_grid_index(g, u0)], 0.21, 1e-15);
+  /* a constant field is its own mean over the filled parts */
+  double f[64];
+  for (int e = 0; e < 64; e++)
+    f[e] = 3.5;
+  ck_assert_double_eq_tol(mpm_nonlocal_grid_parts_mean(ws->sm, f, part, w, MPM_NONLOCAL3_PARTS),
+                          3.5, 1e-15);
+  mpm_nonlocal3_free(ws);
+}
+END_TEST
+
 /* ---- errors ------------------------------------------------------------------ */
 
 START_TEST(t_errors)
@@ -853,6 +945,7 @@ int main(void)
   tcase_add_test(tc, t_reference_3d_random);
   tcase_add_test(tc, t_2d_bitwise_old_code);
   tcase_add_test(tc, t_errors);
+  tcase_add_test(tc, t_extent_parts);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

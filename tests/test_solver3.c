@@ -327,12 +327,15 @@ static void draining_box(mpm_config *c, const char *model, double from, double t
  * free surface for g: the field's open faces are the units of the floor
  * whose four corners it frees (mpm_bc3_outlet_faces, and for the disc
  * mpm_bc3_outlet_face_open unit by unit), and every g stays finite and
- * >= 0. */
+ * >= 0. _i = 4: the square under the NGF with the extent rule
+ * (material.g_average = "extent"). */
 START_TEST(t_outlet)
 {
   mpm_config c;
   draining_box(&c, _i >= 2 ? "ngf_hyper" : "mu_i", 0.02, 0.04);
   c.outlet.shape = _i % 2 ? MPM_OUTLET_DISC : MPM_OUTLET_RECTANGLE;
+  if (_i == 4)
+    c.material.g_average = MPM_NONLOCAL_EXTENT;
   if (_i == 3) {                                /* a disc of radius 2.5 cm round (3, 3) cm */
     c.outlet.from = c.outlet.from2 = 0.005;
     c.outlet.to = c.outlet.to2 = 0.055;
@@ -1009,7 +1012,7 @@ int main(void)
   tcase_add_loop_test(tc, t_plane_ramp, 0, 4);
   tcase_add_loop_test(tc, t_apic_affine, 0, 3);
   tcase_add_loop_test(tc, t_apic_periodic, 0, 3);
-  tcase_add_loop_test(tc, t_outlet, 0, 4);
+  tcase_add_loop_test(tc, t_outlet, 0, 5);
   tcase_add_test(tc, t_stop_mass);
   tcase_add_loop_test(tc, t_hyper_state_density, 0, 2);
   tcase_add_loop_test(tc, t_lithostatic, 0, 2);

@@ -676,10 +676,9 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
                               "\"elastic\", \"mu_i\", \"ngf_hyper\")", cfg->material.model);
   }
   /* the fluidity field of a 3D run: explicit or implicit diffusion, unit
-   * sums by the points' centres, the point's own p^-1/2 */
+   * sums by the points' centres or extents, the point's own p^-1/2 */
   struct { int on; const char *key, *allowed; } nl3[] = {
     {cfg->material.diffusion == MPM_DIFFUSION_STEADY, "diffusion", "\"explicit\", \"implicit\""},
-    {cfg->material.g_average != MPM_NONLOCAL_CENTRE, "g_average", "\"centre\""},
     {cfg->material.p_sample != MPM_NGF_P_POINT, "p_sample", "\"point\""},
   };
   for (size_t i = 0; t && t->hyper && i < sizeof nl3 / sizeof nl3[0]; i++) {

@@ -77,8 +77,11 @@ mpm_linalg_stats mpm_nonlocal3_stats(const mpm_nonlocal3 *ws)
   return mpm_nonlocal_implicit_stats(ws->im);
 }
 
-void mpm_nonlocal3_average(mpm_nonlocal3 *ws, size_t n, const int *unit, const double *mass,
-                           const double *g, const unsigned char *dense)
+/* The unit sums of the dense points of [0, n), each point's mass split by
+ * the weights w[k p ...] between its units part[k p ...] (k pairs a point;
+ * k = 1, w = NULL: all of it in part[p]), in point order; then g_e. */
+static void average(mpm_nonlocal3 *ws, size_t n, int k, const int *part, const double *w,
+                    const double *mass, const double *g, const unsigned char *dense)
 {
   const size_t nu = ws->grid.nu;
   for (size_t e = 0; e < nu; e++)
@@ -86,11 +89,30 @@ void mpm_nonlocal3_average(mpm_nonlocal3 *ws, size_t n, const int *unit, const d
   for (size_t p = 0; p < n; p++) {
     if (!dense[p])
       continue;
-    ws->sm[unit[p]] += mass[p];             /* sum m */
-    ws->ge[unit[p]] += mass[p] * g[p];      /* sum m g */
+    for (int q = 0; q < k; q++) {
+      const size_t i = (size_t)k * p + (size_t)q;
+      const double wm = w ? w[i] * mass[p] : mass[p];
+      if (!(wm > 0.0))
+        continue;
+      ws->sm[part[i]] += wm;                /* sum w m */
+      ws->ge[part[i]] += wm * g[p];         /* sum w m g */
+    }
   }
   for (size_t e = 0; e < nu; e++)
     ws->ge[e] = ws->sm[e] > 0.0 ? ws->ge[e] / ws->sm[e] : 0.0;
+}
+
+void mpm_nonlocal3_average(mpm_nonlocal3 *ws, size_t n, const int *unit, const double *mass,
+                           const double *g, const unsigned char *dense)
+{
+  average(ws, n, 1, unit, NULL, mass, g, dense);
+}
+
+void mpm_nonlocal3_average_parts(mpm_nonlocal3 *ws, size_t n, const int *part, const double *w,
+                                 const double *mass, const double *g,
+                                 const unsigned char *dense)
+{
+  average(ws, n, MPM_NONLOCAL3_PARTS, part, w, mass, g, dense);
 }
 
 int mpm_nonlocal3_filled(const mpm_nonlocal3 *ws)

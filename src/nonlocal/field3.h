@@ -19,8 +19,10 @@
  *
  * The points enter by their centres (mpm_nonlocal3_average): g_e is the
  * mass-weighted mean g of the dense points whose centre lies in unit e (the
- * plane's "centre" rule); the plane's extent rule and unit pressures have
- * no 3D counterpart yet. */
+ * plane's "centre" rule), or by their extents (mpm_nonlocal3_average_parts,
+ * the plane's "extent" rule): each point's mass split between the units its
+ * box overlaps (mpm_nonlocal_grid_parts, 8 per point). The plane's unit
+ * pressures have no 3D counterpart yet. */
 #ifndef MPM_NONLOCAL_FIELD3_H
 #define MPM_NONLOCAL_FIELD3_H
 
@@ -71,6 +73,15 @@ const double *mpm_nonlocal3_gstar(const mpm_nonlocal3 *ws);
  * other units. */
 void mpm_nonlocal3_average(mpm_nonlocal3 *ws, size_t n, const int *unit, const double *mass,
                            const double *g, const unsigned char *dense);
+
+/* The extent rule: as mpm_nonlocal3_average with each dense point's mass m_p
+ * split by the weights w[8 p ...] between its units part[8 p ...]
+ * (mpm_nonlocal_grid_parts): sm_e = sum w_pe m_p, g_e = sum w_pe m_p g_p /
+ * sm_e. */
+enum { MPM_NONLOCAL3_PARTS = 8 };
+void mpm_nonlocal3_average_parts(mpm_nonlocal3 *ws, size_t n, const int *part, const double *w,
+                                 const double *mass, const double *g,
+                                 const unsigned char *dense);
 
 /* 1 if some unit is filled (sm_e > 0). */
 int mpm_nonlocal3_filled(const mpm_nonlocal3 *ws);

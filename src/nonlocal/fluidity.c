@@ -226,58 +226,6 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
   return MPM_OK;
 }
 
-/* The units of one axis that the extent [u - h, u + h] overlaps, in units of
- * the unit size, u the centre's position within its unit c (0 <= u <= 1) and
- * 0 <= h <= 1/2 (up to round-off): one (c, length 1) when the extent lies in c,
- * else c and the neighbour it reaches into, each with the length of its
- * part; a neighbour beyond a non-periodic edge is dropped, across a periodic
- * one wrapped. Returns the number of parts (1 or 2). */
-static int axis_parts(double u, double h, int c, int n, int periodic, int idx[2], double len[2])
-{
-  const double lo = u - h, hi = u + h;
-  idx[0] = c;
-  len[0] = 1.0;
-  if (lo >= 0.0 && hi <= 1.0)
-    return 1;                                          /* inside unit c */
-  int nb = lo < 0.0 ? c - 1 : c + 1;                   /* the neighbour reached */
-  len[0] = lo < 0.0 ? fmin(hi, 1.0) : 1.0 - lo;        /* part in c */
-  if (nb < 0 || nb >= n) {
-    if (!periodic)
-      return 1;                                        /* outside the mesh: dropped */
-    nb = (nb + n) % n;
-  }
-  idx[1] = nb;
-  len[1] = lo < 0.0 ? -lo : hi - 1.0;                  /* part in the neighbour */
-  return 2;
-}
-
-/* Extent rule: the (unit, weight) pairs of one point with centre unit (i, j)
- * at local position (u, v) and half-widths (hu, hv) in units of the unit
- * size; w = overlap area / area inside the mesh; unused slots get the
- * centre unit and weight 0. */
-static void extent_parts(const mpm_nonlocal *ws, const mpm_mesh *m, int i, int j, double u,
-                         double v, double hu, double hv, int *part, double *w)
-{
-  int ix[2], jy[2];
-  double lx[2], ly[2];
-  int nxp = axis_parts(u, hu, i, ws->nx, m->periodic_x, ix, lx);
-  int nyp = axis_parts(v, hv, j, ws->ny, m->periodic_y, jy, ly);
-  double area = 0.0;
-  int k = 0;
-  for (int b = 0; b < nyp; b++)
-    for (int a = 0; a < nxp; a++, k++) {
-      part[k] = ix[a] + ws->nx * jy[b];
-      w[k] = lx[a] * ly[b];                            /* overlap area */
-      area += w[k];
-    }
-  for (int q = 0; q < k; q++)
-    w[q] /= area;                                      /* renormalised inside the mesh */
-  for (; k < MPM_NONLOCAL_PARTS; k++) {
-    part[k] = i + ws->nx * j;
-    w[k] = 0.0;
-  }
-}
-
 /* Unit, row and (extent rule) parts of point p; 0, or 1 when it is outside
  * the mesh, 2 when its extent is wider than a unit. */
 static int locate_one(mpm_nonlocal *ws, const mpm_mesh *m, size_t p, const double *x,
@@ -298,8 +246,10 @@ static int locate_one(mpm_nonlocal *ws, const mpm_mesh *m, size_t p, const doubl
     return 2;
   const double u = fmin(fmax((xw - m->x0) * m->idx - i, 0.0), 1.0);  /* centre in its unit */
   const double v = fmin(fmax((yw - m->y0) * m->idy - j, 0.0), 1.0);
-  extent_parts(ws, m, i, j, u, v, hu, hv, ws->part + MPM_NONLOCAL_PARTS * p,
-               ws->w + MPM_NONLOCAL_PARTS * p);
+  const int c[3] = {i, j, 0};
+  const double at[3] = {u, v, 0.5}, hw[3] = {hu, hv, 0.0};
+  mpm_nonlocal_grid_parts(&ws->grid, c, at, hw, ws->part + MPM_NONLOCAL_PARTS * p,
+                          ws->w + MPM_NONLOCAL_PARTS * p);
   return 0;
 }
 
@@ -350,15 +300,8 @@ static void add_parts(const mpm_nonlocal *ws, double *acc, size_t p, double v)
 
 double mpm_nonlocal_point_mean(const mpm_nonlocal *ws, const double *f, size_t p)
 {
-  const int *part = ws->part + MPM_NONLOCAL_PARTS * p;
-  const double *w = ws->w + MPM_NONLOCAL_PARTS * p;
-  double sw = 0.0, swf = 0.0;
-  for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
-    if (w[k] > 0.0 && ws->sm[part[k]] > 0.0) {       /* filled units only */
-      sw += w[k];
-      swf += w[k] * f[part[k]];
-    }
-  return sw > 0.0 ? swf / sw : 0.0;
+  return mpm_nonlocal_grid_parts_mean(ws->sm, f, ws->part + MPM_NONLOCAL_PARTS * p,
+                                      ws->w + MPM_NONLOCAL_PARTS * p, MPM_NONLOCAL_PARTS);
 }
 
 /* acc[e] += w_pe m_p f_p (and, when sm is not NULL, sm[e] += w_pe m_p) over

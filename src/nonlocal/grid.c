@@ -180,3 +180,69 @@ double mpm_nonlocal_grid_row(const mpm_nonlocal_grid *g, const double *sm, const
   *count = m;
   return diag;
 }
+
+/* The units of one axis that the extent [u - h, u + h] overlaps, in units of
+ * the unit size, u the centre's position within its unit c (0 <= u <= 1) and
+ * 0 <= h <= 1/2 (up to round-off): one (c, length 1) when the extent lies in c,
+ * else c and the neighbour it reaches into, each with the length of its
+ * part; a neighbour beyond a non-periodic face is dropped, across a periodic
+ * one wrapped. Returns the number of parts (1 or 2). */
+static int axis_parts(double u, double h, int c, int n, int periodic, int idx[2], double len[2])
+{
+  const double lo = u - h, hi = u + h;
+  idx[0] = c;
+  len[0] = 1.0;
+  if (lo >= 0.0 && hi <= 1.0)
+    return 1;                                          /* inside unit c */
+  int nb = lo < 0.0 ? c - 1 : c + 1;                   /* the neighbour reached */
+  len[0] = lo < 0.0 ? fmin(hi, 1.0) : 1.0 - lo;        /* part in c */
+  if (nb < 0 || nb >= n) {
+    if (!periodic)
+      return 1;                                        /* outside the mesh: dropped */
+    nb = (nb + n) % n;
+  }
+  idx[1] = nb;
+  len[1] = lo < 0.0 ? -lo : hi - 1.0;                  /* part in the neighbour */
+  return 2;
+}
+
+void mpm_nonlocal_grid_parts(const mpm_nonlocal_grid *g, const int c[3], const double u[3],
+                             const double h[3], int *part, double *w)
+{
+  int idx[3][2] = {{c[0], c[0]}, {c[1], c[1]}, {c[2], c[2]}};
+  double len[3][2] = {{1.0, 0.0}, {1.0, 0.0}, {1.0, 0.0}};
+  int np[3] = {1, 1, 1};
+  for (int a = 0; a < g->dim; a++)
+    np[a] = axis_parts(u[a], h[a], c[a], g->n[a], g->ghost[2 * a] == MPM_GHOST_PERIODIC,
+                       idx[a], len[a]);
+  double vol = 0.0;
+  int k = 0;
+  for (int cz = 0; cz < np[2]; cz++)
+    for (int b = 0; b < np[1]; b++)
+      for (int a = 0; a < np[0]; a++, k++) {
+        const int at[3] = {idx[0][a], idx[1][b], idx[2][cz]};
+        part[k] = (int)mpm_nonlocal_grid_index(g, at);
+        w[k] = g->dim == 3 ? len[0][a] * len[1][b] * len[2][cz]   /* overlap volume */
+                           : len[0][a] * len[1][b];               /* overlap area */
+        vol += w[k];
+      }
+  for (int q = 0; q < k; q++)
+    w[q] /= vol;                                       /* renormalised inside the mesh */
+  const int nslot = 1 << g->dim;
+  for (; k < nslot; k++) {
+    part[k] = (int)mpm_nonlocal_grid_index(g, c);
+    w[k] = 0.0;
+  }
+}
+
+double mpm_nonlocal_grid_parts_mean(const double *sm, const double *f, const int *part,
+                                    const double *w, int nslot)
+{
+  double sw = 0.0, swf = 0.0;
+  for (int k = 0; k < nslot; k++)
+    if (w[k] > 0.0 && sm[part[k]] > 0.0) {             /* filled units only */
+      sw += w[k];
+      swf += w[k] * f[part[k]];
+    }
+  return sw > 0.0 ? swf / sw : 0.0;
+}

@@ -106,4 +106,19 @@ void mpm_nonlocal_grid_laplacian(const mpm_nonlocal_grid *g, const double *sm,
 double mpm_nonlocal_grid_row(const mpm_nonlocal_grid *g, const double *sm, const int c[3],
                              size_t e, double coef, size_t nb[], double val[], int *count);
 
+/* Extent rule ([DK-silo] §5.2 (i), material.g_average = "extent"): the
+ * units of g that the box of half-widths h[a] (in unit sizes, 0 <= h[a] <=
+ * 1/2 up to round-off) centred at local position u[a] (0 ... 1) of unit c
+ * overlaps, each with the fraction of the box's volume inside the mesh
+ * that lies in it (the box's part beyond a non-periodic face dropped, one
+ * across a periodic face wrapped). Fills the 2^dim slots of part and w, x
+ * fastest, then y, then z; unused slots get unit c and weight 0. */
+void mpm_nonlocal_grid_parts(const mpm_nonlocal_grid *g, const int c[3], const double u[3],
+                             const double h[3], int *part, double *w);
+
+/* The w-weighted mean of f over the filled units (sm > 0) among the nslot
+ * (unit, weight) pairs part, w; 0 when none of them is filled. */
+double mpm_nonlocal_grid_parts_mean(const double *sm, const double *f, const int *part,
+                                    const double *w, int nslot);
+
 #endif

@@ -14,6 +14,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "nonlocal/field3.h"
 #include "scenario/scenario.h"
 
 /* Bytes per point of the (2D) point store: every stored field it has. */
@@ -51,6 +52,7 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
   const int nonlocal = mt && mt->nonlocal;
   const int density = cfg->material.state_density != MPM_DENSITY_POINT;
   const int extent = cfg->material.g_average == MPM_NONLOCAL_EXTENT;
+  const int parts = cfg->mesh.nz > 0 ? MPM_NONLOCAL3_PARTS : MPM_NONLOCAL_PARTS;
   double per_point = (double)point_store_bytes                 /* the store */
                      + sizeof(int) + MPM_STENCIL_W * (sizeof(int) + 3 * sizeof(double))
                      + sizeof(double) + 1.0;                   /* output work, removal flags */
@@ -61,7 +63,7 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
     per_point += sizeof(double);
   if (nonlocal)
     per_point += sizeof(int) + 1 + sizeof(double)              /* unit, dense, p_n */
-                 + (extent ? MPM_NONLOCAL_PARTS * (sizeof(int) + sizeof(double)) : 0);
+                 + (extent ? parts * (sizeof(int) + sizeof(double)) : 0);
   if (bbar)
     per_point += sizeof(int);                                  /* the unit of each point */
   const int dim = cfg->mesh.nz > 0 ? 3 : 2;

@@ -42,6 +42,9 @@ struct mpm_sim3_work {
   int *unit;                 /* [cap] */
   unsigned char *dense;      /* [cap] */
   double *rho;               /* [cap] rho_{n+1} of the state decision */
+  int extent;                /* material.g_average = "extent": the points' unit shares */
+  int *part;                 /* [8 cap] extent rule: the units of point p at 8 p ... */
+  double *pw;                /* [8 cap] ... and their weights (mpm_nonlocal_grid_parts) */
   size_t cap;
   unsigned char *open;       /* [units] a disc outlet's open unit faces for g, or NULL */
 };
@@ -56,6 +59,8 @@ void mpm_sim3_work_free(mpm_sim3_work *w)
   free(w->unit);
   free(w->dense);
   free(w->rho);
+  free(w->part);
+  free(w->pw);
   free(w->open);
   free(w);
 }
@@ -78,6 +83,7 @@ static int work_alloc(mpm_sim *s, mpm_err *err)
   }
   if (!s->mat->nonlocal)
     return MPM_OK;
+  s->w3->extent = s->cfg.material.g_average == MPM_NONLOCAL_EXTENT;
   const int *face = s->bc3.face;
   int ghost[6];
   for (int f = 0; f < 6; f++) {
@@ -111,7 +117,17 @@ static int work_reserve(mpm_sim3_work *w, size_t n, mpm_err *err)
   double *r = realloc(w->rho, n * sizeof *r);
   if (r)
     w->rho = r;
-  if (!L || !u || !d || !r)
+  int okp = 1;
+  if (w->extent) {
+    int *pt = realloc(w->part, MPM_NONLOCAL3_PARTS * n * sizeof *pt);
+    if (pt)
+      w->part = pt;
+    double *pw = realloc(w->pw, MPM_NONLOCAL3_PARTS * n * sizeof *pw);
+    if (pw)
+      w->pw = pw;
+    okp = pt && pw;
+  }
+  if (!L || !u || !d || !r || !okp)
     return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu points' gradients", n);
   w->cap = n;
   return MPM_OK;
@@ -347,6 +363,41 @@ static long local_phase(mpm_sim *s)
   return bad;
 }
 
+/* Extent rule (material.g_average = "extent"): each point in the mesh at
+ * x_{n+1} splits its mass between the units its box overlaps, the box of
+ * half-widths |r1_a| + |r2_a| + |r3_a| bounding its parallelepiped extent
+ * (mpm_nonlocal_grid_parts); an extent wider than a unit is an error. */
+static int locate_extents(mpm_sim *s, mpm_err *err)
+{
+  const mpm_points *P = s->pts;
+  const mpm_mesh3 *m = &s->mesh3;
+  mpm_sim3_work *w = s->w3;
+  const double ih[3] = {m->idx, m->idy, m->idz};
+  for (size_t p = 0; p < P->n; p++) {
+    if (w->unit[p] < 0)
+      continue;
+    const double x[3] = {P->x[p], P->y[p], P->z[p]};
+    const double r[3][3] = {{P->r1x[p], P->r1y[p], P->r1z[p]},
+                            {P->r2x[p], P->r2y[p], P->r2z[p]},
+                            {P->r3x[p], P->r3y[p], P->r3z[p]}};
+    int c[3];
+    double l[3], hw[3];
+    mpm_mesh3_locate(m, x, c, l);
+    for (int a = 0; a < 3; a++) {
+      hw[a] = (fabs(r[0][a]) + fabs(r[1][a]) + fabs(r[2][a])) * ih[a];
+      if (!(hw[a] <= 0.5 + 1e-12))
+        return mpm_err_set(err, MPM_EINVAL, "point %d: extent %.6g x %.6g x %.6g m is wider "
+                           "than a unit (material.g_average = \"extent\"), t = %.6g s", P->id[p],
+                           2.0 * (fabs(r[0][0]) + fabs(r[1][0]) + fabs(r[2][0])),
+                           2.0 * (fabs(r[0][1]) + fabs(r[1][1]) + fabs(r[2][1])),
+                           2.0 * (fabs(r[0][2]) + fabs(r[1][2]) + fabs(r[2][2])), s->t + s->dt);
+    }
+    const size_t k = MPM_NONLOCAL3_PARTS * p;
+    mpm_nonlocal_grid_parts(&w->nl->grid, c, l, hw, w->part + k, w->pw + k);
+  }
+  return MPM_OK;
+}
+
 /* Steps 4-7 when every point moves before any update (a nonlocal model, the
  * unit density): every point moves (its L kept, walls and wraps applied),
  * the units of x_{n+1} are found, and then
@@ -406,6 +457,8 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
   }
   /* a point out through the open outlet (unit -1) leaves at the step's end
    * (remove.c): it neither enters the unit field nor is updated */
+  if (w->extent && (*rc = locate_extents(s, err)) != MPM_OK)
+    return -1;
   const int local = s->t < s->par.t_seed - 1e-9 * s->dt;
   const int implicit = s->cfg.material.diffusion == MPM_DIFFUSION_IMPLICIT;
   for (int k = 0; k < s->n_sub; k++) {
@@ -413,7 +466,10 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
     for (size_t p = 0; p < n; p++)
       w->dense[p] = (unsigned char)(w->unit[p] >= 0 &&
                                     s->mat->dense(&s->par, stress_of(P, p), w->rho[p]));
-    mpm_nonlocal3_average(w->nl, n, w->unit, P->mass, P->g, w->dense);
+    if (w->extent)
+      mpm_nonlocal3_average_parts(w->nl, n, w->part, w->pw, P->mass, P->g, w->dense);
+    else
+      mpm_nonlocal3_average(w->nl, n, w->unit, P->mass, P->g, w->dense);
     if (local)
       memset(w->nl->lap, 0, w->nl->grid.nu * sizeof *w->nl->lap);
     else if (implicit && mpm_nonlocal3_filled(w->nl))
@@ -426,9 +482,16 @@ static long moved_phase(mpm_sim *s, int *rc, mpm_err *err)
     }
     const double *lap = w->nl->lap;
 #pragma omp parallel for schedule(static) reduction(max : bad)
-    for (size_t p = 0; p < n; p++)
-      if (w->unit[p] >= 0 && !update_hyper(s, p, w->L + 9 * p, h, lap[w->unit[p]], w->rho[p]))
+    for (size_t p = 0; p < n; p++) {
+      if (w->unit[p] < 0)
+        continue;
+      const size_t q = MPM_NONLOCAL3_PARTS * p;      /* extent rule: the filled units' mean */
+      const double lp = w->extent ? mpm_nonlocal_grid_parts_mean(w->nl->sm, lap, w->part + q,
+                                                                 w->pw + q, MPM_NONLOCAL3_PARTS)
+                                  : lap[w->unit[p]];
+      if (!update_hyper(s, p, w->L + 9 * p, h, lp, w->rho[p]))
         bad = (long)p > bad ? (long)p : bad;
+    }
   }
   return bad;
 }
