@@ -91,9 +91,9 @@ static void average(mpm_nonlocal3 *ws, size_t n, int k, const int *part, const d
       continue;
     for (int q = 0; q < k; q++) {
       const size_t i = (size_t)k * p + (size_t)q;
+      if (w && !(w[i] > 0.0))
+        continue;                           /* an unused slot */
       const double wm = w ? w[i] * mass[p] : mass[p];
-      if (!(wm > 0.0))
-        continue;
       ws->sm[part[i]] += wm;                /* sum w m */
       ws->ge[part[i]] += wm * g[p];         /* sum w m g */
     }
