@@ -222,8 +222,7 @@ void mpm_nonlocal_grid_parts(const mpm_nonlocal_grid *g, const int c[3], const d
       for (int a = 0; a < np[0]; a++, k++) {
         const int at[3] = {idx[0][a], idx[1][b], idx[2][cz]};
         part[k] = (int)mpm_nonlocal_grid_index(g, at);
-        w[k] = g->dim == 3 ? len[0][a] * len[1][b] * len[2][cz]   /* overlap volume */
-                           : len[0][a] * len[1][b];               /* overlap area */
+        w[k] = len[0][a] * len[1][b] * len[2][cz];     /* overlap (in 2D times 1, exactly) */
         vol += w[k];
       }
   for (int q = 0; q < k; q++)
