@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # [DK-silo] Fig. 4(a): the silo jamming phase diagram, A = 0.1 ... 3 against
 # W/d = 1 ... 5 (inputs/silo-jam.conf, 35 runs of scripts/sweep-jam, about
-# about 15 minutes on 2 cores), with the boundary W/d = c A through the origin
+# 16 minutes on 2 cores), with the boundary W/d = c A through the origin
 # (c the middle of the range sweep-jam finds) and, if the sweep was also
 # traced (sweep-jam --trace), the traced brackets and their fitted line.
 #   figures/dk-silo-fig4a.sh OUTDIR
