@@ -381,17 +381,17 @@ static int locate_extents(mpm_sim *s, mpm_err *err)
                             {P->r2x[p], P->r2y[p], P->r2z[p]},
                             {P->r3x[p], P->r3y[p], P->r3z[p]}};
     int c[3];
-    double l[3], hw[3];
+    double l[3], half[3], hw[3];                   /* half-widths [m] and in units */
     mpm_mesh3_locate(m, x, c, l);
     for (int a = 0; a < 3; a++) {
-      hw[a] = (fabs(r[0][a]) + fabs(r[1][a]) + fabs(r[2][a])) * ih[a];
+      half[a] = fabs(r[0][a]) + fabs(r[1][a]) + fabs(r[2][a]);
+      hw[a] = half[a] * ih[a];
+    }
+    for (int a = 0; a < 3; a++)
       if (!(hw[a] <= 0.5 + 1e-12))
         return mpm_err_set(err, MPM_EINVAL, "point %d: extent %.6g x %.6g x %.6g m is wider "
                            "than a unit (material.g_average = \"extent\"), t = %.6g s", P->id[p],
-                           2.0 * (fabs(r[0][0]) + fabs(r[1][0]) + fabs(r[2][0])),
-                           2.0 * (fabs(r[0][1]) + fabs(r[1][1]) + fabs(r[2][1])),
-                           2.0 * (fabs(r[0][2]) + fabs(r[1][2]) + fabs(r[2][2])), s->t + s->dt);
-    }
+                           2.0 * half[0], 2.0 * half[1], 2.0 * half[2], s->t + s->dt);
     const size_t k = MPM_NONLOCAL3_PARTS * p;
     mpm_nonlocal_grid_parts(&w->nl->grid, c, l, hw, w->part + k, w->pw + k);
   }
