@@ -281,10 +281,6 @@ static int load_material(const opts *o, const mpm_material_type **mt, mpm_materi
   *mt = mpm_material_lookup(cfg.material.model);
   if (!*mt)
     return usage("unknown material model '%s'", cfg.material.model);
-  if ((*mt)->hyper)
-    return usage("model '%s' carries deformation gradients and runs in 3D runs only (allowed "
-                 "here: the models with a stress-rate update: elastic, mu_i, ngf)",
-                 cfg.material.model);
   mpm_material_params_from_config(par, &cfg);
   mpm_err err = {0};
   if ((*mt)->check && (*mt)->check(par, &err) != MPM_OK) {

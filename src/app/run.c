@@ -265,10 +265,7 @@ static int open_and_execute(int st, mpm_app_plan *p, run_ctx *ctx, int argc, cha
     ctx->input = text;
     const mpm_sim *sim = p->sim;
     int rc = reopen >= 0 ? mpm_io_output_reopen(&ctx->out, ctx->dir, &origin, reopen, &err)
-             : sim->dim == 3 ? mpm_io_output_open3(&ctx->out, ctx->dir, &origin, text, &sim->mesh3,
-                                                   &err)
-                             : mpm_io_output_open(&ctx->out, ctx->dir, &origin, text, &sim->mesh,
-                                                  &err);
+                         : mpm_io_output_open(&ctx->out, ctx->dir, &origin, text, &sim->mesh, &err);
     if (rc != MPM_OK) {
       fprintf(stderr, "granmpm: %s\n", err.msg);
       st = MPM_APP_EXIT_RUNTIME;

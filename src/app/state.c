@@ -61,7 +61,7 @@ int mpm_app_state(int argc, char **argv)
   if (rc == MPM_OK && pts->n > 0 && !(rho = malloc(pts->n * sizeof *rho)))
     rc = mpm_err_set(&err, MPM_ENOMEM, "state: out of memory");
   if (rc == MPM_OK && pts->n > 0)
-    rc = mpm_diag_nodal_density(&m, pts->n, pts->x, pts->y, pts->mass, rho, &err);
+    rc = mpm_diag_nodal_density(&m, pts, rho, &err);
   if (rc == MPM_OK) {
     puts("x,y,rho_nodal,state_nodal");
     for (size_t p = 0; p < pts->n; p++)

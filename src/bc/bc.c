@@ -1,6 +1,7 @@
-/* bc.c: edge boundary conditions as a per-node mask (MODEL.md section 2, step 3).
- * No-slip fixes both velocity components of every node on the edge;
- * frictionless and symmetry fix the normal one. */
+/* bc.c: face boundary conditions as a per-node mask, for a mesh of either
+ * dimension (MODEL.md section 2, step 3). No-slip fixes every velocity
+ * component of the nodes on the face; frictionless and symmetry fix the
+ * normal one; a node on several faces takes the union. */
 #include "bc/bc.h"
 
 #include <math.h>
@@ -9,7 +10,6 @@
 
 #include "core/config.h"
 #include "core/names.h"
-#include "bc/bc_internal.h"
 
 static const char *const bc_names[] = {
   [MPM_BC_FREE] = "free",
@@ -19,7 +19,9 @@ static const char *const bc_names[] = {
   [MPM_BC_PERIODIC] = "periodic",
 };
 
-static const char *const edge_names[] = {"left", "right", "bottom", "top"};
+/* The plane's edges and a box's faces, for messages. */
+static const char *const face_names[2][6] = {{"left", "right", "bottom", "top", "", ""},
+                                             {"-x", "+x", "-y", "+y", "-z", "+z"}};
 static const char *const wall_acceleration_names[] = {"jump", "zero"};
 
 int mpm_bc_wall_acceleration_from_name(const char *name)
@@ -42,19 +44,16 @@ const char *mpm_bc_kind_name(int kind)
   return mpm_names_at(bc_names, MPM_NAMES_COUNT(bc_names), kind);
 }
 
-/* Mask bits an edge of a given kind sets: its normal is x on left/right
- * (MPM_EDGE_* / 2 is the normal's axis). */
-static unsigned char edge_bits(int kind, int edge)
+/* Each face a known kind, periodic on both faces of an axis or on neither
+ * (MPM_EINPUT), and periodic exactly along the mesh's periodic axes
+ * (MPM_EINVAL). */
+static int check_kinds(const int *kind, const mpm_mesh *m, mpm_err *err)
 {
-  return mpm_bc_wall_bits(kind, edge / 2, 2);
-}
-
-int mpm_bc_check_kinds(const int *kind, int dim, const int *periodic,
-                       const char *const *names, const char *what, mpm_err *err)
-{
-  for (int e = 0; e < 2 * dim; e++)
-    if (!mpm_bc_kind_name(kind[e]))
-      return mpm_err_set(err, MPM_EINVAL, "boundary '%s': unknown kind %d", names[e], kind[e]);
+  const int dim = m->dim;
+  const char *const *names = face_names[dim == 3];
+  for (int f = 0; f < 2 * dim; f++)
+    if (!mpm_bc_kind_name(kind[f]))
+      return mpm_err_set(err, MPM_EINVAL, "boundary '%s': unknown kind %d", names[f], kind[f]);
   for (int a = 0; a < dim; a++) {
     const int lo = kind[2 * a] == MPM_BC_PERIODIC, hi = kind[2 * a + 1] == MPM_BC_PERIODIC;
     if (lo != hi)
@@ -62,35 +61,41 @@ int mpm_bc_check_kinds(const int *kind, int dim, const int *periodic,
                          names[2 * a], names[2 * a + 1]);
   }
   for (int a = 0; a < dim; a++)
-    if ((kind[2 * a] == MPM_BC_PERIODIC) != (periodic[a] != 0))
-      return mpm_err_set(err, MPM_EINVAL, "boundary: periodic %s disagree with the mesh", what);
+    if ((kind[2 * a] == MPM_BC_PERIODIC) != (m->periodic[a] != 0))
+      return mpm_err_set(err, MPM_EINVAL, "boundary: periodic %s disagree with the mesh",
+                         dim == 3 ? "faces" : "edges");
   return MPM_OK;
 }
 
-int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int edge[4], mpm_err *err)
+int mpm_bc_setup(mpm_bc *bc, const mpm_mesh *m, const int face[], mpm_err *err)
 {
-  const int periodic[2] = {m->periodic_x, m->periodic_y};
-  int rc = mpm_bc_check_kinds(edge, 2, periodic, edge_names, "edges", err);
+  int rc = check_kinds(face, m, err);
   if (rc != MPM_OK)
     return rc;
-
-  memcpy(bc->edge, edge, sizeof bc->edge);
+  bc->dim = m->dim;
+  for (int f = 0; f < 6; f++)
+    bc->face[f] = f < 2 * m->dim ? face[f] : MPM_BC_FREE;
   bc->nnodes = m->nnodes;
-  bc->out_edge = -1;
+  bc->out_face = -1;
   bc->open = 0;
   bc->mask[1] = NULL;
   bc->normal = NULL;
   bc->fix = bc->mask[0] = calloc((size_t)m->nnodes, 1);
   if (!bc->fix)
     return mpm_err_set(err, MPM_ENOMEM, "boundary mask: out of memory");
-  for (int j = 0; j <= m->ny; j++) {
-    bc->fix[mpm_mesh_node(m, 0, j)] |= edge_bits(edge[MPM_EDGE_LEFT], MPM_EDGE_LEFT);
-    bc->fix[mpm_mesh_node(m, m->nx, j)] |= edge_bits(edge[MPM_EDGE_RIGHT], MPM_EDGE_RIGHT);
-  }
-  for (int i = 0; i <= m->nx; i++) {
-    bc->fix[mpm_mesh_node(m, i, 0)] |= edge_bits(edge[MPM_EDGE_BOTTOM], MPM_EDGE_BOTTOM);
-    bc->fix[mpm_mesh_node(m, i, m->ny)] |= edge_bits(edge[MPM_EDGE_TOP], MPM_EDGE_TOP);
-  }
+  /* every logical node on a face: an aliased node gets the bits of both its
+   * copies, none from a periodic face */
+  int c[3];
+  const int kz = m->dim == 3 ? m->nz : 0;
+  for (c[2] = 0; c[2] <= kz; c[2]++)
+    for (c[1] = 0; c[1] <= m->ny; c[1]++)
+      for (c[0] = 0; c[0] <= m->nx; c[0]++) {
+        unsigned char b = 0;
+        for (int f = 0; f < 2 * m->dim; f++)
+          if (c[f / 2] == (f % 2 ? m->n[f / 2] : 0))
+            b |= mpm_bc_wall_bits(bc->face[f], f / 2, m->dim);
+        bc->fix[mpm_mesh_node(m, c[0], c[1], c[2])] |= b;
+      }
   return MPM_OK;
 }
 
@@ -102,21 +107,6 @@ void mpm_bc_clear(mpm_bc *bc)
   bc->fix = bc->mask[0] = bc->mask[1] = NULL;
   bc->normal = NULL;
   bc->nnodes = 0;
-}
-
-void mpm_bc_apply(const mpm_bc *bc, double *ax, double *ay)
-{
-  for (int i = 0; i < bc->nnodes; i++)
-    mpm_bc_apply_node(bc, i, &ax[i], &ay[i]);
-}
-
-void mpm_bc_clamp(const mpm_bc *bc, const mpm_mesh *m, double *x, double *y, double *vx,
-                  double *vy, double gvx, double gvy)
-{
-  if (mpm_bc_left_through_outlet(bc, m, *x, *y))
-    return;                                  /* leaves through the open outlet */
-  mpm_bc_clamp_axis(x, vx, gvx, m->x0, m->x0 + m->lx, mpm_bc_is_wall(bc->edge[MPM_EDGE_LEFT]),
-                    mpm_bc_is_wall(bc->edge[MPM_EDGE_RIGHT]));
-  mpm_bc_clamp_axis(y, vy, gvy, m->y0, m->y0 + m->ly, mpm_bc_is_wall(bc->edge[MPM_EDGE_BOTTOM]),
-                    mpm_bc_is_wall(bc->edge[MPM_EDGE_TOP]));
+  bc->out_face = -1;
+  bc->open = 0;
 }

@@ -60,6 +60,11 @@ typedef struct mpm_fill_config {
   double zmin, zmax;           /* 3D (mesh.nz > 0): the z range of the fill, which
                                   extrudes its plane shape along z [m] */
   double vz;                   /* 3D: initial velocity z [m/s] */
+  int axis;                    /* 3D disc: the cylinder's axis, 0 x, 1 y, 2 z (the
+                                  default); along x its circle has the centre
+                                  (cy, cz) and it spans xmin ... xmax, along y
+                                  (cx, cz) and ymin ... ymax */
+  double cz;                   /* 3D disc along x or y: the centre's z [m] */
   int lithostatic;             /* 1: pre-stress from the weight above */
   double k0;                   /* lithostatic: sigma_xx = sigma_zz = k0 sigma_yy (0: the
                                   uniaxial-strain value nu/(1-nu)) */

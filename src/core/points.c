@@ -1,7 +1,8 @@
 /* points.c: structure-of-arrays point store.
  *
- * Every loop over the fields skips those the store's dimension lacks
- * (mpm_points_has): a 2D store's 3D arrays stay NULL. */
+ * Every loop over the fields skips those the store lacks (mpm_points_has):
+ * a 2D store's 3D arrays, and the deformation gradients of a store that
+ * does not carry them, stay NULL. */
 #include "core/points.h"
 
 #include <stdlib.h>
@@ -66,31 +67,50 @@ int mpm_points_reserve(mpm_points *pts, size_t cap)
   return MPM_OK;
 }
 
+/* The arrays of kind K the store gains (on: zero for every point) or loses. */
+static int set_kind(mpm_points *pts, int K, int on)
+{
+  int rc = MPM_OK;
+#define MPM_POINT_KIND_(f, nm, d, u, kind)                                      \
+  if ((kind) == K && on && rc == MPM_OK) {                                      \
+    pts->f = calloc(pts->cap ? pts->cap : 1, sizeof *pts->f);                   \
+    rc = pts->f ? MPM_OK : MPM_ENOMEM;                                          \
+  } else if ((kind) == K && !on) {                                              \
+    free(pts->f);                                                               \
+    pts->f = NULL;                                                              \
+  }
+  MPM_POINT_REAL_FIELDS(MPM_POINT_KIND_)
+  MPM_POINT_INT_FIELDS(MPM_POINT_KIND_)
+#undef MPM_POINT_KIND_
+  if (rc != MPM_OK)
+    set_kind(pts, K, 0);    /* the arrays allocated so far freed */
+  return rc;
+}
+
 int mpm_points_set_dim(mpm_points *pts, int dim)
 {
   if (dim != 2 && dim != 3)
     return MPM_EINVAL;
   if (dim == pts->dim)
     return MPM_OK;
-  int rc = MPM_OK;
-  /* the arrays the store gains (zero for every point) or loses */
-#define MPM_POINT_DIM_(f, nm, d, u, D)                                           \
-  if ((D) == 3 && dim == 3 && rc == MPM_OK) {                                   \
-    pts->f = calloc(pts->cap, sizeof *pts->f);                                  \
-    rc = pts->f ? MPM_OK : MPM_ENOMEM;                                          \
-  } else if ((D) == 3 && dim == 2) {                                            \
-    free(pts->f);                                                               \
-    pts->f = NULL;                                                              \
-  }
-  MPM_POINT_REAL_FIELDS(MPM_POINT_DIM_)
-  MPM_POINT_INT_FIELDS(MPM_POINT_DIM_)
-#undef MPM_POINT_DIM_
-  if (rc != MPM_OK) {   /* back to 2D: the arrays allocated so far freed */
-    pts->dim = 3;
-    mpm_points_set_dim(pts, 2);
+  const int rc = set_kind(pts, MPM_POINT_3D, dim == 3);
+  if (rc == MPM_OK)
+    pts->dim = dim;
+  return rc;
+}
+
+int mpm_points_set_defgrad(mpm_points *pts, int on)
+{
+  on = on != 0;
+  if (on == pts->defgrad)
+    return MPM_OK;
+  const int rc = set_kind(pts, MPM_POINT_DEFGRAD, on);
+  if (rc != MPM_OK)
     return rc;
-  }
-  pts->dim = dim;
+  pts->defgrad = on;
+  for (int a = 0; on && a < 3; a++)            /* F = Fp = I */
+    for (size_t p = 0; p < pts->cap; p++)
+      pts->F[a][a][p] = pts->Fp[a][a][p] = 1.0;
   return MPM_OK;
 }
 
@@ -116,6 +136,8 @@ int mpm_points_copy(mpm_points *dst, const mpm_points *src)
 {
   int rc = mpm_points_set_dim(dst, src->dim);
   if (rc == MPM_OK)
+    rc = mpm_points_set_defgrad(dst, src->defgrad);
+  if (rc == MPM_OK)
     rc = mpm_points_reserve(dst, src->n);
   if (rc != MPM_OK)
     return rc;
@@ -131,14 +153,13 @@ int mpm_points_copy(mpm_points *dst, const mpm_points *src)
 
 void mpm_points_compact(mpm_points *pts, const unsigned char *keep)
 {
-  const int d3 = pts->dim == 3;
   size_t j = 0;
   for (size_t i = 0; i < pts->n; i++) {
     if (!keep[i])
       continue;
     if (j != i) {
-#define MPM_POINT_MOVE_(f, nm, d, u, dim) \
-  if ((dim) == 2 || d3) pts->f[j] = pts->f[i];
+#define MPM_POINT_MOVE_(f, nm, d, u, kind) \
+  if (mpm_points_has(pts, kind)) pts->f[j] = pts->f[i];
       MPM_POINT_REAL_FIELDS(MPM_POINT_MOVE_)
       MPM_POINT_INT_FIELDS(MPM_POINT_MOVE_)
 #undef MPM_POINT_MOVE_

@@ -46,10 +46,10 @@ int mpm_diag_region_flow_rate(const double *t, const double *m, size_t n, double
   return MPM_OK;
 }
 
-int mpm_diag_nodal_density(const mpm_mesh *m, size_t n, const double *x, const double *y,
-                           const double *mass, double *rho, mpm_err *err)
+int mpm_diag_nodal_density(const mpm_mesh *m, const mpm_points *P, double *rho, mpm_err *err)
 {
-  const size_t nn = (size_t)m->nnodes, nu = (size_t)m->nx * (size_t)m->ny;
+  const size_t n = P->n, nn = (size_t)m->nnodes, nu = m->nunits;
+  const int D = m->dim;
   double *mi = calloc(nn, sizeof *mi), *vi = calloc(nn, sizeof *vi);
   unsigned char *filled = calloc(nu, 1);
   int rc = MPM_OK;
@@ -57,32 +57,35 @@ int mpm_diag_nodal_density(const mpm_mesh *m, size_t n, const double *x, const d
     rc = mpm_err_set(err, MPM_ENOMEM, "nodal density: out of memory");
     goto done;
   }
+  int node[8], u[3];
+  double N[8], g[3][8];
+  double *const dN[3] = {g[0], g[1], g[2]};
   for (size_t p = 0; p < n; p++) {
-    int node[4], iu, ju;
-    double N[4], gx[4], gy[4];
-    int c = mpm_mesh_basis(m, x[p], y[p], node, N, gx, gy);
-    if (c < 0 || mpm_mesh_unit(m, x[p], y[p], &iu, &ju) != MPM_OK) {
-      rc = mpm_err_set(err, MPM_EOUTSIDE, "nodal density: point %zu at (%.6g, %.6g) m is "
-                       "outside the mesh", p, x[p], y[p]);
+    const double x[3] = {P->x[p], P->y[p], D == 3 ? P->z[p] : 0.0};
+    int c = mpm_mesh_basis(m, x, node, N, dN);
+    if (c < 0 || mpm_mesh_unit(m, x, u) != MPM_OK) {
+      rc = mpm_err_set(err, MPM_EOUTSIDE, "nodal density: point %d at (%.6g, %.6g) m is "
+                       "outside the mesh", P->id[p], x[0], x[1]);
       goto done;
     }
-    filled[(size_t)ju * (size_t)m->nx + (size_t)iu] = 1;
+    filled[mpm_mesh_unit_index(m, u)] = 1;
     for (int k = 0; k < c; k++)
-      mi[node[k]] += N[k] * mass[p];
+      mi[node[k]] += N[k] * P->mass[p];
   }
-  const double quarter = 0.25 * m->dx * m->dy;
-  for (int j = 0; j < m->ny; j++)
-    for (int i = 0; i < m->nx; i++)
-      if (filled[(size_t)j * (size_t)m->nx + (size_t)i]) {
-        vi[mpm_mesh_node(m, i, j)] += quarter;
-        vi[mpm_mesh_node(m, i + 1, j)] += quarter;
-        vi[mpm_mesh_node(m, i, j + 1)] += quarter;
-        vi[mpm_mesh_node(m, i + 1, j + 1)] += quarter;
-      }
+  const double share = D == 3 ? 0.125 * m->dx * m->dy * m->dz : 0.25 * m->dx * m->dy;  /* V_e / 2^D */
+  for (u[2] = 0; u[2] < m->nz; u[2]++)
+    for (u[1] = 0; u[1] < m->ny; u[1]++)
+      for (u[0] = 0; u[0] < m->nx; u[0]++)
+        if (filled[mpm_mesh_unit_index(m, u)]) {
+          int id[8];
+          mpm_mesh_unit_corners(m, u, id);
+          for (int a = 0; a < 1 << D; a++)
+            vi[id[a]] += share;
+        }
   for (size_t p = 0; p < n; p++) {
-    int node[4];
-    double N[4], gx[4], gy[4], r = 0.0;
-    int c = mpm_mesh_basis(m, x[p], y[p], node, N, gx, gy);
+    const double x[3] = {P->x[p], P->y[p], D == 3 ? P->z[p] : 0.0};
+    double r = 0.0;
+    int c = mpm_mesh_basis(m, x, node, N, dN);
     for (int k = 0; k < c; k++)
       r += N[k] * (vi[node[k]] > 0.0 ? mi[node[k]] / vi[node[k]] : 0.0);
     rho[p] = r;

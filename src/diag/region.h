@@ -27,10 +27,9 @@ int mpm_diag_region_flow_rate(const double *t, const double *m, size_t n, double
 
 /* Nodal density projected back to the points ([DK15] section 4.3, for the
  * state plot of their Fig. 7): m_i = sum_p N_i(x_p) m_p, V_i = (number of
- * units around node i holding at least one point) dx dy / 4 (the Voronoi
+ * units around node i holding at least one point) V_e / 2^D (the Voronoi
  * cell of the node times the filled fraction of its units), rho_i = m_i / V_i,
  * and rho_p = sum_i N_i(x_p) rho_i with the mesh basis (delta functions).
- * x, y, mass: n points inside the mesh; rho: n values out. MPM_EOUTSIDE
- * names a point outside the mesh. */
-int mpm_diag_nodal_density(const mpm_mesh *m, size_t n, const double *x, const double *y,
-                           const double *mass, double *rho, mpm_err *err);
+ * P: points inside mesh m (either dimension); rho: P->n values out.
+ * MPM_EOUTSIDE names a point outside the mesh. */
+int mpm_diag_nodal_density(const mpm_mesh *m, const mpm_points *P, double *rho, mpm_err *err);

@@ -619,18 +619,11 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
   return MPM_OK;
 }
 
-/* A 3D run (mesh.nz > 0): the keys it needs and what it does not have yet;
- * a plane run: no 3D key set. */
+/* A 3D run (mesh.nz > 0): the keys it needs and what is plane by nature
+ * (triangles); a plane run: no 3D key set. */
 static int check_dimension(in_ctx *c, const mpm_config *cfg)
 {
   const int knz = key_index(S_MESH, "nz");
-  const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
-  if (cfg->mesh.nz == 0 && t && t->hyper) {
-    const int k = key_index(S_MATERIAL, "model");
-    where w = blame(c, cfg, -1, k, k);
-    return mpm_io_in_fail_key(c, &w, "model \"%s\" runs in 3D only (allowed: with mesh.nz > "
-                              "0)", cfg->material.model);
-  }
   if (cfg->mesh.nz == 0) {
     for (int f = -1; f < cfg->nfill; f++)
       for (int k = 0; k < NKEYS; k++) {
@@ -657,7 +650,7 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
                               "(nx+1)(ny+1)(nz+1) <= %s)", cfg->mesh.nx, cfg->mesh.ny,
                               cfg->mesh.nz, mpm_io_in_num(MAX_NODES).s);
   }
-  /* what the plane run has and the 3D one has not (yet): named, not ignored */
+  /* what the plane run has and the 3D one has not, by nature: named, not ignored */
   struct { int on; int sec; const char *key; const char *allowed; } no3[] = {
     {strcmp(cfg->mesh.topology, "q4") != 0, S_MESH, "topology", "\"q4\" (boxes)"},
   };
@@ -668,26 +661,6 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     where w = blame(c, cfg, -1, k, knz);
     return mpm_io_in_fail_key(c, &w, "not available in a 3D run (mesh.nz > 0) (allowed: %s)",
                               no3[i].allowed);
-  }
-  if (t && t->nonlocal && !t->hyper) {
-    const int k = key_index(S_MATERIAL, "model");
-    where w = blame(c, cfg, -1, k, knz);
-    return mpm_io_in_fail_key(c, &w, "model \"%s\" is not available in a 3D run (allowed: "
-                              "\"elastic\", \"mu_i\", \"ngf_hyper\")", cfg->material.model);
-  }
-  /* the fluidity field of a 3D run: explicit or implicit diffusion, unit
-   * sums by the points' centres or extents, the point's own p^-1/2 */
-  struct { int on; const char *key, *allowed; } nl3[] = {
-    {cfg->material.diffusion == MPM_DIFFUSION_STEADY, "diffusion", "\"explicit\", \"implicit\""},
-    {cfg->material.p_sample != MPM_NGF_P_POINT, "p_sample", "\"point\""},
-  };
-  for (size_t i = 0; t && t->hyper && i < sizeof nl3 / sizeof nl3[0]; i++) {
-    if (!nl3[i].on)
-      continue;
-    const int k = key_index(S_MATERIAL, nl3[i].key);
-    where w = blame(c, cfg, -1, k, knz);
-    return mpm_io_in_fail_key(c, &w, "not available in a 3D run (mesh.nz > 0) (allowed: %s)",
-                              nl3[i].allowed);
   }
   if (check_periodic_pair(c, cfg, "front", "back", cfg->bc.front, cfg->bc.back) != MPM_OK)
     return MPM_EINPUT;

@@ -14,7 +14,6 @@
 #include "core/points.h"
 #include "core/state.h"
 #include "diag/diag.h"
-#include "mesh/box.h"
 #include "mesh/mesh.h"
 
 /* Defaults of every key (docs/input-reference.md), those of the scheme
@@ -66,22 +65,21 @@ typedef struct mpm_io_origin {
   int threads;                /* OpenMP threads of the run */
 } mpm_io_origin;
 
-/* Create dir (and parents) if needed and open the files. run.h5's root
- * attributes: version, revision, command_line, input (the resolved text,
- * mpm_io_input_write), host, threads, start_time, end_time ("" until
- * mpm_io_output_end), status ("running" until then), resumed (0) and
- * resume_log (""). */
+/* Create dir (and parents) if needed and open the files for a run on mesh m
+ * (NULL: none, and a plane run). run.h5's root attributes: version,
+ * revision, command_line, input (the resolved text, mpm_io_input_write),
+ * host, threads, start_time, end_time ("" until mpm_io_output_end), status
+ * ("running" until then), resumed (0) and resume_log (""). A 3D run's
+ * frames take 3D stores (mpm_points_alloc_dim(n, 3)) and hold their dim-3
+ * fields too, with an attribute dimension = 3 and XYZ points in run.xdmf;
+ * its /mesh holds the attributes of the plane's mesh that a box has
+ * (topology "box") and nz, z0, dz, periodic_z, node_z. */
 int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                        const char *input_text, const mpm_mesh *m, mpm_err *err);
 
-/* The same for a 3D run, on the box mesh m (NULL: none): its frames take 3D
- * stores (mpm_points_alloc_dim(n, 3)) and hold their dim-3 fields too, with
- * an attribute dimension = 3 and XYZ points in run.xdmf; /mesh holds the
- * attributes of the 2D mesh that a box has (topology "box") and nz, z0, dz,
- * periodic_z, node_z. Everything else is as in 2D (mpm_io_output_frame,
- * _end, _close, _reopen). */
-int mpm_io_output_open3(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
-                        const char *input_text, const mpm_mesh3 *m, mpm_err *err);
+/* The same without a mesh, for stores of dimension dim (2 or 3). */
+int mpm_io_output_open_dim(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                           const char *input_text, int dim, mpm_err *err);
 
 /* Open the output of a run in dir to continue it after its first nframes
  * frames: later frames (written after the checkpoint it continues from) are

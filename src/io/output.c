@@ -43,7 +43,6 @@
 #include "diag/flow.h"
 #include "io/h5err.h"
 #include "io/io.h"
-#include "mesh/box.h"
 
 /* One output field: name in run.h5, unit, where it comes from. */
 enum field_kind { FIELD_REAL, FIELD_INT, FIELD_DERIVED };
@@ -260,46 +259,38 @@ static herr_t write_lines(hid_t g, const char *name, int n, double x0, double dx
   return rc;
 }
 
+/* /mesh: the units, origin and unit sizes, the periodic axes and the node
+ * lines of each axis; the plane's topology and diagonal rule, or topology
+ * "box" and the z axis of a 3D mesh. */
 static herr_t write_mesh(hid_t file, const mpm_mesh *m)
 {
   hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   herr_t rc = g < 0 ? -1 : 0;
+  const int three = m->dim == 3;
   if (rc >= 0) /* a negative status in any term makes the OR negative */
-    rc = mpm_io_h5_attr_int(g, "nx", m->nx) | mpm_io_h5_attr_int(g, "ny", m->ny) | mpm_io_h5_attr_double(g, "x0", m->x0) |
-         mpm_io_h5_attr_double(g, "y0", m->y0) | mpm_io_h5_attr_double(g, "dx", m->dx) |
-         mpm_io_h5_attr_double(g, "dy", m->dy) |
-         mpm_io_h5_attr_string(g, "topology", known(mpm_mesh_topology_name(m->topology))) |
-         mpm_io_h5_attr_string(g, "diagonal", known(mpm_mesh_diagonal_name(m->diagonal))) |
-         mpm_io_h5_attr_double(g, "mirror_x", m->mirror_x) | mpm_io_h5_attr_int(g, "periodic_x", m->periodic_x) |
-         mpm_io_h5_attr_int(g, "periodic_y", m->periodic_y);
-  if (rc >= 0)
-    rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the vertical mesh lines");
-  if (rc >= 0)
-    rc = write_lines(g, "node_y", m->ny, m->y0, m->dy, "y of the horizontal mesh lines");
-  mpm_io_h5_close(g);
-  return rc;
-}
-
-/* The box mesh of a 3D run: the attributes and node lines of write_mesh
- * and those of z; topology "box". */
-static herr_t write_mesh3(hid_t file, const mpm_mesh3 *m)
-{
-  hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  herr_t rc = g < 0 ? -1 : 0;
-  if (rc >= 0)
     rc = mpm_io_h5_attr_int(g, "nx", m->nx) | mpm_io_h5_attr_int(g, "ny", m->ny) |
-         mpm_io_h5_attr_int(g, "nz", m->nz) | mpm_io_h5_attr_double(g, "x0", m->x0) |
-         mpm_io_h5_attr_double(g, "y0", m->y0) | mpm_io_h5_attr_double(g, "z0", m->z0) |
+         (three ? mpm_io_h5_attr_int(g, "nz", m->nz) : 0) | mpm_io_h5_attr_double(g, "x0", m->x0) |
+         mpm_io_h5_attr_double(g, "y0", m->y0) |
+         (three ? mpm_io_h5_attr_double(g, "z0", m->z0) : 0) |
          mpm_io_h5_attr_double(g, "dx", m->dx) | mpm_io_h5_attr_double(g, "dy", m->dy) |
-         mpm_io_h5_attr_double(g, "dz", m->dz) | mpm_io_h5_attr_string(g, "topology", "box") |
-         mpm_io_h5_attr_int(g, "periodic_x", m->periodic_x) |
+         (three ? mpm_io_h5_attr_double(g, "dz", m->dz) : 0);
+  if (rc >= 0 && three)
+    rc = mpm_io_h5_attr_string(g, "topology", "box");
+  else if (rc >= 0)
+    rc = mpm_io_h5_attr_string(g, "topology", known(mpm_mesh_topology_name(m->topology))) |
+         mpm_io_h5_attr_string(g, "diagonal", known(mpm_mesh_diagonal_name(m->diagonal))) |
+         mpm_io_h5_attr_double(g, "mirror_x", m->mirror_x);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_int(g, "periodic_x", m->periodic_x) |
          mpm_io_h5_attr_int(g, "periodic_y", m->periodic_y) |
-         mpm_io_h5_attr_int(g, "periodic_z", m->periodic_z);
+         (three ? mpm_io_h5_attr_int(g, "periodic_z", m->periodic_z) : 0);
   if (rc >= 0)
-    rc = write_lines(g, "node_x", m->nx, m->x0, m->dx, "x of the mesh planes normal to x");
+    rc = write_lines(g, "node_x", m->nx, m->x0, m->dx,
+                     three ? "x of the mesh planes normal to x" : "x of the vertical mesh lines");
   if (rc >= 0)
-    rc = write_lines(g, "node_y", m->ny, m->y0, m->dy, "y of the mesh planes normal to y");
-  if (rc >= 0)
+    rc = write_lines(g, "node_y", m->ny, m->y0, m->dy,
+                     three ? "y of the mesh planes normal to y" : "y of the horizontal mesh lines");
+  if (rc >= 0 && three)
     rc = write_lines(g, "node_z", m->nz, m->z0, m->dz, "z of the mesh planes normal to z");
   mpm_io_h5_close(g);
   return rc;
@@ -352,13 +343,11 @@ static herr_t write_origin(hid_t file, const mpm_io_origin *o, const char *input
 }
 
 static herr_t write_header(mpm_io_output *out, const mpm_io_origin *o, const char *input,
-                           const mpm_mesh *m, const mpm_mesh3 *m3)
+                           const mpm_mesh *m)
 {
   herr_t rc = write_origin(out->file, o, input);
   if (rc >= 0 && m)
     rc = write_mesh(out->file, m);
-  if (rc >= 0 && m3)
-    rc = write_mesh3(out->file, m3);
   if (rc >= 0) {
     out->frames = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     out->xdmf_group = H5Gcreate2(out->file, "xdmf", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -370,8 +359,8 @@ static herr_t write_header(mpm_io_output *out, const mpm_io_origin *o, const cha
 }
 
 static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origin *o,
-                       const char *input, const mpm_mesh *m, const mpm_mesh3 *m3,
-                       const mpm_io_h5_quiet *q, mpm_err *err)
+                       const char *input, const mpm_mesh *m, int dim, const mpm_io_h5_quiet *q,
+                       mpm_err *err)
 {
   int rc = make_dirs(dir, err);
   mpm_io_output *out;
@@ -380,7 +369,7 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   out = output_alloc(dir);
   if (!out)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
-  rc = open_text(&out->csv, out->csv_path, mpm_diag_csv_header(m3 ? 3 : 2), err);
+  rc = open_text(&out->csv, out->csv_path, mpm_diag_csv_header(dim), err);
   if (rc == MPM_OK)
     rc = open_xdmf(out, err);
   if (rc == MPM_OK) {
@@ -388,7 +377,7 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
     if (out->file < 0)
       rc = mpm_io_h5_fail(err, q, "cannot create", out->h5_path);
   }
-  if (rc == MPM_OK && write_header(out, o, input, m, m3) < 0)
+  if (rc == MPM_OK && write_header(out, o, input, m) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot write header of", out->h5_path);
   if (rc != MPM_OK) {
     output_free(out);
@@ -398,10 +387,10 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   return MPM_OK;
 }
 
-/* mpm_io_output_open and _open3: a 2D mesh m or a box mesh m3 (or none). */
+/* mpm_io_output_open and _open_dim: a mesh m of either dimension, or none
+ * and the dimension of the stores. */
 static int open_any(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
-                    const char *input_text, const mpm_mesh *m, const mpm_mesh3 *m3,
-                    mpm_err *err)
+                    const char *input_text, const mpm_mesh *m, int dim, mpm_err *err)
 {
   mpm_io_h5_quiet q;
   int rc;
@@ -412,23 +401,25 @@ static int open_any(mpm_io_output **out, const char *dir, const mpm_io_origin *o
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: empty output directory");
   mpm_io_h5_init();
   mpm_io_h5_quiet_begin(&q);
-  rc = output_open(out, dir, origin, input_text, m, m3, &q, err);
+  rc = output_open(out, dir, origin, input_text, m, dim, &q, err);
   mpm_io_h5_quiet_end(&q);
-  if (rc == MPM_OK && m3)
-    (*out)->dim = 3;
+  if (rc == MPM_OK)
+    (*out)->dim = dim;
   return rc;
 }
 
 int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                        const char *input_text, const mpm_mesh *m, mpm_err *err)
 {
-  return open_any(out, dir, origin, input_text, m, NULL, err);
+  return open_any(out, dir, origin, input_text, m, m && m->dim == 3 ? 3 : 2, err);
 }
 
-int mpm_io_output_open3(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
-                        const char *input_text, const mpm_mesh3 *m, mpm_err *err)
+int mpm_io_output_open_dim(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
+                           const char *input_text, int dim, mpm_err *err)
 {
-  return open_any(out, dir, origin, input_text, NULL, m, err);
+  if (dim != 2 && dim != 3)
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: dimension %d", dim);
+  return open_any(out, dir, origin, input_text, NULL, dim, err);
 }
 
 int mpm_io_output_occupied(const char *dir, const char **what)

@@ -56,29 +56,17 @@ void mpm_material_density_free(mpm_material_density *ws)
 int mpm_material_density_alloc(mpm_material_density **out, const mpm_mesh *m, mpm_err *err)
 {
   *out = NULL;
-  if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
-    return mpm_err_set(err, MPM_EINVAL, "density: mesh not set up (%d x %d units)", m->nx, m->ny);
-  const int n[3] = {m->nx, m->ny, 1}, periodic[3] = {m->periodic_x, m->periodic_y, 0};
-  return mpm_material_density_alloc_grid(out, n, periodic, m->dx * m->dy, err);
-}
-
-int mpm_material_density_alloc_grid(mpm_material_density **out, const int n[3],
-                                    const int periodic[3], double volume, mpm_err *err)
-{
-  *out = NULL;
-  const size_t nu = (size_t)(n[0] > 0 ? n[0] : 0) * (size_t)(n[1] > 0 ? n[1] : 0) *
-                    (size_t)(n[2] > 0 ? n[2] : 0);
-  if (nu < 1 || nu > (size_t)INT_MAX || !(volume > 0.0))
-    return mpm_err_set(err, MPM_EINVAL, "density: %d x %d x %d units of volume %g", n[0], n[1],
-                       n[2], volume);
+  const size_t nu = m->nunits;
+  if (nu < 1 || nu > (size_t)INT_MAX)
+    return mpm_err_set(err, MPM_EINVAL, "density: mesh not set up (%d x %d x %d units)", m->nx,
+                       m->ny, m->nz);
   mpm_material_density *ws = calloc(1, sizeof *ws);
   if (ws) {
-    ws->nx = n[0];
-    ws->ny = n[1];
-    ws->nz = n[2];
-    for (int a = 0; a < 3; a++)
-      ws->periodic[a] = periodic[a];
-    ws->area = volume;
+    for (int a = 0; a < 3; a++) {
+      ws->n[a] = m->n[a];
+      ws->periodic[a] = m->periodic[a];
+    }
+    ws->volume = m->dx * m->dy * (m->dim == 3 ? m->dz : 1.0);
     ws->sm = calloc(nu, sizeof *ws->sm);
     ws->sv = calloc(nu, sizeof *ws->sv);
     ws->count = calloc(nu, sizeof *ws->count);
@@ -92,33 +80,34 @@ int mpm_material_density_alloc_grid(mpm_material_density **out, const int n[3],
   return MPM_OK;
 }
 
-/* Unit of point p, i + nx j, from the caller's unit[] or its position; -1
- * outside the mesh. */
-static long unit_of(const mpm_mesh *m, const int *unit, const double *x, const double *y, size_t p)
+/* Unit of point p, c[0] + nx (c[1] + ny c[2]), from the caller's unit[] or
+ * its position; -1 outside the mesh. */
+static long unit_of(const mpm_mesh *m, const int *unit, const mpm_points *P, size_t p)
 {
-  int i, j;
   if (unit)
     return unit[p];
-  if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+  const double x[3] = {P->x[p], P->y[p], m->dim == 3 ? P->z[p] : 0.0};
+  int c[3];
+  if (mpm_mesh_unit(m, x, c) != MPM_OK)
     return -1;
-  return (long)i + (long)m->nx * j;
+  return (long)mpm_mesh_unit_index(m, c);
 }
 
 /* m_e, the point volume and the point count of every unit, in point order. */
-static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, size_t n, const double *x,
-                      const double *y, const int *unit, const double *mass, const double *vol)
+static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, const mpm_points *P,
+                      const int *unit)
 {
-  size_t nu = (size_t)ws->nx * (size_t)ws->ny * (size_t)ws->nz;
+  const size_t nu = (size_t)ws->n[0] * (size_t)ws->n[1] * (size_t)ws->n[2];
   memset(ws->sm, 0, nu * sizeof *ws->sm);
   memset(ws->sv, 0, nu * sizeof *ws->sv);
   memset(ws->count, 0, nu * sizeof *ws->count);
-  for (size_t p = 0; p < n; p++) {                    /* fixed order: thread-count free */
-    long u = unit_of(m, unit, x, y, p);
+  for (size_t p = 0; p < P->n; p++) {                 /* fixed order: thread-count free */
+    long u = unit_of(m, unit, P, p);
     if (u < 0)
       continue;                                       /* leaving the mesh: not counted */
     size_t e = (size_t)u;
-    ws->sm[e] += mass[p];                             /* m_e = sum m_p */
-    ws->sv[e] += vol[p];
+    ws->sm[e] += P->mass[p];                          /* m_e = sum m_p */
+    ws->sv[e] += P->vol[p];
     ws->count[e]++;
   }
 }
@@ -126,25 +115,25 @@ static void unit_sums(mpm_material_density *ws, const mpm_mesh *m, size_t n, con
 /* Count of unit c seen from inside: -1 beyond a non-periodic edge. */
 static int count_at(const mpm_material_density *ws, int c[3])
 {
-  const int n[3] = {ws->nx, ws->ny, ws->nz};
+  const int *n = ws->n;
   for (int a = 0; a < 3; a++)
     if (c[a] < 0 || c[a] >= n[a]) {
       if (!ws->periodic[a])
         return -1;
       c[a] = (c[a] + n[a]) % n[a];
     }
-  return ws->count[(size_t)c[0] + (size_t)ws->nx * ((size_t)c[1] + (size_t)ws->ny * (size_t)c[2])];
+  return ws->count[(size_t)c[0] + (size_t)n[0] * ((size_t)c[1] + (size_t)n[1] * (size_t)c[2])];
 }
 
 /* edge[e] = 1 for a unit with points and an empty unit among its 8
  * neighbours (26 in 3D). */
 static void mark_edges(mpm_material_density *ws)
 {
-  const int dk = ws->nz > 1 || ws->periodic[2];         /* the plane: one layer */
+  const int dk = ws->n[2] > 1 || ws->periodic[2];       /* the plane: one layer */
   size_t e = 0;
-  for (int k = 0; k < ws->nz; k++)
-    for (int j = 0; j < ws->ny; j++)
-      for (int i = 0; i < ws->nx; i++, e++) {
+  for (int k = 0; k < ws->n[2]; k++)
+    for (int j = 0; j < ws->n[1]; j++)
+      for (int i = 0; i < ws->n[0]; i++, e++) {
         int edge = 0;
         for (int c2 = -dk; c2 <= dk && ws->count[e] > 0; c2++)
           for (int c1 = -1; c1 <= 1; c1++)
@@ -156,26 +145,23 @@ static void mark_edges(mpm_material_density *ws)
       }
 }
 
-void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule, size_t n,
-                                  const double *x, const double *y, const int *unit,
-                                  const double *mass, const double *vol, double *rho)
+void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, int rule,
+                                  const mpm_points *P, const int *unit, double *rho)
 {
+  const size_t n = P->n;
+  const double *mass = P->mass, *vol = P->vol;
   if (rule == MPM_DENSITY_POINT) {
     for (size_t p = 0; p < n; p++)
       rho[p] = mass[p] / vol[p];                      /* rho_p = m_p / V_p */
     return;
   }
-  unit_sums(ws, m, n, x, y, unit, mass, vol);
-  if (m) {                                            /* the plane: the mesh's axes */
-    ws->periodic[0] = m->periodic_x;
-    ws->periodic[1] = m->periodic_y;
-  }
+  unit_sums(ws, m, P, unit);
   if (rule == MPM_DENSITY_HYBRID)
     mark_edges(ws);
-  const double iarea = 1.0 / ws->area;
+  const double iarea = 1.0 / ws->volume;
 #pragma omp parallel for schedule(static)
   for (size_t p = 0; p < n; p++) {
-    long u = unit_of(m, unit, x, y, p);
+    long u = unit_of(m, unit, P, p);
     size_t e = u < 0 ? 0 : (size_t)u;
     if (u < 0 || (rule == MPM_DENSITY_HYBRID && ws->edge[e]))
       rho[p] = mass[p] / vol[p];                      /* local rule, eq. 3.34 */

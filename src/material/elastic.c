@@ -5,7 +5,7 @@
 
 #include "core/points.h"
 
-/* One update of the point pt, by value: the kernel of update and update_plane. */
+/* One update of the point pt, by value: the kernel of update and update_point. */
 MPM_MATERIAL_KERNEL mpm_mpoint elastic_step(const mpm_material_params *par, mpm_mat3 L, double dt,
                                             mpm_mpoint pt)
 {
@@ -16,17 +16,17 @@ MPM_MATERIAL_KERNEL mpm_mpoint elastic_step(const mpm_material_params *par, mpm_
   return pt;
 }
 
-static void elastic_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+static void elastic_update_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                            mpm_mpoint *pt)
 {
   *pt = elastic_step(par, *L, dt, *pt);
 }
 
-/* A batch of plane-strain points, the update above inlined. */
-static void elastic_update_plane(const mpm_material_params *par, double dt, int nsub,
-                                 const mpm_material_batch *b)
+/* A batch of points, the update above inlined. */
+static void elastic_update(const mpm_material_params *par, double dt, int nsub,
+                           const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, elastic_step);
+  mpm_material_loop(par, dt, nsub, b, elastic_step, 0);
 }
 
 const mpm_material_type mpm_material_elastic = {
@@ -34,5 +34,5 @@ const mpm_material_type mpm_material_elastic = {
   .description = "linear elastic, Jaumann hypoelastic rate form",
   .check = mpm_material_check_elastic,
   .update = elastic_update,
-  .update_plane = elastic_update_plane,
+  .update_point = elastic_update_point,
 };

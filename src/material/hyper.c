@@ -310,9 +310,8 @@ mpm_mat3 mpm_material_hyper_F_of_stress(const mpm_material_params *par, mpm_sym3
   return F;
 }
 
-mpm_material_hyper_point mpm_material_hyper_elastic_step(const mpm_material_params *par,
-                                                         const mpm_mat3 *L, double dt,
-                                                         mpm_material_hyper_point pt)
+mpm_mpoint mpm_material_hyper_elastic_step(const mpm_material_params *par, const mpm_mat3 *L,
+                                           double dt, mpm_mpoint pt)
 {
   pt.F = hyper_advance(L, dt, &pt.F);
   pt.sigma = mpm_material_hyper_stress(par, &pt.F, &pt.Fp);
@@ -322,9 +321,8 @@ mpm_material_hyper_point mpm_material_hyper_elastic_step(const mpm_material_para
   return pt;
 }
 
-mpm_material_hyper_point mpm_material_hyper_step(const mpm_material_params *par,
-                                                 const mpm_mat3 *L, double dt,
-                                                 mpm_material_hyper_point pt)
+mpm_mpoint mpm_material_hyper_step(const mpm_material_params *par, const mpm_mat3 *L,
+                                   double dt, mpm_mpoint pt)
 {
   const mpm_sym3 D = mpm_mat3_sym(L);
   const double p_n = mpm_sym3_pressure(pt.sigma);
@@ -376,12 +374,33 @@ static int ngf_hyper_check(const mpm_material_params *par, mpm_err *err)
   return mpm_material_ngf.check(par, err);
 }
 
+/* The step as a kernel of mpm_material_loop, and the model's updates. */
+static mpm_mpoint hyper_kernel(const mpm_material_params *par, mpm_mat3 L, double dt,
+                               mpm_mpoint pt)
+{
+  return mpm_material_hyper_step(par, &L, dt, pt);
+}
+
+static void ngf_hyper_update(const mpm_material_params *par, double dt, int nsub,
+                             const mpm_material_batch *b)
+{
+  mpm_material_loop(par, dt, nsub, b, hyper_kernel, 1);
+}
+
+static void ngf_hyper_update_point(const mpm_material_params *par, const mpm_mat3 *L,
+                                   double dt, mpm_mpoint *pt)
+{
+  *pt = mpm_material_hyper_step(par, L, dt, *pt);
+}
+
 const mpm_material_type mpm_material_ngf_hyper = {
   .name = "ngf_hyper",
   .description = "hyperelastic nonlocal granular fluidity, F = Fe Fp with Hencky strain and "
-                 "Mandel stress, the NGF local solve and diffusion of g [HS21]; 3D runs only",
+                 "Mandel stress, the NGF local solve and diffusion of g [HS21]",
   .check = ngf_hyper_check,
+  .update = ngf_hyper_update,
+  .update_point = ngf_hyper_update_point,
+  .defgrad = 1,
   .nonlocal = 1,
   .dense = mpm_material_ngf_dense,
-  .hyper = 1,
 };

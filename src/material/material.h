@@ -65,22 +65,32 @@ typedef struct mpm_mpoint {
                       mpm_nonlocal_point_isp); 0: the point's own p_tr^-1/2 */
   double gdp;      /* equivalent plastic shear rate [1/s] (output) */
   int state;       /* enum mpm_point_state (output) */
+  mpm_mat3 F, Fp;  /* total and plastic deformation gradients, in: at t_n, out:
+                      at t_{n+1}; read and written only by a model that carries
+                      them (mpm_material_type.defgrad), ignored by the others */
 } mpm_mpoint;
 
 /* One constitutive update: sigma_n -> sigma_{n+1} of pt over dt with L fixed. */
 typedef void (*mpm_material_update_fn)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                                        mpm_mpoint *pt);
 
-/* n plane-strain points (no out-of-plane velocity gradient or shear stress),
- * as structure-of-arrays views: entry k of each array is point k. */
+/* n points of a run of dimension dim, as structure-of-arrays views: entry
+ * k of each array is point k. In the plane (dim 2) the out-of-plane velocity
+ * gradients and shear stresses are zero: L has the D x D in-plane entries
+ * and only xx, yy, zz, xy of the stress are read and written. */
 typedef struct mpm_material_batch {
   size_t n;
-  const double *lxx, *lxy, *lyx, *lyy;  /* L = grad v, the in-plane entries [1/s] */
+  int dim;                               /* 2 (plane strain) or 3 */
+  const double *L[9];                    /* L[D i + j] = dv_i/dx_j, i, j < D [1/s] */
   const double *rho;                     /* rho_{n+1} [kg/m^3] */
   const double *lap, *isp;               /* nonlocal inputs (mpm_mpoint); NULL: 0 */
-  double *sxx, *syy, *szz, *sxy;         /* stress, in: sigma_n, out: sigma_{n+1} [Pa] */
+  double *sig[6];                        /* stress in the order of mpm_sym3 (xx yy zz xy
+                                            yz zx; 4 in the plane), in: sigma_n, out:
+                                            sigma_{n+1} [Pa] */
   double *g, *gdp;                       /* fluidity and gdot_p, as in mpm_mpoint */
   int *state;
+  double *F[9], *Fp[9];                  /* F_ij, Fp_ij at [3 i + j] (a model with
+                                            defgrad only; NULL otherwise) */
 } mpm_material_batch;
 
 /* Powers of two that scale the terms of a model's quadratic exactly, so that
@@ -104,7 +114,7 @@ static inline void mpm_material_pow2(double m, double *down, double *up)
 }
 
 /* A model's kernel (mpm_material_kernel_fn) written to be inlined into
- * mpm_material_plane_loop (its update_plane) whatever its size. */
+ * mpm_material_loop (its update) whatever its size. */
 #if defined(__GNUC__)
 #define MPM_MATERIAL_KERNEL static inline __attribute__((always_inline))
 #else
@@ -117,39 +127,60 @@ static inline void mpm_material_pow2(double m, double *down, double *up)
 typedef mpm_mpoint (*mpm_material_kernel_fn)(const mpm_material_params *par, mpm_mat3 L,
                                              double dt, mpm_mpoint pt);
 
-/* One pass of the kernel k over the points of b (nonlocal: lap and isp
- * read). The arrays are restrict locals and the point a value (no address
- * taken), so the compiler keeps it in registers and updates several points
- * at once. */
-MPM_MATERIAL_KERNEL void mpm_material_plane_pass(const mpm_material_params *par, double dt,
-                                                 const mpm_material_batch *b,
-                                                 mpm_material_kernel_fn k, int nonlocal)
+/* One pass of the kernel k over the points of b in D dimensions (D a
+ * constant where this is inlined; nonlocal: lap and isp read; defgrad: F
+ * and Fp gathered and scattered). The arrays are restrict locals and the
+ * point a value (no address taken), so the compiler keeps it in registers
+ * and updates several points at once; the plane's absent entries are the
+ * constant 0, so the plane pass is the plane-strain update as written. */
+MPM_MATERIAL_KERNEL void mpm_material_pass(const mpm_material_params *par, double dt,
+                                           const mpm_material_batch *b,
+                                           mpm_material_kernel_fn k, int D, int nonlocal,
+                                           int defgrad)
 {
   const size_t n = b->n;
-  const double *restrict lxx = b->lxx, *restrict lxy = b->lxy, *restrict lyx = b->lyx;
-  const double *restrict lyy = b->lyy, *restrict rho = b->rho;
-  const double *restrict lap = b->lap, *restrict isp = b->isp;
-  double *restrict sxx = b->sxx, *restrict syy = b->syy, *restrict szz = b->szz;
-  double *restrict sxy = b->sxy, *restrict g = b->g, *restrict gdp = b->gdp;
+  const double *restrict l00 = b->L[0], *restrict l01 = b->L[1];
+  const double *restrict l10 = b->L[D], *restrict l11 = b->L[D + 1];
+  const double *restrict l02 = b->L[2], *restrict l12 = b->L[5];
+  const double *restrict l20 = b->L[6], *restrict l21 = b->L[7], *restrict l22 = b->L[8];
+  const double *restrict rho = b->rho, *restrict lap = b->lap, *restrict isp = b->isp;
+  double *restrict sxx = b->sig[0], *restrict syy = b->sig[1], *restrict szz = b->sig[2];
+  double *restrict sxy = b->sig[3], *restrict syz = b->sig[4], *restrict szx = b->sig[5];
+  double *restrict g = b->g, *restrict gdp = b->gdp;
   int *restrict state = b->state;
   const mpm_material_params pl = *par;   /* a local copy: its fields load unconditionally */
 #pragma omp simd
   for (size_t q = 0; q < n; q++) {
-    const mpm_mat3 L = {{{lxx[q], lxy[q], 0.0}, {lyx[q], lyy[q], 0.0}, {0.0, 0.0, 0.0}}};
+    const mpm_mat3 L = D == 3 ? (mpm_mat3){{{l00[q], l01[q], l02[q]}, {l10[q], l11[q], l12[q]},
+                                            {l20[q], l21[q], l22[q]}}}
+                              : (mpm_mat3){{{l00[q], l01[q], 0.0}, {l10[q], l11[q], 0.0},
+                                            {0.0, 0.0, 0.0}}};
     mpm_mpoint pt = {
-      .sigma = {sxx[q], syy[q], szz[q], sxy[q], 0.0, 0.0},
+      .sigma = {sxx[q], syy[q], szz[q], sxy[q], D == 3 ? syz[q] : 0.0, D == 3 ? szx[q] : 0.0},
       .rho = rho[q],
       .g = g[q], .lap = nonlocal ? lap[q] : 0.0, .isp = nonlocal ? isp[q] : 0.0,
       .gdp = gdp[q], .state = state[q],
     };
+    for (int e = 0; defgrad && e < 9; e++) {
+      pt.F.m[e / 3][e % 3] = b->F[e][q];
+      pt.Fp.m[e / 3][e % 3] = b->Fp[e][q];
+    }
     pt = k(&pl, L, dt, pt);
     sxx[q] = pt.sigma.xx;
     syy[q] = pt.sigma.yy;
     szz[q] = pt.sigma.zz;
     sxy[q] = pt.sigma.xy;
+    if (D == 3) {
+      syz[q] = pt.sigma.yz;
+      szx[q] = pt.sigma.zx;
+    }
     g[q] = pt.g;
     gdp[q] = pt.gdp;
     state[q] = pt.state;
+    for (int e = 0; defgrad && e < 9; e++) {
+      b->F[e][q] = pt.F.m[e / 3][e % 3];
+      b->Fp[e][q] = pt.Fp.m[e / 3][e % 3];
+    }
   }
 }
 
@@ -157,18 +188,23 @@ MPM_MATERIAL_KERNEL void mpm_material_plane_pass(const mpm_material_params *par,
  * each point is gathered into an mpm_mpoint and scattered back, so the
  * result is exactly that of the update point by point (the points are
  * independent, so their substeps run as passes over all of them). A model's
- * update_plane calls it with its own kernel, which is inlined into the loop
- * (the kernels are written without library calls and branch on values only,
- * so the loop vectorises). */
-MPM_MATERIAL_KERNEL void mpm_material_plane_loop(const mpm_material_params *par, double dt,
-                                                 int nsub, const mpm_material_batch *b,
-                                                 mpm_material_kernel_fn k)
+ * update calls it with its own kernel, which is inlined into the loop once
+ * per dimension (the kernels are written without library calls and branch
+ * on values only, so the loop vectorises); defgrad as mpm_material_pass. */
+MPM_MATERIAL_KERNEL void mpm_material_loop(const mpm_material_params *par, double dt,
+                                           int nsub, const mpm_material_batch *b,
+                                           mpm_material_kernel_fn k, int defgrad)
 {
+  const int nl = b->lap && b->isp;
   for (int s = 0; s < nsub; s++) {
-    if (b->lap && b->isp)
-      mpm_material_plane_pass(par, dt, b, k, 1);
+    if (b->dim == 3 && nl)
+      mpm_material_pass(par, dt, b, k, 3, 1, defgrad);
+    else if (b->dim == 3)
+      mpm_material_pass(par, dt, b, k, 3, 0, defgrad);
+    else if (nl)
+      mpm_material_pass(par, dt, b, k, 2, 1, defgrad);
     else
-      mpm_material_plane_pass(par, dt, b, k, 0);
+      mpm_material_pass(par, dt, b, k, 2, 0, defgrad);
   }
 }
 
@@ -177,14 +213,18 @@ typedef struct mpm_material_type {
   const char *description;
   /* Check the parameters this model uses (ranges); message names the key. */
   int (*check)(const mpm_material_params *par, mpm_err *err);
-  /* sigma_n -> sigma_{n+1} over dt with L fixed. Never fails: physical limits
-   * (p -> 0, disconnection) are states, not errors. */
-  mpm_material_update_fn update;
-  /* The same update for a batch of plane-strain points (nsub times each, L
-   * fixed): mpm_material_plane_loop with the model's own kernel inlined. The
-   * step updates its points through this one. */
-  void (*update_plane)(const mpm_material_params *par, double dt, int nsub,
-                       const mpm_material_batch *b);
+  /* The update of a batch of points (nsub times each, L fixed), the one the
+   * step calls: mpm_material_loop with the model's own kernel inlined.
+   * sigma_n -> sigma_{n+1} over dt; never fails: physical limits (p -> 0,
+   * disconnection) are states, not errors. */
+  void (*update)(const mpm_material_params *par, double dt, int nsub,
+                 const mpm_material_batch *b);
+  /* The same kernel for one point (the constitutive driver, the tests). */
+  mpm_material_update_fn update_point;
+  /* 1 for a model whose points carry their deformation gradients F and Fp
+   * (mpm_mpoint.F, .Fp; the point store's MPM_POINT_DEFGRAD fields, filled
+   * with F = Fe of the initial stress, Fp = I): the hyperelastic NGF. */
+  int defgrad;
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
    * the element fluidity of the points the model calls dense (nonlocal.h,
    * mpm_nonlocal_field); local models ignore pt->lap. */
@@ -192,9 +232,10 @@ typedef struct mpm_material_type {
   /* Nonlocal models: 1 if a point with stress sigma_n and density rho_{n+1}
    * contributes to the element field this step. */
   int (*dense)(const mpm_material_params *par, mpm_sym3 sigma_n, double rho);
-  /* Models with a seeding phase: the local model run while t < par->t_seed,
-   * then the field of every dense point set once by seed(sigma, gdot_p)
-   * ([DK-silo] section 6: g = 0 is always a solution). NULL: none. */
+  /* Seeding ([DK-silo] section 6: g = 0 is always a solution). While
+   * t < par->t_seed a nonlocal model runs locally: the model before_seed,
+   * after which the field of every dense point is set once by
+   * seed(sigma, gdot_p); or, without one, its own update with lap = 0. */
   const struct mpm_material_type *before_seed;
   double (*seed)(mpm_sym3 sigma, double gdp);
   /* Nonlocal models with a steady form (material.diffusion = "steady",
@@ -202,17 +243,13 @@ typedef struct mpm_material_type {
    * steady_terms: the coefficient c = |F(mu)| = (A d / xi)^2 and the local
    *   fluidity g_loc [1/s] of A^2 d^2 lap(g) = c (g - g_loc) at stress sigma
    *   (the start of the step), both 0 where p <= 0;
-   * update_steady: the update with pt->g the fluidity the steady solve gives
-   *   the point for the step (input; g_{n+1} = pt->g when it is dense), and
-   *   update_steady_plane the same for a batch. */
+   * update_steady: the update of a batch with g the fluidity the steady solve
+   *   gives each point for the step (input; g_{n+1} = g when it is dense), and
+   *   update_steady_point the same for one point. */
   void (*steady_terms)(const mpm_material_params *par, mpm_sym3 sigma, double *c, double *gloc);
-  mpm_material_update_fn update_steady;
-  void (*update_steady_plane)(const mpm_material_params *par, double dt, int nsub,
-                              const mpm_material_batch *b);   /* as update_plane */
-  /* 1 for the hyperelastic NGF of [HS21] (material/hyper.h): a point carries
-   * F and Fp, which only a 3D store has; 3D runs only, update and
-   * update_plane NULL (the 3D step calls mpm_material_hyper_step). */
-  int hyper;
+  void (*update_steady)(const mpm_material_params *par, double dt, int nsub,
+                        const mpm_material_batch *b);   /* as update */
+  mpm_material_update_fn update_steady_point;
 } mpm_material_type;
 
 /* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):
@@ -229,13 +266,13 @@ static inline mpm_sym3 mpm_material_trial(const mpm_material_params *par, mpm_sy
 extern const mpm_material_type mpm_material_elastic;  /* Jaumann hypoelastic */
 extern const mpm_material_type mpm_material_mu_i;     /* trans-phase mu(I) [DK15] */
 extern const mpm_material_type mpm_material_ngf;      /* trans-phase NGF [DK-silo] */
-extern const mpm_material_type mpm_material_ngf_hyper;  /* hyperelastic NGF [HS21], 3D */
+extern const mpm_material_type mpm_material_ngf_hyper;  /* hyperelastic NGF [HS21] */
 extern const mpm_material_type *const mpm_material_table[];
 
-/* Model by name, NULL if unknown. */
 /* Shared parameter checks for models (message names the key and range). */
 int mpm_material_check_elastic(const mpm_material_params *par, mpm_err *err);
 
+/* Model by name, NULL if unknown. */
 const mpm_material_type *mpm_material_lookup(const char *name);
 
 /* P-wave speed sqrt((K + 4G/3) / rho) for the time-step limit. */

@@ -93,7 +93,7 @@ static inline double mu_i_return_tau(double tau_tr, double S0, double S2, double
 }
 
 /* One update (see the top of this file) of the point pt, by value: the
- * kernel of update and update_plane. */
+ * kernel of update and update_point. */
 MPM_MATERIAL_KERNEL mpm_mpoint mu_i_step(const mpm_material_params *par, mpm_mat3 L, double dt,
                                          mpm_mpoint pt)
 {
@@ -120,7 +120,7 @@ MPM_MATERIAL_KERNEL mpm_mpoint mu_i_step(const mpm_material_params *par, mpm_mat
   return pt;
 }
 
-static void mu_i_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+static void mu_i_update_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                         mpm_mpoint *pt)
 {
   *pt = mu_i_step(par, *L, dt, *pt);
@@ -151,11 +151,11 @@ static int mu_i_check(const mpm_material_params *par, mpm_err *err)
   return MPM_OK;
 }
 
-/* A batch of plane-strain points, the update above inlined. */
-static void mu_i_update_plane(const mpm_material_params *par, double dt, int nsub,
-                              const mpm_material_batch *b)
+/* A batch of points, the update above inlined. */
+static void mu_i_update(const mpm_material_params *par, double dt, int nsub,
+                        const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, mu_i_step);
+  mpm_material_loop(par, dt, nsub, b, mu_i_step, 0);
 }
 
 const mpm_material_type mpm_material_mu_i = {
@@ -163,5 +163,5 @@ const mpm_material_type mpm_material_mu_i = {
   .description = "trans-phase mu(I): Jaumann elastic, mu(I) flow, stress-free below rho_c [DK15]",
   .check = mu_i_check,
   .update = mu_i_update,
-  .update_plane = mu_i_update_plane,
+  .update_point = mu_i_update_point,
 };

@@ -212,7 +212,7 @@ static inline int ngf_trial(const mpm_material_params *par, const mpm_mat3 *L, d
 }
 
 /* One (sub)step (see the top of this file) of the point pt, by value: the
- * kernel of update and update_plane. */
+ * kernel of update and update_point. */
 MPM_MATERIAL_KERNEL mpm_mpoint ngf_step(const mpm_material_params *par, mpm_mat3 L, double dt,
                                         mpm_mpoint pt)
 {
@@ -229,7 +229,7 @@ MPM_MATERIAL_KERNEL mpm_mpoint ngf_step(const mpm_material_params *par, mpm_mat3
   return ngf_return(par, dt, s_tr, p, x, pt);
 }
 
-static void ngf_update(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+static void ngf_update_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                        mpm_mpoint *pt)
 {
   *pt = ngf_step(par, *L, dt, *pt);
@@ -256,7 +256,7 @@ static void ngf_steady_terms(const mpm_material_params *par, mpm_sym3 sigma, dou
 }
 
 /* The update with the fluidity of a steady solve: pt.g is g_{n+1} (by value,
- * the kernel of update_steady and update_steady_plane). */
+ * the kernel of update_steady and update_steady_point). */
 MPM_MATERIAL_KERNEL mpm_mpoint ngf_steady_step(const mpm_material_params *par, mpm_mat3 L,
                                                double dt, mpm_mpoint pt)
 {
@@ -267,17 +267,17 @@ MPM_MATERIAL_KERNEL mpm_mpoint ngf_steady_step(const mpm_material_params *par, m
   return ngf_return(par, dt, s_tr, p, pt.g > 0.0 ? pt.g : 0.0, pt);  /* g_{n+1} = max(g, 0) */
 }
 
-static void ngf_update_steady(const mpm_material_params *par, const mpm_mat3 *L, double dt,
+static void ngf_update_steady_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
                               mpm_mpoint *pt)
 {
   *pt = ngf_steady_step(par, *L, dt, *pt);
 }
 
-/* A batch of plane-strain points with the fluidity of a steady solve. */
-static void ngf_update_steady_plane(const mpm_material_params *par, double dt, int nsub,
-                                    const mpm_material_batch *b)
+/* A batch of points with the fluidity of a steady solve. */
+static void ngf_update_steady(const mpm_material_params *par, double dt, int nsub,
+                              const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, ngf_steady_step);
+  mpm_material_loop(par, dt, nsub, b, ngf_steady_step, 0);
 }
 
 static int ngf_check(const mpm_material_params *par, mpm_err *err)
@@ -325,11 +325,11 @@ int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, 
                      n_sub, need);
 }
 
-/* A batch of plane-strain points, the update above inlined. */
-static void ngf_update_plane(const mpm_material_params *par, double dt, int nsub,
-                             const mpm_material_batch *b)
+/* A batch of points, the update above inlined. */
+static void ngf_update(const mpm_material_params *par, double dt, int nsub,
+                       const mpm_material_batch *b)
 {
-  mpm_material_plane_loop(par, dt, nsub, b, ngf_step);
+  mpm_material_loop(par, dt, nsub, b, ngf_step, 0);
 }
 
 const mpm_material_type mpm_material_ngf = {
@@ -338,12 +338,12 @@ const mpm_material_type mpm_material_ngf = {
                  "diffusion of g (explicit or implicit) and semi-implicit local update of g [DK-silo]",
   .check = ngf_check,
   .update = ngf_update,
-  .update_plane = ngf_update_plane,
+  .update_point = ngf_update_point,
   .nonlocal = 1,
   .dense = mpm_material_ngf_dense,
   .before_seed = &mpm_material_mu_i,
   .seed = mpm_material_ngf_seed,
   .steady_terms = ngf_steady_terms,
   .update_steady = ngf_update_steady,
-  .update_steady_plane = ngf_update_steady_plane,
+  .update_steady_point = ngf_update_steady_point,
 };

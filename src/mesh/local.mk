@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_mesh.la
-libmpm_mesh_la_SOURCES = src/mesh/mesh.c src/mesh/mesh.h src/mesh/mesh_internal.h \
-	src/mesh/bands.c src/mesh/box.c src/mesh/box.h
+libmpm_mesh_la_SOURCES = src/mesh/mesh.c src/mesh/mesh.h \
+	src/mesh/bands.c
 
 check_PROGRAMS += tests/test_mesh
 TESTS += tests/test_mesh

@@ -1,10 +1,13 @@
-/* mesh.c: structured 2D background mesh (MODEL.md section 3).
+/* mesh.c: the structured background mesh of 2 or 3 dimensions (MODEL.md
+ * section 3).
  *
- * Validation of the caller's fields, node numbering with periodic aliasing
- * (storage id = j_s * snx + i_s, i_s = i mod nx along a periodic x), unit
- * lookup, and the element basis: bilinear Q4, or linear T3 on the half of the
- * unit cut by its diagonal ("/", "\", or "mirror" about x = mirror_x,
- * [DK-silo] 7.1). The basis is in the hot loop: no allocation, no division. */
+ * Validation of the caller's fields axis by axis, node numbering with
+ * periodic aliasing (storage id = (k_s sny + j_s) snx + i_s, i_s = i mod nx
+ * along a periodic x), unit lookup, and the element basis at a position:
+ * bilinear Q4 or linear T3 on the half of the unit cut by its diagonal
+ * ("/", "\", or "mirror" about x = mirror_x, [DK-silo] 7.1) in the plane,
+ * trilinear on boxes. The basis is in the hot loop: no allocation, no
+ * division. */
 #include "mesh/mesh.h"
 
 #include <limits.h>
@@ -12,43 +15,41 @@
 #include <string.h>
 
 #include "core/names.h"
-#include "mesh/mesh_internal.h"
 
 /* ---------------------------------------------------------------- setup */
 
-/* Units along one axis: n >= 1, periodic flag 0/1, n >= nper when periodic. */
-int mpm_mesh_in_check_units(int n, int periodic, int nper, char axis, mpm_err *err)
+static const char axis_name[3] = {'x', 'y', 'z'};
+
+/* Units along axis a: n >= 1, periodic flag 0/1, n >= nper when periodic. */
+static int check_units(int n, int periodic, int nper, int a, mpm_err *err)
 {
+  const char c = axis_name[a];
   if (periodic != 0 && periodic != 1)
     return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.periodic_%c = %d is out of range (allowed: 0 or 1)",
-                       axis, periodic);
+                       "mesh.periodic_%c = %d is out of range (allowed: 0 or 1)", c, periodic);
   if (n < 1 || n > INT_MAX - 1)
     return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.n%c = %d is out of range (allowed: integer >= 1)",
-                       axis, n);
+                       "mesh.n%c = %d is out of range (allowed: integer >= 1)", c, n);
   if (periodic && n < nper)
     return mpm_err_set(err, MPM_EINPUT,
                        "mesh.n%c = %d is out of range (allowed: n%c >= %d when %c "
-                       "is periodic)", axis, n, axis, nper, axis);
+                       "is periodic)", c, n, c, nper, c);
   return MPM_OK;
 }
 
 /* Origin finite, unit size finite and > 0, domain end finite. */
-int mpm_mesh_in_check_lengths(int n, double o, double h, char axis, mpm_err *err)
+static int check_lengths(int n, double o, double h, int a, mpm_err *err)
 {
+  const char c = axis_name[a];
   if (!isfinite(o))
-    return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.%c0 = %g is out of range (allowed: finite) [m]",
-                       axis, o);
+    return mpm_err_set(err, MPM_EINPUT, "mesh.%c0 = %g is out of range (allowed: finite) [m]",
+                       c, o);
   if (!(h > 0.0) || !isfinite(h))
     return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.d%c = %g is out of range (allowed: finite, > 0) [m]",
-                       axis, h);
+                       "mesh.d%c = %g is out of range (allowed: finite, > 0) [m]", c, h);
   if (!isfinite(o + n * h))
-    return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.%c0 + mesh.n%c * mesh.d%c = %g is not finite [m]",
-                       axis, axis, axis, o + n * h);
+    return mpm_err_set(err, MPM_EINPUT, "mesh.%c0 + mesh.n%c * mesh.d%c = %g is not finite [m]",
+                       c, c, c, o + n * h);
   return MPM_OK;
 }
 
@@ -59,6 +60,9 @@ static int check_topology(const mpm_mesh *m, mpm_err *err)
     return mpm_err_set(err, MPM_EINPUT,
                        "mesh.topology = %d is out of range (allowed: %d = q4, "
                        "%d = t3)", m->topology, MPM_TOPO_Q4, MPM_TOPO_T3);
+  if (m->dim == 3 && m->topology != MPM_TOPO_Q4)
+    return mpm_err_set(err, MPM_EINPUT, "mesh.topology = \"t3\" is plane only (allowed in 3D: "
+                       "\"q4\", the trilinear box)");
   if (m->diagonal < MPM_DIAG_SLASH || m->diagonal > MPM_DIAG_MIRROR)
     return mpm_err_set(err, MPM_EINPUT,
                        "mesh.diagonal = %d is out of range (allowed: %d = \"/\", "
@@ -74,30 +78,48 @@ static int check_topology(const mpm_mesh *m, mpm_err *err)
 
 int mpm_mesh_setup(mpm_mesh *m, mpm_err *err)
 {
-  int rc;
+  if (m->dim == 0)
+    m->dim = 2;
+  if (m->dim != 2 && m->dim != 3)
+    return mpm_err_set(err, MPM_EINPUT, "mesh: dimension %d (allowed: 2 or 3)", m->dim);
+  if (m->dim == 2) {                 /* the absent axis: one unit of unit thickness */
+    m->nz = 1;
+    m->z0 = 0.0;
+    m->dz = 1.0;
+    m->periodic_z = 0;
+  }
   /* a periodic axis of one unit is one node row or column: its two edges
    * are one node, so nothing varies along it (the infinite layer of [DK15]
-   * section 4.4 and [DK-silo] section 6 on one column of elements) */
-  if ((rc = mpm_mesh_in_check_units(m->nx, m->periodic_x, 1, 'x', err)) != MPM_OK ||
-      (rc = mpm_mesh_in_check_units(m->ny, m->periodic_y, 1, 'y', err)) != MPM_OK ||
-      (rc = mpm_mesh_in_check_lengths(m->nx, m->x0, m->dx, 'x', err)) != MPM_OK ||
-      (rc = mpm_mesh_in_check_lengths(m->ny, m->y0, m->dy, 'y', err)) != MPM_OK ||
-      (rc = check_topology(m, err)) != MPM_OK)
+   * section 4.4 and [DK-silo] section 6 on one column of elements); a box
+   * needs two (a unit must not be its own neighbour across a face) */
+  const int nper = m->dim == 3 ? 2 : 1;
+  int rc;
+  for (int a = 0; a < m->dim; a++)
+    if ((rc = check_units(m->n[a], m->periodic[a], nper, a, err)) != MPM_OK)
+      return rc;
+  for (int a = 0; a < m->dim; a++)
+    if ((rc = check_lengths(m->n[a], m->o[a], m->h[a], a, err)) != MPM_OK)
+      return rc;
+  if ((rc = check_topology(m, err)) != MPM_OK)
     return rc;
-  int snx = m->periodic_x ? m->nx : m->nx + 1;
-  int sny = m->periodic_y ? m->ny : m->ny + 1;
-  if ((long long)snx * sny > INT_MAX)
-    return mpm_err_set(err, MPM_EINPUT,
-                       "mesh.nx = %d, mesh.ny = %d: %lld nodes is out of range "
-                       "(allowed: at most %d)", m->nx, m->ny,
-                       (long long)snx * sny, INT_MAX);
-  m->snx = snx;
-  m->sny = sny;
-  m->nnodes = snx * sny;
-  m->lx = m->nx * m->dx;
-  m->ly = m->ny * m->dy;
-  m->idx = 1.0 / m->dx;
-  m->idy = 1.0 / m->dy;
+  long long nn = 1;
+  for (int a = 0; a < 3; a++) {
+    m->sn[a] = m->periodic[a] || (a == 2 && m->dim == 2) ? m->n[a] : m->n[a] + 1;
+    nn = nn <= INT_MAX ? nn * m->sn[a] : nn;            /* < 2^62: no overflow */
+  }
+  if (nn > INT_MAX) {
+    if (m->dim == 2)
+      return mpm_err_set(err, MPM_EINPUT, "mesh.nx = %d, mesh.ny = %d: %lld nodes is out of "
+                         "range (allowed: at most %d)", m->nx, m->ny, nn, INT_MAX);
+    return mpm_err_set(err, MPM_EINPUT, "mesh.nx = %d, mesh.ny = %d, mesh.nz = %d: too many "
+                       "nodes (allowed: at most %d)", m->nx, m->ny, m->nz, INT_MAX);
+  }
+  m->nnodes = (int)nn;
+  m->nunits = (size_t)m->nx * (size_t)m->ny * (size_t)m->nz;
+  for (int a = 0; a < 3; a++) {
+    m->len[a] = m->n[a] * m->h[a];
+    m->ih[a] = 1.0 / m->h[a];
+  }
   return MPM_OK;
 }
 
@@ -131,12 +153,20 @@ const char *mpm_mesh_diagonal_name(int diagonal)
 int mpm_mesh_from_config(mpm_mesh *m, const mpm_config *cfg, mpm_err *err)
 {
   memset(m, 0, sizeof *m);
+  const int three = cfg->mesh.nz > 0;
+  m->dim = three ? 3 : 2;
   m->nx = cfg->mesh.nx;
   m->ny = cfg->mesh.ny;
   m->x0 = cfg->mesh.x0;
   m->y0 = cfg->mesh.y0;
   m->dx = cfg->mesh.dx;
   m->dy = cfg->mesh.dy;
+  if (three) {
+    m->nz = cfg->mesh.nz;
+    m->z0 = cfg->mesh.z0;
+    m->dz = cfg->mesh.dz;
+    m->periodic_z = cfg->bc.front == MPM_BC_PERIODIC;
+  }
   m->topology = mpm_mesh_topology_from_name(cfg->mesh.topology);
   m->diagonal = mpm_mesh_diagonal_from_name(cfg->mesh.diagonal);
   m->mirror_x = cfg->mesh.mirror_x;
@@ -151,17 +181,28 @@ int mpm_mesh_from_config(mpm_mesh *m, const mpm_config *cfg, mpm_err *err)
 
 /* ---------------------------------------------------------------- nodes */
 
-int mpm_mesh_node(const mpm_mesh *m, int i, int j)
+/* Logical index k along an axis of n units -> stored index (k mod n if periodic). */
+static int axis_store(int k, int n, int periodic)
 {
-  int is = mpm_mesh_in_axis_store(i, m->nx, m->periodic_x);
-  int js = mpm_mesh_in_axis_store(j, m->ny, m->periodic_y);
-  return js * m->snx + is;  /* id = j_s snx + i_s */
+  if (!periodic)
+    return k;
+  k %= n;
+  return k < 0 ? k + n : k;
 }
 
-void mpm_mesh_node_pos(const mpm_mesh *m, int i, int j, double *x, double *y)
+int mpm_mesh_node(const mpm_mesh *m, int i, int j, int k)
 {
-  *x = m->x0 + i * m->dx;
-  *y = m->y0 + j * m->dy;
+  const int is = axis_store(i, m->nx, m->periodic_x);
+  const int js = axis_store(j, m->ny, m->periodic_y);
+  const int ks = axis_store(k, m->nz, m->periodic_z);
+  return (ks * m->sny + js) * m->snx + is;  /* id = (k_s sny + j_s) snx + i_s */
+}
+
+void mpm_mesh_node_pos(const mpm_mesh *m, int i, int j, int k, double x[3])
+{
+  x[0] = m->x0 + i * m->dx;
+  x[1] = m->y0 + j * m->dy;
+  x[2] = m->dim == 3 ? m->z0 + k * m->dz : 0.0;
 }
 
 /* ------------------------------------------------------------- location */
@@ -185,34 +226,27 @@ void mpm_mesh_axis_wrap_coord(double *x, double o, double len)
     *x = o + mpm_mesh_axis_wrap(s, len);
 }
 
-void mpm_mesh_wrap(const mpm_mesh *m, double *x, double *y)
+void mpm_mesh_wrap(const mpm_mesh *m, double x[3])
 {
-  if (m->periodic_x)
-    mpm_mesh_axis_wrap_coord(x, m->x0, m->lx);
-  if (m->periodic_y)
-    mpm_mesh_axis_wrap_coord(y, m->y0, m->ly);
+  for (int a = 0; a < m->dim; a++)
+    if (m->periodic[a])
+      mpm_mesh_axis_wrap_coord(&x[a], m->o[a], m->len[a]);
 }
 
-int mpm_mesh_unit(const mpm_mesh *m, double x, double y, int *i, int *j)
+int mpm_mesh_unit(const mpm_mesh *m, const double x[3], int c[3])
 {
-  double u, v;
-  return mpm_mesh_locate(m, x, y, i, j, &u, &v) ? MPM_EOUTSIDE : MPM_OK;
-}
-
-int mpm_mesh_unit_is_slash(const mpm_mesh *m, int i, int j)
-{
-  (void)j;
-  return mpm_mesh_column_is_slash(m, i);
+  double l[3];
+  return mpm_mesh_locate(m, x, c, l) ? MPM_EOUTSIDE : MPM_OK;
 }
 
 /* ---------------------------------------------------------------- basis */
 
-int mpm_mesh_basis(const mpm_mesh *m, double x, double y, int node[4],
-                   double N[4], double dNx[4], double dNy[4])
+int mpm_mesh_basis(const mpm_mesh *m, const double x[3], int *node, double *N,
+                   double *const dN[3])
 {
-  int i, j;
-  double u, v;
-  if (mpm_mesh_locate(m, x, y, &i, &j, &u, &v))
+  int c[3];
+  double l[3];
+  if (mpm_mesh_locate(m, x, c, l))
     return -1;
-  return mpm_mesh_basis_at(m, i, j, u, v, node, N, dNx, dNy);
+  return mpm_mesh_basis_at(m, c, l, node, N, dN);
 }

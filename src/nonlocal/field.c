@@ -1,10 +1,11 @@
 /* field.c: the NGF element field of one (sub)step and the table of diffusion
  * solvers (field.h). The dense flags are independent per point (parallel);
- * the unit sums run in point order on one thread (nonlocal.h), so the field
- * does not depend on the number of threads. */
+ * the unit sums run band by band (nonlocal.h), so the field does not depend
+ * on the number of threads. */
 #include "nonlocal/field.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/names.h"
 #include "nonlocal/implicit.h"
@@ -44,7 +45,7 @@ static void implicit_free(void *state)
 
 static int implicit_laplacian(void *state, mpm_nonlocal *ws, double c, mpm_err *err)
 {
-  const size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  const size_t nu = ws->grid.nu;
   size_t e = 0;
   while (e < nu && !(ws->sm[e] > 0.0))
     e++;
@@ -138,7 +139,7 @@ int mpm_nonlocal_set_diffusion(mpm_nonlocal *ws, int kind, mpm_err *err)
 
 int mpm_nonlocal_field(mpm_nonlocal *ws, const mpm_material_type *mt,
                        const mpm_material_params *par, const mpm_points *P, const double *rho,
-                       double dt_sub, mpm_err *err)
+                       double dt_sub, int local, mpm_err *err)
 {
   const size_t n = P->n;
 #pragma omp parallel for schedule(static)
@@ -152,10 +153,15 @@ int mpm_nonlocal_field(mpm_nonlocal *ws, const mpm_material_type *mt,
   if (!d->laplacian)
     return mpm_err_set(err, MPM_EINVAL, "nonlocal: the %s solver has no (sub)step field "
                        "(mpm_nonlocal_steady_field)", d->name);
-  mpm_nonlocal_average(ws, n, P->mass, P->g, ws->dense);           /* g_e, point order */
-  int rc = d->laplacian(ws->diffusion_state, ws, mpm_material_ngf_diffusivity(par, dt_sub), err);
-  if (rc != MPM_OK)
-    return rc;
+  mpm_nonlocal_average(ws, n, P->mass, P->g, ws->dense);           /* g_e, band order */
+  if (local)                                                       /* no diffusion yet */
+    memset(ws->lap, 0, ws->grid.nu * sizeof *ws->lap);
+  else {
+    const int rc = d->laplacian(ws->diffusion_state, ws, mpm_material_ngf_diffusivity(par, dt_sub),
+                                err);
+    if (rc != MPM_OK)
+      return rc;
+  }
   if (par->p_sample == MPM_NGF_P_UNIT)
     mpm_nonlocal_pressure(ws, n, P->mass, ws->pn, ws->dense);      /* isp_e */
   return MPM_OK;
@@ -235,14 +241,14 @@ int mpm_nonlocal_steady_field(mpm_nonlocal *ws, const mpm_material_type *mt,
     return MPM_OK;
   }
   mpm_nonlocal_held_nodes(ws, m, ssf->held);
-  int rc = mpm_nonlocal_steady_solve(ssf->ss, st, n, P->vol, ssf->w, ssf->gloc, ssf->dense,
-                                     ssf->held, mass, err);
+  int rc = mpm_nonlocal_steady_solve(ssf->ss, st, m, n, P->vol, ssf->w, ssf->gloc,
+                                     ssf->dense, ssf->held, mass, err);
   ssf->solved = rc == MPM_OK;
   if (rc != MPM_OK)
     return rc;
 #pragma omp parallel for schedule(static)
   for (size_t p = 0; p < n; p++)
-    P->g[p] = mpm_nonlocal_steady_point(ssf->ss, m, st, p, P->x[p], P->y[p], sample);
+    P->g[p] = mpm_nonlocal_steady_point(ssf->ss, m, st, P, p, sample);
   return MPM_OK;
 }
 

@@ -71,11 +71,13 @@ int mpm_nonlocal_set_diffusion(mpm_nonlocal *ws, int kind, mpm_err *err);
 
 /* Steps 1-4 above for the n = P->n points of model mt with parameters par
  * over dt_sub; rho[p] is the density of each point's state decision (NULL:
- * mass / vol). Afterwards mpm_nonlocal_point_lap and mpm_nonlocal_point_isp
- * give each point its inputs. Errors come from the diffusion solver. */
+ * mass / vol); local: lap_e = 0 (a model without a seeding model before
+ * t_seed: material.h). Afterwards mpm_nonlocal_point_lap and
+ * mpm_nonlocal_point_isp give each point its inputs. Errors come from the
+ * diffusion solver. */
 int mpm_nonlocal_field(mpm_nonlocal *ws, const mpm_material_type *mt,
                        const mpm_material_params *par, const mpm_points *P, const double *rho,
-                       double dt_sub, mpm_err *err);
+                       double dt_sub, int local, mpm_err *err);
 
 /* 1 if ws uses the steady solver. */
 int mpm_nonlocal_is_steady(const mpm_nonlocal *ws);

@@ -1,24 +1,24 @@
-/* fluidity.c: element-averaged granular fluidity and its 5-point Laplacian
- * with ghost rules (MODEL.md section 5 steps 1-2; [DK-silo] §5.2 (i)-(ii),
- * eq. 5.1; boundary conditions on g from [DK-silo] §4 and §6).
+/* fluidity.c: element-averaged granular fluidity and its Laplacian with
+ * ghost rules on the units of a mesh of either dimension (MODEL.md section
+ * 5 steps 1-2; [DK-silo] §5.2 (i)-(ii), eq. 5.1; boundary conditions on g
+ * from [DK-silo] §4 and §6).
  *
  *   g_e   = sum_{p dense} w_pe m_p g_p / sum_{p dense} w_pe m_p
  * w_pe = 1 for the unit containing the centre of p (centre rule) or the
  * fraction of the extent of p lying in unit e (extent rule, [DK-silo]
- * §5.2 (i); the extent is the axis-aligned rectangle of half-widths
- * |r1x| + |r2x|, |r1y| + |r2y|, parts outside the mesh dropped, periodic
- * edges wrapped).
- *   lap_e = (g_E - 2 g_e + g_W)/dx^2 + (g_N - 2 g_e + g_S)/dy^2
- * Ghosts: Neumann g_ghost = g_e (empty neighbour, free edge, frictionless or
+ * §5.2 (i); the extent is the axis-aligned box of half-widths
+ * sum_k |r_ka|, parts outside the mesh dropped, periodic faces wrapped).
+ *   lap_e = sum_a (g_{a+} - 2 g_e + g_{a-}) / h_a^2
+ * Ghosts: Neumann g_ghost = g_e (empty neighbour, free face, frictionless or
  * symmetry wall), Dirichlet g_ghost = -g_e (no-slip wall: g = 0 on the face,
  * midway between the centres), periodic wrap. The stencil and the side rule
- * are those of the unit grid (grid.c), written once for 2 and 3 dimensions;
- * here the edges of the mesh set its rules. */
+ * are those of the unit grid (grid.c); here the faces of the mesh set its
+ * rules. */
 #include "nonlocal/nonlocal.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
-
 #include <string.h>
 
 #include "core/config.h"
@@ -48,21 +48,37 @@ const char *mpm_nonlocal_rule_name(int rule)
   return mpm_names_at(rule_names, MPM_NAMES_COUNT(rule_names), rule);
 }
 
-void mpm_nonlocal_open_faces(mpm_nonlocal *ws, int edge, int lo, int hi)
+int mpm_nonlocal_open_faces(mpm_nonlocal *ws, int face, const int lo[3], const int hi[3],
+                            const unsigned char *open, mpm_err *err)
 {
-  const int along = edge <= 1 ? 1 : 0;                 /* rows on the left and right */
-  int l[3] = {0, 0, 0}, h[3] = {0, 0, 0};
-  l[along] = lo;
-  h[along] = hi;
-  mpm_nonlocal_grid_open_faces(&ws->grid, edge, l, h);
+  mpm_nonlocal_grid_open_faces(&ws->grid, face, lo, hi);
+  if (!open)
+    return MPM_OK;
+  if (!ws->open_mask && !(ws->open_mask = malloc(ws->grid.nu)))
+    return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for the outlet's unit faces");
+  memcpy(ws->open_mask, open, ws->grid.nu);
+  mpm_nonlocal_grid_open_mask(&ws->grid, ws->open_mask);
+  return MPM_OK;
 }
 
 void mpm_nonlocal_walls_neumann(mpm_nonlocal *ws)
 {
-  for (int k = 0; k < 4; k++)
+  for (int k = 0; k < 2 * ws->grid.dim; k++)
     if (ws->grid.ghost[k] == MPM_GHOST_DIRICHLET)
       ws->grid.ghost[k] = MPM_GHOST_NEUMANN;
   ws->grid.stamp++;
+}
+
+/* 1 if unit c lies in the open range of the outlet on face f (and, with a
+ * mask, is marked in it). */
+static int unit_open(const mpm_nonlocal_grid *g, int f, const int c[3])
+{
+  if (f != g->open_face)
+    return 0;
+  for (int b = 0; b < g->dim; b++)
+    if (c[b] < g->open_lo[b] || c[b] >= g->open_hi[b])
+      return 0;
+  return !g->open_mask || g->open_mask[mpm_nonlocal_grid_index(g, c)];
 }
 
 void mpm_nonlocal_held_nodes(const mpm_nonlocal *ws, const mpm_mesh *m, unsigned char *held)
@@ -70,17 +86,31 @@ void mpm_nonlocal_held_nodes(const mpm_nonlocal *ws, const mpm_mesh *m, unsigned
   for (int i = 0; i < m->nnodes; i++)
     held[i] = 0;
   const mpm_nonlocal_grid *g = &ws->grid;
-  for (int e = 0; e < 4; e++) {
-    if (g->ghost[e] != MPM_GHOST_DIRICHLET)
+  const int kz = m->dim == 3 ? m->nz : 0;
+  for (int f = 0; f < 2 * m->dim; f++) {
+    if (g->ghost[f] != MPM_GHOST_DIRICHLET)
       continue;
-    const int len = e <= 1 ? m->ny : m->nx;            /* nodes 0 .. len along the edge */
-    const int along = e <= 1 ? 1 : 0;
-    for (int a = 0; a <= len; a++) {
-      if (e == g->open_face && a >= g->open_lo[along] && a <= g->open_hi[along])
-        continue;                                      /* the faces lo .. hi-1 of an open outlet */
-      const int i = e == 0 ? 0 : e == 1 ? m->nx : a, j = e == 2 ? 0 : e == 3 ? m->ny : a;
-      held[mpm_mesh_node(m, i, j)] = 1;
-    }
+    const int a = f / 2, at = f % 2 ? m->n[a] : 0;
+    int c[3];
+    for (c[2] = 0; c[2] <= kz; c[2]++)
+      for (c[1] = 0; c[1] <= m->ny; c[1]++)
+        for (c[0] = 0; c[0] <= m->nx; c[0]++) {
+          if (c[a] != at)
+            continue;
+          /* a node of an open unit face is free: the unit faces around it
+           * along the face, one of them open */
+          int u[3] = {0, 0, 0}, open = 0;
+          for (int k = 0; k < 1 << m->dim && !open; k++) {
+            int ok = 1;
+            for (int b = 0; b < m->dim; b++) {
+              u[b] = b == a ? (f % 2 ? m->n[a] - 1 : 0) : c[b] - (k >> b & 1);
+              ok &= u[b] >= 0 && u[b] < m->n[b];
+            }
+            open = ok && unit_open(g, f, u);
+          }
+          if (!open)
+            held[mpm_mesh_node(m, c[0], c[1], c[2])] = 1;
+        }
   }
 }
 
@@ -110,6 +140,7 @@ void mpm_nonlocal_free(mpm_nonlocal *ws)
   free(ws->lap);
   free(ws->pe);
   free(ws->isp);
+  free(ws->open_mask);
   free(ws->unit);
   free(ws->row);
   mpm_mesh_bands_free(ws->bands);
@@ -127,7 +158,7 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
   if (cap <= ws->pcap)
     return MPM_OK;
   const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
-  const size_t nk = ext ? MPM_NONLOCAL_PARTS * cap : 0;
+  const size_t nk = ext ? (size_t)ws->nparts * cap : 0;
   int *u = malloc(cap * sizeof *u);
   int *row = malloc(cap * sizeof *row);
   int *part = ext ? malloc(nk * sizeof *part) : NULL;
@@ -159,53 +190,46 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
   return MPM_OK;
 }
 
-static const char *const edge_names[4] = {"left", "right", "bottom", "top"};
-
-/* The unit grid of mesh m with the ghost rules of its four edges; periodic
+/* The unit grid of mesh m with the ghost rules of its faces; periodic
  * pairs must match the mesh. */
-static int set_grid(mpm_nonlocal *ws, const mpm_mesh *m, const int edge[4], mpm_err *err)
+static int set_grid(mpm_nonlocal *ws, const mpm_mesh *m, const int face[], mpm_err *err)
 {
-  int ghost[4];
-  for (int k = 0; k < 4; k++) {
-    ghost[k] = mpm_nonlocal_ghost_of_bc(edge[k]);
+  static const char *const names[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+  int ghost[6];
+  for (int k = 0; k < 2 * m->dim; k++) {
+    ghost[k] = mpm_nonlocal_ghost_of_bc(face[k]);
     if (ghost[k] < 0)
-      return mpm_err_set(err, MPM_EINVAL, "nonlocal: %s edge has unknown kind %d",
-                         edge_names[k], edge[k]);
+      return mpm_err_set(err, MPM_EINVAL, "nonlocal: face %s has unknown kind %d", names[k],
+                         face[k]);
   }
-  int px = ghost[0] == MPM_GHOST_PERIODIC, px2 = ghost[1] == MPM_GHOST_PERIODIC;
-  int py = ghost[2] == MPM_GHOST_PERIODIC, py2 = ghost[3] == MPM_GHOST_PERIODIC;
-  if (px != px2 || px != (m->periodic_x != 0))
-    return mpm_err_set(err, MPM_EINVAL,
-                       "nonlocal: left/right periodic edges must match each other and the mesh");
-  if (py != py2 || py != (m->periodic_y != 0))
-    return mpm_err_set(err, MPM_EINVAL,
-                       "nonlocal: bottom/top periodic edges must match each other and the mesh");
-  const int n[2] = {m->nx, m->ny};
-  const double h[2] = {m->dx, m->dy};
-  return mpm_nonlocal_grid_set(&ws->grid, 2, n, h, ghost, err);
+  for (int a = 0; a < m->dim; a++)
+    if ((ghost[2 * a] == MPM_GHOST_PERIODIC) != (m->periodic[a] != 0) ||
+        (ghost[2 * a + 1] == MPM_GHOST_PERIODIC) != (m->periodic[a] != 0))
+      return mpm_err_set(err, MPM_EINVAL, "nonlocal: periodic %c faces must match each other "
+                         "and the mesh", "xyz"[a]);
+  return mpm_nonlocal_grid_set(&ws->grid, m->dim, m->n, m->h, ghost, err);
 }
 
-int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4], int rule,
+int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int face[], int rule,
                        size_t cap, mpm_err *err)
 {
   *out = NULL;
   if (!mpm_nonlocal_rule_name(rule))
     return mpm_err_set(err, MPM_EINVAL, "nonlocal: unknown averaging rule %d", rule);
-  if (m->nx < 1 || m->ny < 1 || !(m->dx > 0.0) || !(m->dy > 0.0))
+  if (!(m->dim == 2 || m->dim == 3) || m->nunits < 1)
     return mpm_err_set(err, MPM_EINVAL, "nonlocal: mesh not set up (%d x %d units)",
                        m->nx, m->ny);
   mpm_nonlocal *ws = calloc(1, sizeof *ws);
   if (!ws)
     return mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for the workspace");
-  int rc = set_grid(ws, m, edge, err);
+  int rc = set_grid(ws, m, face, err);
   if (rc != MPM_OK) {
     mpm_nonlocal_free(ws);
     return rc;
   }
-  size_t nu = (size_t)m->nx * (size_t)m->ny;
-  ws->nx = m->nx;
-  ws->ny = m->ny;
+  const size_t nu = ws->grid.nu;
   ws->rule = rule;
+  ws->nparts = 1 << m->dim;
   ws->bands = mpm_mesh_bands_alloc();
   ws->sm = calloc(nu, sizeof *ws->sm);
   ws->smg = calloc(nu, sizeof *ws->smg);
@@ -228,80 +252,78 @@ int mpm_nonlocal_alloc(mpm_nonlocal **out, const mpm_mesh *m, const int edge[4],
 
 /* Unit, row and (extent rule) parts of point p; 0, or 1 when it is outside
  * the mesh, 2 when its extent is wider than a unit. */
-static int locate_one(mpm_nonlocal *ws, const mpm_mesh *m, size_t p, const double *x,
-                      const double *y, const double *const r[4])
+static int locate_one(mpm_nonlocal *ws, const mpm_mesh *m, const mpm_points *P, size_t p)
 {
-  int i, j;
-  if (mpm_mesh_unit(m, x[p], y[p], &i, &j) != MPM_OK)
+  const int D = m->dim;
+  const double x[3] = {P->x[p], P->y[p], D == 3 ? P->z[p] : 0.0};
+  int c[3];
+  double l[3];
+  if (mpm_mesh_locate(m, x, c, l))
     return 1;
-  ws->unit[p] = i + ws->nx * j;
-  ws->row[p] = j;
+  ws->unit[p] = (int)mpm_nonlocal_grid_index(&ws->grid, c);
+  ws->row[p] = c[D - 1];
   if (ws->rule != MPM_NONLOCAL_EXTENT)
     return 0;
-  double xw = x[p], yw = y[p];
-  mpm_mesh_wrap(m, &xw, &yw);
-  const double hu = (fabs(r[0][p]) + fabs(r[2][p])) * m->idx;   /* |r1x| + |r2x|, in units */
-  const double hv = (fabs(r[1][p]) + fabs(r[3][p])) * m->idy;   /* |r1y| + |r2y| */
-  if (!(hu <= 0.5 + 1e-12) || !(hv <= 0.5 + 1e-12))
-    return 2;
-  const double u = fmin(fmax((xw - m->x0) * m->idx - i, 0.0), 1.0);  /* centre in its unit */
-  const double v = fmin(fmax((yw - m->y0) * m->idy - j, 0.0), 1.0);
-  const int c[3] = {i, j, 0};
-  const double at[3] = {u, v, 0.5}, hw[3] = {hu, hv, 0.0};
-  mpm_nonlocal_grid_parts(&ws->grid, c, at, hw, ws->part + MPM_NONLOCAL_PARTS * p,
-                          ws->w + MPM_NONLOCAL_PARTS * p);
+  double hw[3] = {0.0, 0.0, 0.0};                /* |r1| + |r2| (+ |r3|) along each axis, */
+  for (int a = 0; a < D; a++) {                  /* in units */
+    double half = fabs(P->ext[0][a][p]);
+    for (int k = 1; k < D; k++)
+      half += fabs(P->ext[k][a][p]);
+    hw[a] = half * m->ih[a];
+    if (!(hw[a] <= 0.5 + 1e-12))
+      return 2;
+  }
+  if (D == 2)
+    l[2] = 0.5;
+  mpm_nonlocal_grid_parts(&ws->grid, c, l, hw, ws->part + (size_t)ws->nparts * p,
+                          ws->w + (size_t)ws->nparts * p);
   return 0;
 }
 
-int mpm_nonlocal_locate_extents(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
-                                const double *y, const double *const r[4], mpm_err *err)
+int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, const mpm_points *pts,
+                        mpm_err *err)
 {
+  const size_t n = pts->n;
   const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
-  if (ext && !r)
-    return mpm_err_set(err, MPM_EINVAL, "nonlocal: the extent rule needs the point extents");
   int rc = mpm_nonlocal_reserve(ws, n, err);
   if (rc != MPM_OK)
     return rc;
   long bad = (long)n;
 #pragma omp parallel for schedule(static) reduction(min : bad) if (n >= 256)
   for (size_t p = 0; p < n; p++)
-    if (locate_one(ws, m, p, x, y, r) && (long)p < bad)
+    if (locate_one(ws, m, pts, p) && (long)p < bad)
       bad = (long)p;
   if (bad < (long)n) {
     const size_t p = (size_t)bad;
-    if (locate_one(ws, m, p, x, y, r) == 1)
-      return mpm_err_set(err, MPM_EOUTSIDE,
-                         "nonlocal: point index %zu at (%.6g, %.6g) m is outside the mesh",
-                         p, x[p], y[p]);
-    return mpm_err_set(err, MPM_EINVAL,
-                       "nonlocal: point index %zu: extent %.6g x %.6g m is wider than a unit", p,
-                       2.0 * (fabs(r[0][p]) + fabs(r[2][p])),
-                       2.0 * (fabs(r[1][p]) + fabs(r[3][p])));
+    char z[40] = "";
+    if (m->dim == 3)
+      snprintf(z, sizeof z, ", %.6g", pts->z[p]);
+    if (locate_one(ws, m, pts, p) == 1)
+      return mpm_err_set(err, MPM_EOUTSIDE, "nonlocal: point %d at (%.6g, %.6g%s) m is outside "
+                         "the mesh", pts->id[p], pts->x[p], pts->y[p], z);
+    return mpm_err_set(err, MPM_EINVAL, "nonlocal: point %d at (%.6g, %.6g%s) m: its extent is "
+                       "wider than a unit (material.g_average = \"extent\")", pts->id[p],
+                       pts->x[p], pts->y[p], z);
   }
   /* the rows a point's shares reach: its own, and one either side with extents */
-  return mpm_mesh_bands_sort(ws->bands, m->ny, m->periodic_y, ext, ext, n, ws->row, err);
-}
-
-int mpm_nonlocal_locate(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
-                        const double *y, mpm_err *err)
-{
-  return mpm_nonlocal_locate_extents(ws, m, n, x, y, NULL, err);
+  const int a = m->dim - 1;
+  return mpm_mesh_bands_sort(ws->bands, m->n[a], m->periodic[a], ext, ext, n, ws->row, err);
 }
 
 /* sum_e w_pe v to the units of point p (extent rule). */
 static void add_parts(const mpm_nonlocal *ws, double *acc, size_t p, double v)
 {
-  const int *part = ws->part + MPM_NONLOCAL_PARTS * p;
-  const double *w = ws->w + MPM_NONLOCAL_PARTS * p;
-  for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
+  const int *part = ws->part + (size_t)ws->nparts * p;
+  const double *w = ws->w + (size_t)ws->nparts * p;
+  for (int k = 0; k < ws->nparts; k++)
     if (w[k] > 0.0)
       acc[part[k]] += w[k] * v;
 }
 
 double mpm_nonlocal_point_mean(const mpm_nonlocal *ws, const double *f, size_t p)
 {
-  return mpm_nonlocal_grid_parts_mean(ws->sm, f, ws->part + MPM_NONLOCAL_PARTS * p,
-                                      ws->w + MPM_NONLOCAL_PARTS * p, MPM_NONLOCAL_PARTS);
+  return mpm_nonlocal_grid_parts_mean(ws->sm, f, ws->part + (size_t)ws->nparts * p,
+                                      ws->w + (size_t)ws->nparts * p, ws->nparts);
 }
 
 /* acc[e] += w_pe m_p f_p (and, when sm is not NULL, sm[e] += w_pe m_p) over
@@ -311,7 +333,7 @@ double mpm_nonlocal_point_mean(const mpm_nonlocal *ws, const double *f, size_t p
 static void unit_sums(mpm_nonlocal *ws, size_t n, const double *mass, const double *f,
                       const unsigned char *dense, double *sm, double *acc)
 {
-  const size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  const size_t nu = ws->grid.nu;
   const int ext = ws->rule == MPM_NONLOCAL_EXTENT;
   const mpm_mesh_bands *b = ws->bands;
   const int banded = b && b->n == n;
@@ -352,18 +374,11 @@ static void unit_sums(mpm_nonlocal *ws, size_t n, const double *mass, const doub
 void mpm_nonlocal_average(mpm_nonlocal *ws, size_t n, const double *mass, const double *g,
                           const unsigned char *dense)
 {
-  const size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  const size_t nu = ws->grid.nu;
   unit_sums(ws, n, mass, g, dense, ws->sm, ws->smg);
 #pragma omp parallel for schedule(static) if (nu >= 256)
   for (size_t e = 0; e < nu; e++)
     ws->ge[e] = ws->sm[e] > 0.0 ? ws->smg[e] / ws->sm[e] : 0.0;  /* g_e */
-}
-
-int mpm_nonlocal_side(const mpm_nonlocal *ws, int i, int j, int side, size_t *nb)
-{
-  const int c[3] = {i, j, 0};
-  return mpm_nonlocal_grid_side(&ws->grid, ws->sm, c, (size_t)i + (size_t)ws->nx * (size_t)j,
-                                side, nb);
 }
 
 void mpm_nonlocal_laplacian(mpm_nonlocal *ws)
@@ -396,34 +411,71 @@ double mpm_nonlocal_mean_isqrt(double p0, double a, double c)
   return (h_diff(p0 + a, c) - h_diff(p0 - a, c)) / (3.0 * a);
 }
 
-/* Pressure of the unit across the face towards (i + di, j + dj); 0 if there
- * is none (wall, mesh edge, empty unit). */
-static int neighbour_p(const mpm_nonlocal *ws, int i, int j, int di, int dj, double *pv)
+/* The 3D mean of q^-1/2 (mpm_nonlocal_mean_isqrt3) as
+ *   (Phi(p0 + a) - Phi(p0 - a)) / (2a),  Phi(q) = int M2(q; b, c) dq,
+ * M2 the square's mean of mpm_nonlocal_mean_isqrt (the cube's mean is the
+ * mean over s of the square's means at q = p0 + a s). With F = q^5/2,
+ *   Phi(q) = (2 / (15 b c)) sum_{+-,+-} (+-)(+-) F(q +- b +- c),
+ * the difference in c taken without cancellation as in h_diff,
+ *   F(x + c) - F(x - c) = c (10 x^4 + 20 x^2 c^2 + 2 c^4) / ((x + c)^5/2 + (x - c)^5/2),
+ * and the one in b directly where b > 1e-3 q; where b <= 1e-3 q, the
+ * expansion of the central differences, Phi(q) = 2 q^1/2 - (b^2 + c^2) /
+ * (12 q^3/2) (the next term (b, c)^4 / q^7/2). */
+static double f5_diff(double x, double c)      /* (F(x + c) - F(x - c)) / c */
 {
-  int ii = i + di, jj = j + dj;
-  if (ii < 0 || ii >= ws->nx) {
-    if (ws->grid.ghost[ii < 0 ? 0 : 1] != MPM_GHOST_PERIODIC)
+  const double xm = x - c > 0.0 ? x - c : 0.0, xp = x + c > 0.0 ? x + c : 0.0;
+  const double den = xp * xp * sqrt(xp) + xm * xm * sqrt(xm);
+  const double x2 = x * x, c2 = c * c;
+  return den > 0.0 ? (10.0 * x2 * x2 + 20.0 * x2 * c2 + 2.0 * c2 * c2) / den : 0.0;
+}
+
+static double phi3(double q, double b, double c)
+{
+  if (b <= 1e-3 * q)
+    return 2.0 * sqrt(q) - (b * b + c * c) / (12.0 * q * sqrt(q));
+  return 2.0 * (f5_diff(q + b, c) - f5_diff(q - b, c)) / (15.0 * b);
+}
+
+double mpm_nonlocal_mean_isqrt3(double p0, double a, double b, double c)
+{
+  double h[3] = {fabs(a), fabs(b), fabs(c)};
+  for (int i = 0; i < 2; i++)                          /* h[0] >= h[1] >= h[2] */
+    for (int j = 0; j < 2 - i; j++)
+      if (h[j] < h[j + 1]) {
+        const double t = h[j];
+        h[j] = h[j + 1];
+        h[j + 1] = t;
+      }
+  if (h[0] <= 1e-3 * p0)                               /* Taylor; next term < 1e-12 */
+    return (1.0 + (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]) / (8.0 * p0 * p0)) / sqrt(p0);
+  return (phi3(p0 + h[0], h[1], h[2]) - phi3(p0 - h[0], h[1], h[2])) / (2.0 * h[0]);
+}
+
+/* Pressure of the unit across the face of unit c along axis a towards
+ * side s (-1 or +1); 0 if there is none (wall, mesh edge, empty unit). */
+static int neighbour_p(const mpm_nonlocal *ws, const int c[3], int a, int s, double *pv)
+{
+  const mpm_nonlocal_grid *g = &ws->grid;
+  int u[3] = {c[0], c[1], c[2]};
+  u[a] += s;
+  if (u[a] < 0 || u[a] >= g->n[a]) {
+    if (g->ghost[2 * a + (s > 0)] != MPM_GHOST_PERIODIC)
       return 0;
-    ii = (ii + ws->nx) % ws->nx;
+    u[a] = (u[a] + g->n[a]) % g->n[a];
   }
-  if (jj < 0 || jj >= ws->ny) {
-    if (ws->grid.ghost[jj < 0 ? 2 : 3] != MPM_GHOST_PERIODIC)
-      return 0;
-    jj = (jj + ws->ny) % ws->ny;
-  }
-  size_t e = (size_t)ii + (size_t)ws->nx * (size_t)jj;
+  const size_t e = mpm_nonlocal_grid_index(g, u);
   if (!(ws->sm[e] > 0.0))
     return 0;
   *pv = ws->pe[e];
   return 1;
 }
 
-/* Half the change of p across the unit along one direction (gradient times
- * half the unit): central, one-sided or 0. */
-static double half_change(const mpm_nonlocal *ws, int i, int j, int di, int dj, double p0)
+/* Half the change of p across unit c along axis a (gradient times half the
+ * unit): central, one-sided or 0. */
+static double half_change(const mpm_nonlocal *ws, const int c[3], int a, double p0)
 {
   double pm = 0.0, pp = 0.0;
-  int hm = neighbour_p(ws, i, j, -di, -dj, &pm), hp = neighbour_p(ws, i, j, di, dj, &pp);
+  const int hm = neighbour_p(ws, c, a, -1, &pm), hp = neighbour_p(ws, c, a, 1, &pp);
   if (hm && hp)
     return 0.25 * (pp - pm);
   if (hp)
@@ -436,27 +488,31 @@ static double half_change(const mpm_nonlocal *ws, int i, int j, int di, int dj, 
 void mpm_nonlocal_pressure(mpm_nonlocal *ws, size_t n, const double *mass, const double *p,
                            const unsigned char *dense)
 {
-  size_t nu = (size_t)ws->nx * (size_t)ws->ny;
+  const mpm_nonlocal_grid *g = &ws->grid;
+  const size_t nu = g->nu;
+  const int D = g->dim;
   unit_sums(ws, n, mass, p, dense, NULL, ws->pe);          /* sum w m p */
 #pragma omp parallel for schedule(static) if (nu >= 256)
   for (size_t e = 0; e < nu; e++)
     ws->pe[e] = ws->sm[e] > 0.0 ? ws->pe[e] / ws->sm[e] : 0.0;  /* p_e (sm from average) */
-  const int nx = ws->nx, ny = ws->ny;
-#pragma omp parallel for schedule(static) if ((long)nx * ny > 256)
-  for (int j = 0; j < ny; j++)
-    for (int i = 0; i < nx; i++) {
-      size_t e = (size_t)i + (size_t)nx * (size_t)j;
-      double p0 = ws->pe[e];
-      if (!(p0 > 0.0)) {
-        ws->isp[e] = 0.0;
-        continue;
-      }
-      double a = half_change(ws, i, j, 1, 0, p0), c = half_change(ws, i, j, 0, 1, p0);
-      double span = fabs(a) + fabs(c);
-      if (span > p0) {                                  /* limiter: p >= 0 on the unit */
-        a *= p0 / span;
-        c *= p0 / span;
-      }
-      ws->isp[e] = mpm_nonlocal_mean_isqrt(p0, a, c);
+#pragma omp parallel for schedule(static) if (nu > 256)
+  for (size_t e = 0; e < nu; e++) {
+    const double p0 = ws->pe[e];
+    if (!(p0 > 0.0)) {
+      ws->isp[e] = 0.0;
+      continue;
     }
+    const int c[3] = {(int)(e % (size_t)g->n[0]), (int)(e / g->stride[1] % (size_t)g->n[1]),
+                      (int)(e / g->stride[2])};
+    double hc[3] = {0.0, 0.0, 0.0}, span = 0.0;
+    for (int a = 0; a < D; a++) {
+      hc[a] = half_change(ws, c, a, p0);
+      span = a == 0 ? fabs(hc[a]) : span + fabs(hc[a]);
+    }
+    if (span > p0)                                      /* limiter: p >= 0 on the unit */
+      for (int a = 0; a < D; a++)
+        hc[a] *= p0 / span;
+    ws->isp[e] = D == 3 ? mpm_nonlocal_mean_isqrt3(p0, hc[0], hc[1], hc[2])
+                        : mpm_nonlocal_mean_isqrt(p0, hc[0], hc[1]);
+  }
 }

@@ -2,7 +2,6 @@ noinst_LTLIBRARIES += libmpm_nonlocal.la
 libmpm_nonlocal_la_SOURCES = src/nonlocal/nonlocal.h src/nonlocal/fluidity.c \
 	src/nonlocal/grid.h src/nonlocal/grid.c \
 	src/nonlocal/implicit.h src/nonlocal/implicit.c src/nonlocal/field.h src/nonlocal/field.c \
-	src/nonlocal/field3.h src/nonlocal/field3.c \
 	src/nonlocal/steady.h src/nonlocal/steady.c
 
 check_PROGRAMS += tests/test_nonlocal
@@ -32,10 +31,3 @@ tests_test_steady_SOURCES = tests/test_steady.c
 tests_test_steady_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_steady_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_shape.la libmpm_material.la \
 	libmpm_mesh.la libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
-
-check_PROGRAMS += tests/test_field3
-TESTS += tests/test_field3
-tests_test_field3_SOURCES = tests/test_field3.c
-tests_test_field3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_field3_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_mesh.la libmpm_core.la \
-	$(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm

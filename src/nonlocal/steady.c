@@ -6,7 +6,8 @@
  * over the dense points, unknowns the nodes they touch less the held ones.
  * Each point adds the lower triangle of its stencil's block as triplets
  * (duplicates are summed by the linalg corner), in point order: the matrix,
- * and so g, do not depend on the thread count. */
+ * and so g, do not depend on the thread count. The mesh is of either
+ * dimension (bilinear or trilinear elements; gradS . gradS over its axes). */
 #include "nonlocal/steady.h"
 
 #include <math.h>
@@ -108,25 +109,40 @@ static int reserve_triplets(mpm_nonlocal_steady *ss, size_t need, mpm_err *err)
   return MPM_OK;
 }
 
+/* A point's weights as a list (the stencil in either form) and its D. */
+typedef struct point_weights {
+  int node[MPM_STENCIL_W];
+  double S[MPM_STENCIL_W], g[3][MPM_STENCIL_W];
+} point_weights;
+
+static int weights_of(const mpm_shape_stencil *st, const mpm_mesh *m, size_t p,
+                      point_weights *pw)
+{
+  double *const dS[3] = {pw->g[0], pw->g[1], pw->g[2]};
+  return mpm_shape_stencil_list(st, m, p, pw->node, pw->S, dS);
+}
+
 /* Number the unknowns: the nodes a dense point weighs (S or gradS not 0: a
  * stencil may list a node of weights 0), less the held ones, in node
  * order. Returns their count; counts the triplets in *ntrip. */
-static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, size_t n,
-                       const unsigned char *dense, const unsigned char *held, size_t *ntrip)
+static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, const mpm_mesh *m,
+                       size_t n, const unsigned char *dense, const unsigned char *held,
+                       size_t *ntrip)
 {
   for (int i = 0; i < ss->nnodes; i++)
     ss->row[i] = -1;
   *ntrip = 0;
+  point_weights pw;
   for (size_t p = 0; p < n; p++) {
     if (!dense[p])
       continue;
-    const int c = st->count[p];
-    const size_t o = p * (size_t)st->w;
-    const int *node = st->node + o;
+    const int c = weights_of(st, m, p, &pw);
     for (int k = 0; k < c; k++) {
-      const int weighed = st->S[o + k] != 0.0 || st->dSx[o + k] != 0.0 || st->dSy[o + k] != 0.0;
-      if (weighed && !held[node[k]])
-        ss->row[node[k]] = 0;
+      int weighed = pw.S[k] != 0.0;
+      for (int d = 0; d < m->dim; d++)
+        weighed |= pw.g[d][k] != 0.0;
+      if (weighed && !held[pw.node[k]])
+        ss->row[pw.node[k]] = 0;
     }
     *ntrip += (size_t)c * (size_t)(c + 1) / 2;
   }
@@ -139,13 +155,13 @@ static int number_rows(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, siz
   return nrow;
 }
 
-int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, size_t n,
-                              const double *vol, const double *w, const double *gloc,
-                              const unsigned char *dense, const unsigned char *held, int mass,
-                              mpm_err *err)
+int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st,
+                              const mpm_mesh *m, size_t n, const double *vol, const double *w,
+                              const double *gloc, const unsigned char *dense,
+                              const unsigned char *held, int mass, mpm_err *err)
 {
   size_t ntrip;
-  const int nrow = number_rows(ss, st, n, dense, held, &ntrip);
+  const int nrow = number_rows(ss, st, m, n, dense, held, &ntrip);
   ss->nrow = nrow;
   for (int i = 0; i < ss->nnodes; i++)
     ss->g[i] = 0.0;
@@ -156,8 +172,9 @@ int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *
     return rc;
   for (int r = 0; r < nrow; r++)
     ss->b[r] = 0.0;
-  const int lumped = mass == MPM_STEADY_LUMPED;
+  const int lumped = mass == MPM_STEADY_LUMPED, D = m->dim;
   size_t t = 0;
+  point_weights pw;
   for (size_t p = 0; p < n; p++) {
     if (!dense[p])
       continue;
@@ -166,20 +183,21 @@ int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *
       return mpm_err_set(err, MPM_EINVAL,
                          "steady fluidity: point %zu has V/xi^2 = %g, V g_loc/xi^2 = %g", p, wV,
                          bV);
-    const int c = st->count[p];
-    const int *node = st->node + p * (size_t)st->w;
-    const double *S = st->S + p * (size_t)st->w;
-    const double *gx = st->dSx + p * (size_t)st->w, *gy = st->dSy + p * (size_t)st->w;
+    const int c = weights_of(st, m, p, &pw);
+    const double *S = pw.S;
     for (int k = 0; k < c; k++) {
-      const int rk = ss->row[node[k]];
+      const int rk = ss->row[pw.node[k]];
       if (rk < 0)
         continue;                                    /* held: g = 0, row and column gone */
       ss->b[rk] += bV * S[k];                        /* b_i += V w S_i g_loc */
       for (int l = 0; l <= k; l++) {
-        const int rl = ss->row[node[l]];
+        const int rl = ss->row[pw.node[l]];
         if (rl < 0)
           continue;
-        double a = V * (gx[k] * gx[l] + gy[k] * gy[l]);  /* V gradS_i . gradS_j */
+        double gg = pw.g[0][k] * pw.g[0][l];
+        for (int d = 1; d < D; d++)
+          gg += pw.g[d][k] * pw.g[d][l];
+        double a = V * gg;                           /* V gradS_i . gradS_j */
         if (!lumped)
           a += wV * S[k] * S[l];                     /* + V w S_i S_j */
         else if (l == k)
@@ -225,19 +243,21 @@ int mpm_nonlocal_steady_unknowns(const mpm_nonlocal_steady *ss)
 }
 
 double mpm_nonlocal_steady_point(const mpm_nonlocal_steady *ss, const mpm_mesh *m,
-                                 const mpm_shape_stencil *st, size_t p, double x, double y,
+                                 const mpm_shape_stencil *st, const mpm_points *P, size_t p,
                                  int sample)
 {
   double v = 0.0;
   if (sample == MPM_STEADY_LINEAR) {                 /* sum_i S_ip g_i */
-    const int *node = st->node + p * (size_t)st->w;
-    const double *S = st->S + p * (size_t)st->w;
-    for (int k = 0; k < st->count[p]; k++)
-      v += S[k] * ss->g[node[k]];
+    point_weights pw;
+    const int c = weights_of(st, m, p, &pw);
+    for (int k = 0; k < c; k++)
+      v += pw.S[k] * ss->g[pw.node[k]];
   } else {                                           /* mean over the element's nodes */
-    int node[4];
-    double N[4], dNx[4], dNy[4];
-    const int c = mpm_mesh_basis(m, x, y, node, N, dNx, dNy);
+    int node[8];
+    double N[8], gx[8], gy[8], gz[8];
+    double *const dN[3] = {gx, gy, gz};
+    const double x[3] = {P->x[p], P->y[p], m->dim == 3 ? P->z[p] : 0.0};
+    const int c = mpm_mesh_basis(m, x, node, N, dN);
     for (int k = 0; k < c; k++)
       v += ss->g[node[k]];
     v = c > 0 ? v / c : 0.0;

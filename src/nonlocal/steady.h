@@ -58,17 +58,17 @@ typedef struct mpm_nonlocal_steady mpm_nonlocal_steady;   /* opaque */
 mpm_nonlocal_steady *mpm_nonlocal_steady_alloc(const mpm_mesh *m, mpm_err *err);
 void mpm_nonlocal_steady_free(mpm_nonlocal_steady *ss);   /* accepts NULL */
 
-/* Assemble and solve for the n points of stencil st with volumes vol, w = 1/xi^2
+/* Assemble and solve for the n points of stencil st (on mesh m) with volumes vol, w = 1/xi^2
  * [1/m^2] and g_loc [1/s], the points with dense[p] != 0 taking part, the
  * nodes with held[i] != 0 at g = 0; mass is an enum mpm_nonlocal_steady_mass.
  * No unknown (no dense point, or all its nodes held): g = 0, MPM_OK.
  * Errors: MPM_EINVAL for a non-finite w V or w V g_loc (naming the point
  * index), MPM_ESOLVE when Cholesky and QR both fail, MPM_ENOMEM; the message
  * names the number of unknowns, the caller adds the step and the time. */
-int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st, size_t n,
-                              const double *vol, const double *w, const double *gloc,
-                              const unsigned char *dense, const unsigned char *held, int mass,
-                              mpm_err *err);
+int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *st,
+                              const mpm_mesh *m, size_t n, const double *vol, const double *w,
+                              const double *gloc, const unsigned char *dense,
+                              const unsigned char *held, int mass, mpm_err *err);
 
 /* Nodal g of the last solve ([mesh nnodes], 0 at nodes that are not unknowns). */
 const double *mpm_nonlocal_steady_nodal(const mpm_nonlocal_steady *ss);
@@ -76,10 +76,10 @@ const double *mpm_nonlocal_steady_nodal(const mpm_nonlocal_steady *ss);
 /* Number of unknowns of the last solve. */
 int mpm_nonlocal_steady_unknowns(const mpm_nonlocal_steady *ss);
 
-/* g at point p of st at (x, y), read as sample says (enum
- * mpm_nonlocal_steady_sample), max(0, .); 0 outside the mesh. */
+/* g at point p of store P (its stencil st on mesh m), read as sample says
+ * (enum mpm_nonlocal_steady_sample), max(0, .); 0 outside the mesh. */
 double mpm_nonlocal_steady_point(const mpm_nonlocal_steady *ss, const mpm_mesh *m,
-                                 const mpm_shape_stencil *st, size_t p, double x, double y,
+                                 const mpm_shape_stencil *st, const mpm_points *P, size_t p,
                                  int sample);
 
 /* Counts of analyses, factorisations (and QR fallbacks) and solves. */

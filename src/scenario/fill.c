@@ -1,20 +1,34 @@
-/* fill.c: fill regions with material points (initial state).
+/* fill.c: fill regions with material points (initial state), on a mesh of
+ * either dimension.
  *
- * Points sit at the centres of an n x n sub-grid of every mesh unit whose
- * sub-cell centre lies in the region: V_p = dx dy / n^2, m_p = rho V_p,
- * uGIMP extent r1 = (dx/2n, 0), r2 = (0, dy/2n). A lithostatic pre-stress sets
- * sigma_yy = rho g_y (y_top - y) with y_top the top of the fill above the point
- * and sigma_xx = sigma_zz = K0 sigma_yy, K0 = fill.k0, by default nu / (1 - nu)
- * (uniaxial strain); K0 = 1 is isotropic, sigma = -p I.
- * An isotropic pre-stress (`pressure`) sets sigma = -p I ([D-thesis] ch. 4:
- * "initially isotropically compressed").
- * The pre-stressed material is compressed consistently with the hypoelastic
- * law dp = K drho / rho: rho = rho_fill exp(p / K), so the mass grows. */
+ * Points sit at the centres of an n x n (x n) sub-grid of every mesh unit
+ * whose sub-cell centre lies in the region: V_p = dx dy (dz) / n^D,
+ * m_p = rho V_p, uGIMP extent r1 = (dx/2n, 0, 0), r2 = (0, dy/2n, 0),
+ * r3 = (0, 0, dz/2n). A fill below rho_c starts disconnected. A lithostatic
+ * pre-stress sets sigma_yy = rho g_y (y_top - y) with y_top the top of the
+ * fill above the point and sigma_xx = sigma_zz = K0 sigma_yy, K0 = fill.k0,
+ * by default nu / (1 - nu) (uniaxial strain); K0 = 1 is isotropic,
+ * sigma = -p I. An isotropic pre-stress (`pressure`) sets sigma = -p I
+ * ([D-thesis] ch. 4: "initially isotropically compressed"). The
+ * pre-stressed material is compressed consistently with the hypoelastic law
+ * dp = K drho / rho: rho = rho_fill exp(p / K), so the mass grows. A model
+ * with deformation gradients starts from F = Fe of that stress (no
+ * rotation; mpm_material_hyper_F_of_stress) and Fp = I. */
 #include "scenario/scenario.h"
-#include "scenario/scenario_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
+
+#include "material/hyper.h"
+
+static const char axis_name[3] = {'x', 'y', 'z'};
+
+/* Centre of sub-cell i (of n per unit of size d) along an axis from x0:
+ * x0 + (i + 1/2) d / n. */
+static double sub_centre(double x0, double d, int n, long i)
+{
+  return x0 + ((double)i + 0.5) * (d / n);
+}
 
 /* x of the sides of polygon f crossed by the horizontal line at y, in xc
  * (room for f->nvert); returns their number. */
@@ -40,36 +54,143 @@ static int inside_polygon(const mpm_fill_config *f, double x, double y)
   return in;
 }
 
-int mpm_scenario_inside(const mpm_fill_config *f, double x, double y)
+/* The axis of a 3D disc (a cylinder) and its range along it. */
+static int disc_axis(const mpm_fill_config *f, int dim, double *lo, double *hi)
 {
+  const int a = dim == 3 ? f->axis : 2;
+  const double l[3] = {f->xmin, f->ymin, f->zmin}, h[3] = {f->xmax, f->ymax, f->zmax};
+  *lo = l[a];
+  *hi = h[a];
+  return a;
+}
+
+int mpm_scenario_inside(const mpm_fill_config *f, int dim, const double x[3])
+{
+  const int three = dim == 3;
   switch (f->shape) {
   case MPM_FILL_RECTANGLE:
-    return x >= f->xmin && x <= f->xmax && y >= f->ymin && y <= f->ymax;
+    return x[0] >= f->xmin && x[0] <= f->xmax && x[1] >= f->ymin && x[1] <= f->ymax &&
+           (!three || (x[2] >= f->zmin && x[2] <= f->zmax));
   case MPM_FILL_DISC: {
-    double ex = x - f->cx, ey = y - f->cy;
-    return ex * ex + ey * ey <= f->radius * f->radius;
+    if (!three) {
+      const double ex = x[0] - f->cx, ey = x[1] - f->cy;
+      return ex * ex + ey * ey <= f->radius * f->radius;
+    }
+    double lo, hi;
+    const int a = disc_axis(f, dim, &lo, &hi), b = (a + 1) % 3, c = (a + 2) % 3;
+    double centre[3] = {f->cx, f->cy, f->cz};
+    centre[a] = 0.5 * (lo + hi);
+    const double eb = x[b] - centre[b], ec = x[c] - centre[c];
+    return fabs(x[a] - centre[a]) <= 0.5 * (hi - lo) &&
+           eb * eb + ec * ec <= f->radius * f->radius;
   }
   case MPM_FILL_POLYGON:
-    return inside_polygon(f, x, y);
+    return (!three || (x[2] >= f->zmin && x[2] <= f->zmax)) && inside_polygon(f, x[0], x[1]);
   default:
     return 0;
   }
 }
 
-int mpm_scenario_in_prestress(mpm_points *pts, size_t first, const mpm_fill_config *f,
-                              const mpm_material_params *par, double gy, const double o[2],
-                              const double h[3], const long nc[2])
+/* The region's bounding box, lo[d] .. hi[d] over the mesh's axes. */
+static void bounds(const mpm_fill_config *f, int dim, double lo[3], double hi[3])
+{
+  lo[2] = f->zmin;
+  hi[2] = f->zmax;
+  if (f->shape == MPM_FILL_POLYGON) {
+    lo[0] = hi[0] = f->px[0];
+    lo[1] = hi[1] = f->py[0];
+    for (int k = 1; k < f->nvert; k++) {
+      lo[0] = fmin(lo[0], f->px[k]);
+      hi[0] = fmax(hi[0], f->px[k]);
+      lo[1] = fmin(lo[1], f->py[k]);
+      hi[1] = fmax(hi[1], f->py[k]);
+    }
+  } else if (f->shape == MPM_FILL_DISC) {
+    double l, h;
+    const int a = disc_axis(f, dim, &l, &h);
+    const double centre[3] = {f->cx, f->cy, f->cz};
+    for (int d = 0; d < 3; d++) {
+      lo[d] = d == a ? l : centre[d] - f->radius;
+      hi[d] = d == a ? h : centre[d] + f->radius;
+    }
+    if (dim == 2)
+      lo[2] = hi[2] = 0.0;
+  } else {
+    lo[0] = f->xmin;
+    hi[0] = f->xmax;
+    lo[1] = f->ymin;
+    hi[1] = f->ymax;
+  }
+}
+
+/* MPM_OK if f is a whole region in m (to 1e-9 of a unit, as the input
+ * check allows), else MPM_EINPUT with the reason. */
+static int check(const mpm_fill_config *f, const mpm_mesh *m, mpm_err *err)
+{
+  if (f->ppu < 1)
+    return mpm_err_set(err, MPM_EINPUT, "fill: ppu = %d must be >= 1", f->ppu);
+  if (!(f->density > 0.0) || !isfinite(f->density))
+    return mpm_err_set(err, MPM_EINPUT, "fill: density = %g must be > 0 kg/m^3", f->density);
+  if (f->shape == MPM_FILL_POLYGON && (f->nvert < 3 || f->nvert > MPM_MAX_POLY))
+    return mpm_err_set(err, MPM_EINPUT, "fill: polygon with %d vertices (allowed: 3 ... %d)",
+                       f->nvert, MPM_MAX_POLY);
+  if (f->shape == MPM_FILL_DISC && m->dim == 3 && (f->axis < 0 || f->axis > 2))
+    return mpm_err_set(err, MPM_EINPUT, "fill: cylinder axis = %d must be 0 (x), 1 (y) or 2 (z)",
+                       f->axis);
+  double lo[3], hi[3];
+  bounds(f, m->dim, lo, hi);
+  for (int d = 0; d < m->dim; d++) {
+    const double tol = 1e-9 * m->h[d];
+    if (!(lo[d] <= hi[d]) || !isfinite(lo[d]) || !isfinite(hi[d]))
+      return mpm_err_set(err, MPM_EINPUT, "fill: the region's %c range [%g, %g] m is empty",
+                         axis_name[d], lo[d], hi[d]);
+    if (lo[d] < m->o[d] - tol || hi[d] > m->o[d] + m->len[d] + tol)
+      return mpm_err_set(err, MPM_EINPUT, "fill: the region's %c range [%g, %g] m leaves "
+                         "the mesh's [%g, %g] m: its points outside the mesh would be lost",
+                         axis_name[d], lo[d], hi[d], m->o[d], m->o[d] + m->len[d]);
+  }
+  return MPM_OK;
+}
+
+/* The sub-cells of m along each axis whose centres may lie in f:
+ * [i0[d], i1[d]), the bounding box widened by one sub-cell on each side
+ * (the inside test decides); the plane's z: [0, 1). */
+static void index_range(const mpm_fill_config *f, const mpm_mesh *m, long i0[3], long i1[3])
+{
+  double lo[3], hi[3];
+  bounds(f, m->dim, lo, hi);
+  i0[2] = 0;
+  i1[2] = 1;
+  for (int d = 0; d < m->dim; d++) {
+    const double h = m->h[d] / f->ppu;
+    const long ns = (long)m->n[d] * f->ppu;
+    const long a = (long)floor((lo[d] - m->o[d]) / h) - 1, b = (long)floor((hi[d] - m->o[d]) / h) + 2;
+    i0[d] = a < 0 ? 0 : a;
+    i1[d] = b > ns ? ns : b;
+  }
+}
+
+/* The pre-stress of fill f ([DK-silo] 7.1 lithostatic, [D-thesis] ch. 4
+ * isotropic; the header) on the points [first, pts->n) just appended: the
+ * sub-columns of width h[0] along x (and h[2] along z in 3D), y_top the
+ * highest point of the same sub-column plus half a sub-cell. Nothing
+ * without a pre-stress; MPM_ENOMEM. */
+static int prestress(mpm_points *pts, size_t first, const mpm_fill_config *f,
+                     const mpm_material_params *par, double gy, const mpm_mesh *m)
 {
   if (!f->lithostatic && !(f->pressure > 0.0))
     return MPM_OK;
+  const int n = f->ppu, three = m->dim == 3;
+  const double h[3] = {m->dx / n, m->dy / n, m->dz / n};
+  const long nc[2] = {(long)m->nx * n, three ? (long)m->nz * n : 1};
   const size_t ncol = (size_t)nc[0] * (size_t)nc[1];
   double *ytop = NULL;
   if (f->lithostatic && !(ytop = malloc(ncol * sizeof *ytop)))
     return MPM_ENOMEM;
   /* the sub-column of a point: along x, and along z in 3D */
 #define COLUMN(p)                                                                         \
-  ((size_t)floor((pts->x[p] - o[0]) / h[0]) +                                            \
-   (pts->z ? (size_t)nc[0] * (size_t)floor((pts->z[p] - o[1]) / h[2]) : 0))
+  ((size_t)floor((pts->x[p] - m->x0) / h[0]) +                                           \
+   (three ? (size_t)nc[0] * (size_t)floor((pts->z[p] - m->z0) / h[2]) : 0))
   for (size_t c = 0; ytop && c < ncol; c++)
     ytop[c] = -INFINITY;
   for (size_t p = first; ytop && p < pts->n; p++) {
@@ -96,57 +217,82 @@ int mpm_scenario_in_prestress(mpm_points *pts, size_t first, const mpm_fill_conf
   return MPM_OK;
 }
 
+/* The elastic state F = Fe of each new point's stress (Fp = I), for a store
+ * with deformation gradients; MPM_EINPUT when no elastic state carries it. */
+static int elastic_state(mpm_points *pts, size_t first, const mpm_material_params *par,
+                         mpm_err *err)
+{
+  for (size_t p = first; p < pts->n; p++) {
+    const mpm_mat3 F = mpm_material_hyper_F_of_stress(par, mpm_points_stress(pts, p));
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        pts->F[i][j][p] = F.m[i][j];
+        pts->Fp[i][j][p] = i == j ? 1.0 : 0.0;
+      }
+    if (!isfinite(F.m[0][0] + F.m[1][1] + F.m[2][2]))
+      return mpm_err_set(err, MPM_EINPUT, "fill: point %zu: no elastic state gives its "
+                         "initial stress", p);
+  }
+  return MPM_OK;
+}
+
 int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config *f,
                       const mpm_material_params *par, double gy, mpm_err *err)
 {
-  int n = f->ppu;
-  if (n < 1)
-    return mpm_err_set(err, MPM_EINPUT, "fill: ppu = %d must be >= 1", n);
-  if (!(f->density > 0.0))
-    return mpm_err_set(err, MPM_EINPUT, "fill: density = %g must be > 0 kg/m^3", f->density);
-  double hx = m->dx / n, hy = m->dy / n;
-  double vol = hx * hy;                                    /* V_p = dx dy / n^2 */
+  if (pts->dim != m->dim)
+    return mpm_err_set(err, MPM_EINPUT, "fill: the point store has dimension %d, the mesh %d",
+                       pts->dim, m->dim);
+  int rc = check(f, m, err);
+  if (rc != MPM_OK)
+    return rc;
+  const int n = f->ppu, D = m->dim;
+  const double hs[3] = {m->dx / n, m->dy / n, m->dz / n};
+  double vol = hs[0] * hs[1];                              /* V_p = dx dy (dz) / n^D */
+  if (D == 3)
+    vol *= hs[2];
   const size_t count = mpm_scenario_count(f, m);   /* room for exactly the points to come */
+  if (count == 0)
+    return mpm_err_set(err, MPM_EINPUT, "fill: region contains no point centre at ppu = %d", n);
   if (mpm_points_reserve(pts, pts->n + count) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory for %zu points", pts->n + count);
-  int state = (par->rho_c > 0.0 && f->density < par->rho_c) ? MPM_STATE_DISCONNECTED
-                                                             : MPM_STATE_DENSE;
-  size_t first = pts->n;
-  for (int j = 0; j < m->ny * n; j++) {
-    double y = mpm_scenario_in_sub_centre(m->y0, m->dy, n, j);
-    for (int i = 0; i < m->nx * n; i++) {
-      double x = mpm_scenario_in_sub_centre(m->x0, m->dx, n, i);
-      if (!mpm_scenario_inside(f, x, y))
-        continue;
-      size_t p;
-      if (mpm_points_push(pts, &p) != MPM_OK)
-        return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory at %zu points", pts->n);
-      pts->x[p] = x;
-      pts->y[p] = y;
-      pts->vx[p] = f->vx;
-      pts->vy[p] = f->vy;
-      pts->vol[p] = vol;
-      pts->mass[p] = f->density * vol;                     /* m_p = rho V_p */
-      pts->r1x[p] = 0.5 * hx;
-      pts->r2y[p] = 0.5 * hy;
-      pts->state[p] = state;
-    }
-  }
-  if (pts->n == first)
-    return mpm_err_set(err, MPM_EINPUT, "fill: region contains no point centre at ppu = %d", n);
-  const double o[2] = {m->x0, 0.0}, h[3] = {hx, hy, 0.0};
-  const long nc[2] = {(long)m->nx * n, 1};
-  if (mpm_scenario_in_prestress(pts, first, f, par, gy, o, h, nc) != MPM_OK)
+  const int state = (par->rho_c > 0.0 && f->density < par->rho_c) ? MPM_STATE_DISCONNECTED
+                                                                   : MPM_STATE_DENSE;
+  const double v[3] = {f->vx, f->vy, f->vz};
+  const size_t first = pts->n;
+  long i0[3], i1[3];
+  index_range(f, m, i0, i1);
+  for (long k = i0[2]; k < i1[2]; k++)
+    for (long j = i0[1]; j < i1[1]; j++)
+      for (long i = i0[0]; i < i1[0]; i++) {
+        const long at[3] = {i, j, k};
+        double x[3] = {0.0, 0.0, 0.0};
+        for (int d = 0; d < D; d++)
+          x[d] = sub_centre(m->o[d], m->h[d], n, at[d]);
+        if (!mpm_scenario_inside(f, D, x))
+          continue;
+        size_t p;
+        (void)mpm_points_push(pts, &p);                    /* room reserved: cannot fail */
+        for (int d = 0; d < D; d++) {
+          pts->pos[d][p] = x[d];
+          pts->vel[d][p] = v[d];
+          pts->ext[d][d][p] = 0.5 * hs[d];
+        }
+        pts->vol[p] = vol;
+        pts->mass[p] = f->density * vol;                   /* m_p = rho V_p */
+        pts->state[p] = state;
+      }
+  if (prestress(pts, first, f, par, gy, m) != MPM_OK)
     return mpm_err_set(err, MPM_ENOMEM, "fill: out of memory");
-  return MPM_OK;
+  return pts->defgrad ? elastic_state(pts, first, par, err) : MPM_OK;
 }
 
 /* ---- counting without filling ---------------------------------------------- */
 
-/* Sub-cell centres of one row: i in [0, ni) at x0 + (i + 1/2) d / n. */
+/* Sub-cell centres of one row along x: i in [0, ni) at x0 + (i + 1/2) d / n,
+ * at (y, z). */
 typedef struct row {
-  double x0, d, y;
-  int n;
+  double x0, d, y, z;
+  int n, dim;
   long ni;
   const mpm_fill_config *f;
 } row;
@@ -154,7 +300,13 @@ typedef struct row {
 /* x_i, the centre of sub-cell i of the row. */
 static double row_x(const row *r, long i)
 {
-  return mpm_scenario_in_sub_centre(r->x0, r->d, r->n, i);
+  return sub_centre(r->x0, r->d, r->n, i);
+}
+
+static int row_inside(const row *r, long i)
+{
+  const double x[3] = {row_x(r, i), r->y, r->z};
+  return mpm_scenario_inside(r->f, r->dim, x);
 }
 
 /* The first i in [lo, hi) where inside(x_i) differs from `from` (hi if none),
@@ -163,7 +315,7 @@ static long first_change(const row *r, long lo, long hi, int from)
 {
   while (lo < hi) {
     long mid = lo + (hi - lo) / 2;
-    if (mpm_scenario_inside(r->f, row_x(r, mid), r->y) == from)
+    if (row_inside(r, mid) == from)
       lo = mid + 1;
     else
       hi = mid;
@@ -191,16 +343,19 @@ static int cmp_long(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-/* Points of one row inside f. A rectangle or a disc holds one run of
- * centres (the test is monotone on either side of the centre: |x - cx|
- * grows with |i - ic| in floating point too). A polygon's even-odd count
- * changes only where x passes a crossing xc ("x < xc" as in the fill), so the
- * centres before crossing k are a prefix [0, p_k) and the row is inside
- * where an odd number of prefixes hold it. */
+/* Points of one row inside f. A box or a cylinder holds one run of centres
+ * (the test is monotone on either side of the centre: |x - cx| grows with
+ * |i - ic| in floating point too). A polygon's even-odd count changes only
+ * where x passes a crossing xc ("x < xc" as in the fill), so the centres
+ * before crossing k are a prefix [0, p_k) and the row is inside where an
+ * odd number of prefixes hold it (and, for a prism, the row's z is in its
+ * range). */
 static long row_count(const row *r)
 {
   const mpm_fill_config *f = r->f;
   if (f->shape == MPM_FILL_POLYGON) {
+    if (r->dim == 3 && !(r->z >= f->zmin && r->z <= f->zmax))
+      return 0;
     double xc[MPM_MAX_POLY];
     long p[MPM_MAX_POLY], count = 0, prev = 0;
     int k = crossings(f, r->y, xc);
@@ -214,12 +369,14 @@ static long row_count(const row *r)
     }
     return count;
   }
-  double centre = f->shape == MPM_FILL_DISC ? f->cx : 0.5 * (f->xmin + f->xmax);
+  double centre = 0.5 * (f->xmin + f->xmax);
+  if (f->shape == MPM_FILL_DISC && !(r->dim == 3 && f->axis == 0))
+    centre = f->cx;
   long ic = first_at_or_after(r, centre);
-  long left = ic > 0 && mpm_scenario_inside(f, row_x(r, ic - 1), r->y)
+  long left = ic > 0 && row_inside(r, ic - 1)
                   ? first_change(r, 0, ic, 0)    /* outside ... inside up to ic */
                   : ic;
-  long right = ic < r->ni && mpm_scenario_inside(f, row_x(r, ic), r->y)
+  long right = ic < r->ni && row_inside(r, ic)
                    ? first_change(r, ic, r->ni, 1)  /* inside from ic ... outside */
                    : ic;
   return right - left;
@@ -228,13 +385,18 @@ static long row_count(const row *r)
 size_t mpm_scenario_count(const mpm_fill_config *f, const mpm_mesh *m)
 {
   const int n = f->ppu;
-  if (n < 1)
+  if (n < 1 || check(f, m, NULL) != MPM_OK)
     return 0;
-  row r = {.x0 = m->x0, .d = m->dx, .n = n, .ni = (long)m->nx * n, .f = f};
+  row r = {.x0 = m->x0, .d = m->dx, .n = n, .dim = m->dim, .ni = (long)m->nx * n, .f = f};
+  long i0[3], i1[3];
+  index_range(f, m, i0, i1);
   size_t total = 0;
-  for (long j = 0; j < (long)m->ny * n; j++) {
-    r.y = mpm_scenario_in_sub_centre(m->y0, m->dy, n, j);
-    total += (size_t)row_count(&r);
+  for (long k = i0[2]; k < i1[2]; k++) {
+    r.z = m->dim == 3 ? sub_centre(m->z0, m->dz, n, k) : 0.0;
+    for (long j = i0[1]; j < i1[1]; j++) {
+      r.y = sub_centre(m->y0, m->dy, n, j);
+      total += (size_t)row_count(&r);
+    }
   }
   return total;
 }

@@ -1,17 +1,9 @@
 noinst_LTLIBRARIES += libmpm_scenario.la
-libmpm_scenario_la_SOURCES = src/scenario/fill.c src/scenario/scenario.h \
-	src/scenario/scenario_internal.h src/scenario/fill3.c
+libmpm_scenario_la_SOURCES = src/scenario/fill.c src/scenario/scenario.h
 
 check_PROGRAMS += tests/test_scenario
 TESTS += tests/test_scenario
 tests_test_scenario_SOURCES = tests/test_scenario.c
 tests_test_scenario_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_scenario_LDADD = libmpm_scenario.la libmpm_material.la libmpm_mesh.la libmpm_core.la \
-	$(CHECK_LIBS) -lm
-
-check_PROGRAMS += tests/test_fill3
-TESTS += tests/test_fill3
-tests_test_fill3_SOURCES = tests/test_fill3.c
-tests_test_fill3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_fill3_LDADD = libmpm_scenario.la libmpm_material.la libmpm_mesh.la libmpm_core.la \
 	$(CHECK_LIBS) -lm

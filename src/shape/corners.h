@@ -1,6 +1,10 @@
-/* corners.h: the CPDI corner rule's pieces shared by the 2D (ugimp.c) and
- * the 3D (ugimp3.c) shapes, written once for D = 2 or 3 dimensions (MODEL.md
- * section 3). Not part of the library's interface (names mpm_shape_in_*).
+/* corners.h: the CPDI corner rule's pieces (MODEL.md section 3), written once
+ * for D = 2 or 3 dimensions: the corner geometry, the corners located along
+ * an axis, the span of a stencil, and the two ways of summing the weights
+ * (corner.c): the general rule for any extent, and its factorised form for
+ * an extent along the axes. Shared by the shapes of the module (ugimp.c, the
+ * plane's batched path among them); not part of the library's interface
+ * (names mpm_shape_in_*).
  *
  * A point's extent is the parallelepiped of half-vectors r_1 .. r_D, the
  * columns of R (R_dk = r[D k + d]). Its 2^D corners are
@@ -19,7 +23,10 @@
 #ifndef MPM_SHAPE_CORNERS_H
 #define MPM_SHAPE_CORNERS_H
 
+#include <math.h>
+
 #include "mesh/mesh.h"
+#include "shape/shape.h"
 
 /* s_ck as 0 (-1) or 1 (+1): along the first axis the Q4 order
  * 0, 1, 1, 0 (c ^ c/2), along the others bit k of c. */
@@ -142,6 +149,62 @@ static inline void mpm_shape_in_list_add(int id, int nv, const double *v, int *n
   }
   for (int l = 0; l < nv; l++)
     col[l][k] += v[l];
+}
+
+/* The general corner rule for a point at x with extent r (r[D k + d],
+ * D = m->dim; corners.h above): corners beyond a non-periodic face clamped
+ * onto it, periodic axes wrapped, the weights of each corner's element
+ * summed per node in corner order, on the block of nodes the corners touch
+ * (up to 3 per axis for extents of half a unit or less), listed along the
+ * axes from the last (layer, row, column); corners spanning more than a
+ * block (wide extents) add node by node. A flat extent (det R = 0) takes the
+ * delta weights, the limit of the rule. Returns the node count (at most
+ * MPM_STENCIL_W, nodes of weight 0 listed only where a T3 corner of the
+ * block lies in no triangle), or -1 when the centre lies outside a
+ * non-periodic face, or x, the extent or its corner geometry is not finite. */
+int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const double *r,
+                                int *node, double *S, double *const dS[3]);
+
+/* The factorised rule of an extent along the axes, r_k = h_k e_k (every
+ * uGIMP extent as filled): along axis d the two corner coordinates
+ * x_d -+ h_d (clamped and wrapped as in the general rule) give the hat
+ * values phi_n of the nodes n they touch, and with A_n = (phi_n(-) +
+ * phi_n(+))/2, B_n = (phi_n(+) - phi_n(-))/(2 h_d)
+ *   S = prod_d A_d,  dS/dx_d = B_d prod_{e != d} A_e,
+ * the general rule's sums regrouped (w_c = R^-T s_c / 2^D = (s_c / h) / 2^D)
+ * on the same nodes (those a short periodic axis aliases merged per axis).
+ * For point x in unit c with half-widths h[d] > 0: per axis the storage
+ * index of each node along it (ax->idx), its factors A and B, and their
+ * number. Returns 0, -1 outside (a corner not finite), or -2 when a corner
+ * pair spans more than MPM_SHAPE_AXIS_NODES nodes (the general rule takes
+ * it). */
+int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
+                           const double h[3], mpm_shape_axes *ax);
+
+/* The weights of the factorised rule as a node list (nodes along the axes
+ * from the last, the products of mpm_shape_axes_weight); returns the count. */
+int mpm_shape_in_separable_list(const mpm_mesh *m, const mpm_shape_axes *ax, int *node,
+                                double *S, double *const dS[3]);
+
+/* The half-widths of an extent along the axes, h[d] = |r_dd|, when it is
+ * one (the off-diagonal components zero, the diagonal ones not, and its
+ * volume and the general rule's cofactors finite); 0 otherwise. */
+static inline int mpm_shape_in_axes_extent(int D, const double *r, double h[3])
+{
+  for (int k = 0; k < D; k++)
+    for (int d = 0; d < D; d++)
+      if (d != k && r[D * k + d] != 0.0)
+        return 0;
+  double v = 1.0, s = 0.0;
+  for (int d = 0; d < D; d++) {
+    h[d] = fabs(r[D * d + d]);
+    if (!(h[d] != 0.0))
+      return 0;
+    v *= h[d];
+    s += D == 3 ? h[d] * h[(d + 1) % D] : 0.0;
+  }
+  h[2] = D == 3 ? h[2] : 0.0;
+  return isfinite(v) && isfinite(s);
 }
 
 #endif

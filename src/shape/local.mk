@@ -1,16 +1,9 @@
 noinst_LTLIBRARIES += libmpm_shape.la
 libmpm_shape_la_SOURCES = src/shape/shape.c src/shape/shape.h \
-	src/shape/delta.c src/shape/ugimp.c src/shape/corners.h \
-	src/shape/shape3.c src/shape/shape3.h src/shape/ugimp3.c
+	src/shape/delta.c src/shape/ugimp.c src/shape/corners.h src/shape/corner.c
 
 check_PROGRAMS += tests/test_shape
 TESTS += tests/test_shape
 tests_test_shape_SOURCES = tests/test_shape.c
 tests_test_shape_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_shape_LDADD = libmpm_shape.la libmpm_mesh.la libmpm_core.la $(CHECK_LIBS) -lm
-
-check_PROGRAMS += tests/test_shape3
-TESTS += tests/test_shape3
-tests_test_shape3_SOURCES = tests/test_shape3.c
-tests_test_shape3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_shape3_LDADD = libmpm_shape.la libmpm_mesh.la libmpm_core.la $(CHECK_LIBS) -lm

@@ -2,16 +2,22 @@
  * (MODEL.md section 3, step 1 of section 2).
  *
  * The stencil stores, for point p, count[p] nodes in slots
- * [p w, p w + count[p]) of node, S, dSx, dSy, w the width the shape's span
- * gives for the points (4 for Q4 delta weights, 9 for uGIMP extents of half a
- * unit or less, at most MPM_STENCIL_W), and the unit row of its centre.
- * Points are independent, so the loop runs in parallel; a point outside the
- * mesh is reported after the loop (the first one in point order). */
+ * [p w, p w + count[p]) of node, S, dS[d], w the width the shape's span
+ * gives for the points (4 for Q4 delta weights, 9 for plane uGIMP extents
+ * of half a unit or less, 27 on boxes, at most mpm_shape_width_cap), or, on
+ * boxes for a separable shape whose points all have extents along the axes,
+ * their weights factorised by axis; and the unit along the last axis of its
+ * centre. Points are independent, so the loop runs in parallel; a point
+ * outside the mesh is reported after the loop (the first one in point
+ * order). */
 #include "shape/shape.h"
 
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "shape/corners.h"
 
 const mpm_shape_type *const mpm_shape_table[] = {
   &mpm_shape_delta,
@@ -40,30 +46,53 @@ static int grow(void **a, size_t n, size_t sz)
   return MPM_OK;
 }
 
+/* Room for count and row of cap points. */
+static int reserve_points(mpm_shape_stencil *st, size_t cap)
+{
+  if (cap == 0)
+    cap = 1;
+  if (cap > st->cap || !st->count) {
+    if (grow((void **)&st->count, cap, sizeof *st->count) != MPM_OK ||
+        grow((void **)&st->row, cap, sizeof *st->row) != MPM_OK)
+      return MPM_ENOMEM;
+    st->cap = cap;
+  }
+  return MPM_OK;
+}
+
 int mpm_shape_stencil_reserve(mpm_shape_stencil *st, size_t cap, int w, int dim)
 {
   if (cap == 0)
     cap = 1;
   if (w < 1 || cap > SIZE_MAX / ((size_t)w * sizeof(double)))
     return MPM_ENOMEM;
+  if (reserve_points(st, cap) != MPM_OK)
+    return MPM_ENOMEM;
   const size_t slots = cap * (size_t)w;
-  if (cap > st->cap || !st->count) {
-    if (grow((void **)&st->count, cap, sizeof *st->count) != MPM_OK ||
-        grow((void **)&st->row, cap, sizeof *st->row) != MPM_OK)
-      return MPM_ENOMEM;
-  }
-  if (slots > st->wcap || !st->node || (dim == 3 && !st->dSz)) {
+  if (slots > st->wcap || !st->node || (dim == 3 && !st->dS[2])) {
     if (grow((void **)&st->node, slots, sizeof *st->node) != MPM_OK ||
         grow((void **)&st->S, slots, sizeof *st->S) != MPM_OK ||
-        grow((void **)&st->dSx, slots, sizeof *st->dSx) != MPM_OK ||
-        grow((void **)&st->dSy, slots, sizeof *st->dSy) != MPM_OK ||
-        (dim == 3 && grow((void **)&st->dSz, slots, sizeof *st->dSz) != MPM_OK))
+        grow((void **)&st->dS[0], slots, sizeof *st->dS[0]) != MPM_OK ||
+        grow((void **)&st->dS[1], slots, sizeof *st->dS[1]) != MPM_OK ||
+        (dim == 3 && grow((void **)&st->dS[2], slots, sizeof *st->dS[2]) != MPM_OK))
       return MPM_ENOMEM;
     st->wcap = slots;
   }
-  if (cap > st->cap)
-    st->cap = cap;
   st->w = w;
+  st->dim = dim;
+  return MPM_OK;
+}
+
+/* Room for the factorised weights of cap points. */
+static int reserve_axes(mpm_shape_stencil *st, size_t cap)
+{
+  if (cap <= st->acap && st->axes)
+    return MPM_OK;
+  if (cap == 0)
+    cap = 1;
+  if (grow((void **)&st->axes, cap, sizeof *st->axes) != MPM_OK)
+    return MPM_ENOMEM;
+  st->acap = cap;
   return MPM_OK;
 }
 
@@ -72,11 +101,11 @@ mpm_shape_stencil *mpm_shape_stencil_alloc(size_t cap)
   mpm_shape_stencil *st = calloc(1, sizeof *st);
   if (!st)
     return NULL;
-  if (cap > 0 && mpm_shape_stencil_reserve(st, cap, MPM_STENCIL_W, 2) != MPM_OK) {
+  if (cap > 0 && mpm_shape_stencil_reserve(st, cap, 16, 2) != MPM_OK) {
     mpm_shape_stencil_free(st);
     return NULL;
   }
-  st->w = MPM_STENCIL_W;
+  st->w = 16;
   return st;
 }
 
@@ -88,9 +117,9 @@ void mpm_shape_stencil_free(mpm_shape_stencil *st)
   free(st->row);
   free(st->node);
   free(st->S);
-  free(st->dSx);
-  free(st->dSy);
-  free(st->dSz);
+  for (int d = 0; d < 3; d++)
+    free(st->dS[d]);
+  free(st->axes);
   free(st);
 }
 
@@ -100,13 +129,49 @@ static long eval_range(const mpm_shape_type *type, const mpm_mesh *m, const mpm_
                        long lo, long hi, mpm_shape_stencil *st)
 {
   const size_t w = (size_t)st->w;
+  const int D = m->dim, last = D - 1;
   long first = hi;
   for (long p = lo; p < hi; p++) {
-    const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
+    double r[9];
+    mpm_shape_point_extent(pts, D, (size_t)p, r);
+    const double x[3] = {pts->x[p], pts->y[p], D == 3 ? pts->z[p] : 0.0};
     const size_t o = (size_t)p * w;
-    const int c = type->eval(m, pts->x[p], pts->y[p], r, st->node + o, st->S + o, st->dSx + o,
-                             st->dSy + o);
-    if (mpm_shape_stencil_point(m, st, p, pts->y[p], c) < 0 && p < first)
+    double *const dS[3] = {st->dS[0] + o, st->dS[1] + o, D == 3 ? st->dS[2] + o : NULL};
+    const int c = type->eval(m, x, r, st->node + o, st->S + o, dS);
+    if (mpm_shape_stencil_point(m, st, p, x[last], c) < 0 && p < first)
+      first = p;
+  }
+  return first;
+}
+
+/* The factorised weights of points [lo, hi): returns the first point
+ * outside the mesh, or hi; *fits 0 when a point's extent does not factorise
+ * (not along the axes, or wider than the factorised form holds). */
+static long axes_range(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
+                       mpm_shape_stencil *st, int *fits)
+{
+  const int D = m->dim;
+  long first = hi;
+  for (long p = lo; p < hi; p++) {
+    double r[9], h[3];
+    mpm_shape_point_extent(pts, D, (size_t)p, r);
+    const double x[3] = {pts->x[p], pts->y[p], D == 3 ? pts->z[p] : 0.0};
+    int c[3], cnt = -1;
+    double l[3];
+    if (!mpm_mesh_locate(m, x, c, l)) {
+      if (!mpm_shape_in_axes_extent(D, r, h)) {
+        *fits = 0;
+        return hi;
+      }
+      mpm_shape_axes *ax = &st->axes[p];
+      const int rc = mpm_shape_in_separable(m, x, c, h, ax);
+      if (rc == -2) {
+        *fits = 0;
+        return hi;
+      }
+      cnt = rc ? -1 : ax->n[0] * ax->n[1] * ax->n[2];
+    }
+    if (mpm_shape_stencil_point(m, st, p, x[D - 1], cnt) < 0 && p < first)
       first = p;
   }
   return first;
@@ -114,23 +179,29 @@ static long eval_range(const mpm_shape_type *type, const mpm_mesh *m, const mpm_
 
 /* Evaluate every point, in chunks of consecutive points (independent, so
  * the chunks run in parallel); returns the index of the first one outside,
- * or n. */
+ * or n; with sep, the factorised form, *fits 0 if a point needs the list. */
 static long stencil_fill(mpm_shape_stencil *st, const mpm_shape_type *type, const mpm_mesh *m,
-                         const mpm_points *pts)
+                         const mpm_points *pts, int sep, int *fits)
 {
   enum { CHUNK = 512 };
   const long n = (long)pts->n, nchunk = (n + CHUNK - 1) / CHUNK;
   long first = n;
+  int ok = 1;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) reduction(min : first)
+#pragma omp parallel for schedule(static) reduction(min : first) reduction(& : ok)
 #endif
   for (long k = 0; k < nchunk; k++) {
     const long lo = k * CHUNK, hi = lo + CHUNK < n ? lo + CHUNK : n;
-    const long f =
-        type->fill ? type->fill(m, pts, lo, hi, st) : eval_range(type, m, pts, lo, hi, st);
+    long f;
+    if (sep)
+      f = axes_range(m, pts, lo, hi, st, &ok);
+    else
+      f = type->fill && m->dim == 2 ? type->fill(m, pts, lo, hi, st)
+                                    : eval_range(type, m, pts, lo, hi, st);
     if (f < hi && f < first)
       first = f;
   }
+  *fits = ok;
   return first;
 }
 
@@ -140,18 +211,49 @@ int mpm_shape_stencil_compute(mpm_shape_stencil *st, const mpm_shape_type *type,
   if (!st || !type || !m || !pts)
     return mpm_err_set(err, MPM_EINVAL, "stencil: missing stencil, shape, "
                        "mesh or points");
-  int w, reach;
+  int w, reach, fits = 0;
   type->span(m, pts, &w, &reach);
-  if (mpm_shape_stencil_reserve(st, pts->n, w, 2) != MPM_OK)
-    return mpm_err_set(err, MPM_ENOMEM, "stencil for %zu points: out of memory",
-                       pts->n);
   st->reach = reach;
-  const long bad = stencil_fill(st, type, m, pts);
-  if (bad < (long)pts->n)
+  long bad = (long)pts->n;
+  if (type->separable && m->dim == 3) {           /* factorised, if every point fits */
+    if (reserve_axes(st, pts->n) != MPM_OK || reserve_points(st, pts->n) != MPM_OK)
+      return mpm_err_set(err, MPM_ENOMEM, "stencil for %zu points: out of memory", pts->n);
+    bad = stencil_fill(st, type, m, pts, 1, &fits);
+    st->dim = m->dim;
+  }
+  st->sep = fits;
+  if (!fits) {
+    if (mpm_shape_stencil_reserve(st, pts->n, w, m->dim) != MPM_OK)
+      return mpm_err_set(err, MPM_ENOMEM, "stencil for %zu points: out of memory", pts->n);
+    bad = stencil_fill(st, type, m, pts, 0, &fits);
+  }
+  if (bad < (long)pts->n) {
+    char z[48] = "", mz[48] = "";
+    if (m->dim == 3) {
+      snprintf(z, sizeof z, ", %.6g", pts->z[bad]);
+      snprintf(mz, sizeof mz, " x [%g, %g]", m->z0, m->z0 + m->lz);
+    }
     return mpm_err_set(err, MPM_EOUTSIDE,
-                       "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s "
-                       "(mesh [%g, %g] x [%g, %g] m)",
-                       pts->id[bad], pts->x[bad], pts->y[bad], t, m->x0,
-                       m->x0 + m->lx, m->y0, m->y0 + m->ly);
+                       "point %d left the mesh at (%.6g, %.6g%s) m, t = %.6g s "
+                       "(mesh [%g, %g] x [%g, %g]%s m)",
+                       pts->id[bad], pts->x[bad], pts->y[bad], z, t, m->x0,
+                       m->x0 + m->lx, m->y0, m->y0 + m->ly, mz);
+  }
   return MPM_OK;
+}
+
+int mpm_shape_stencil_list(const mpm_shape_stencil *st, const mpm_mesh *m, size_t p, int *node,
+                           double *S, double *const dS[3])
+{
+  if (st->sep)
+    return mpm_shape_in_separable_list(m, &st->axes[p], node, S, dS);
+  const size_t o = p * (size_t)st->w;
+  const int c = st->count[p];
+  for (int k = 0; k < c; k++) {
+    node[k] = st->node[o + k];
+    S[k] = st->S[o + k];
+    for (int d = 0; d < m->dim; d++)
+      dS[d][k] = st->dS[d][o + k];
+  }
+  return c;
 }

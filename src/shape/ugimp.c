@@ -1,151 +1,29 @@
-/* ugimp.c: the CPDI corner rule (MODEL.md section 3, [DK-silo] App. B):
- * uGIMP, with the extent fixed as filled, and CPDI1, the same rule with the
- * extent convected by the deformation (the step moves r1, r2 with the
- * point's velocity gradient: mpm_shape_extent_convect).
+/* ugimp.c: the CPDI corner rule (MODEL.md section 3, [DK-silo] App. B; the
+ * rule itself in corner.c): uGIMP, with the extent fixed as filled, and
+ * CPDI1, the same rule with the extent convected by the deformation (the
+ * step moves r1, r2 (, r3) with the point's velocity gradient:
+ * mpm_shape_extent_convect_dim).
  *
- * Corners x1 = xp - r1 - r2, x2 = xp + r1 - r2, x3 = xp + r1 + r2,
- * x4 = xp - r1 + r2;
- *   S_ip     = 1/4 sum_c N_i(x_c),
- *   gradS_ip = (1/A_p) { [N_i(x1) - N_i(x3)] (r1y - r2y, r2x - r1x)
- *                      + [N_i(x2) - N_i(x4)] (r1y + r2y, -r1x - r2x) },
- *   A_p = 4 (r1x r2y - r1y r2x), signed.
- * The corner offsets and weights come from the rule written once for 2D and
- * 3D (corners.h, D = 2: the same floating-point sums as the formula above).
- * Corners beyond a non-periodic edge are clamped onto it (then the first-order
- * invariants hold only approximately there); periodic directions wrap through
- * the mesh basis. An extent of zero area falls back to the delta weights, the
- * limit of the rule as the extent shrinks.
- * The corners' weights are summed on the block of nodes they touch (3 x 3
- * for extents up to half a unit), in corner order at every node, and the
- * touched nodes listed in row order.
+ * A point's weights come from the general rule (mpm_shape_in_corner_general)
+ * or, for an extent along the axes on boxes, from its factorised form
+ * (mpm_shape_in_separable): the same sums regrouped, a few times fewer
+ * operations.
  *
- * An extent along the mesh axes (r1 = (r1x, 0), r2 = (0, r2y): every uGIMP
- * point as filled) whose corners lie inside the mesh, neither clamped nor
- * wrapped, in one unit or two neighbours along each axis, takes a faster
- * path: its two corner columns and two corner rows located once, for many
- * points at a time (axes_locate, a loop that vectorises), then the weights
- * of the four possible unit blocks written out with the block in registers
- * (axes_sum, units_sum): the same values, bit for bit, as the general path
- * (eval_general), the two lists differing only in nodes of weights 0. On
- * the T3 silo of scripts/bench it takes a quarter of the general path's
+ * In the plane an extent along the mesh axes (r1 = (r1x, 0), r2 = (0, r2y):
+ * every uGIMP point as filled) whose corners lie inside the mesh, neither
+ * clamped nor wrapped, in one unit or two neighbours along each axis, takes
+ * a faster path: its two corner columns and two corner rows located once,
+ * for many points at a time (axes_locate, a loop that vectorises), then the
+ * weights of the four possible unit blocks written out with the block in
+ * registers (axes_sum, units_sum): the same values, bit for bit, as the
+ * general rule, the two lists differing only in nodes of weights 0. On the
+ * T3 silo of scripts/bench it takes a quarter of the general rule's
  * instructions. */
 #include "shape/shape.h"
 
 #include <math.h>
 
 #include "shape/corners.h"
-
-/* The logical nodes a point's corners touch form a block of node columns
- * and rows next to the unit of its centre: at most 3 x 3 for extents up to
- * half a unit. The weights are summed on a BLOCK x BLOCK array (slot
- * a + BLOCK b); corners spanning more than BLOCK - 2 units (wide extents)
- * add node by node to the list instead. */
-enum { BLOCK = 4 };
-
-/* Any extent: the corner rule, corners clamped onto non-periodic edges or
- * wrapped round periodic ones (m: the caller's copy of the mesh). */
-static int eval_general(const mpm_mesh *m, double x, double y, const double r[4], int *node,
-                        double *S, double *dSx, double *dSy)
-{
-  int iu, ju;
-  double uu, vu;
-  if (mpm_mesh_locate(m, x, y, &iu, &ju, &uu, &vu))
-    return -1;                               /* the centre decides */
-  /* corner offsets x_c - x_p, c = 1..4, and gradient weights w_c (corners.h):
-   * +a, +b, -a, -b with a = (r1y - r2y, r2x - r1x)/A,
-   * b = (r1y + r2y, -r1x - r2x)/A, A = A_p = 4 (r1x r2y - r1y r2x), signed */
-  double co[8], wg[8];
-  const double A = mpm_shape_in_corner_rule(2, r, co, wg);
-  if (A == 0.0)
-    return mpm_mesh_basis_at(m, iu, ju, uu, vu, node, S, dSx, dSy);
-  if (!isfinite(A))
-    return -1;                               /* a non-finite extent */
-  /* the corners located: unit (ci, cj) (storage), offset (di, dj) from the
-   * centre's unit, local (cu, cv) */
-  int ci[4], cj[4], di[4], dj[4];
-  double cx[4], cy[4], cu[4], cv[4];
-  for (int c = 0; c < 4; c++) {
-    cx[c] = x + co[2 * c];
-    cy[c] = y + co[2 * c + 1];
-  }
-  if (mpm_shape_in_corners_axis(4, cx, m->x0, m->lx, m->idx, m->nx, m->periodic_x, ci, cu) ||
-      mpm_shape_in_corners_axis(4, cy, m->y0, m->ly, m->idy, m->ny, m->periodic_y, cj, cv))
-    return -1;                               /* non-finite extent */
-  for (int c = 0; c < 4; c++) {
-    di[c] = mpm_mesh_axis_offset(ci[c] - iu, m->nx, m->periodic_x);
-    dj[c] = mpm_mesh_axis_offset(cj[c] - ju, m->ny, m->periodic_y);
-  }
-  int i0 = di[0], i1 = di[0], j0 = dj[0], j1 = dj[0];
-  for (int c = 1; c < 4; c++) {
-    i0 = di[c] < i0 ? di[c] : i0;
-    i1 = di[c] > i1 ? di[c] : i1;
-    j0 = dj[c] < j0 ? dj[c] : j0;
-    j1 = dj[c] > j1 ? dj[c] : j1;
-  }
-  const int bw = i1 - i0 + 2, bh = j1 - j0 + 2;   /* node columns and rows touched */
-  const int wide = bw > BLOCK || bh > BLOCK;
-  /* S += N/4, gradS += w_c N on the nodes of each corner's element, as
-   * records (S, gx, gy, 0) of four lanes: one vector operation per node of
-   * a corner (a T3 element's fourth unit corner has N = 0: it adds nothing
-   * and is not marked used) */
-  double blk[BLOCK * BLOCK][4];
-  for (int b = 0; b < bh && !wide; b++)
-    for (int a = 0; a < bw; a++)
-      for (int l = 0; l < 4; l++)
-        blk[a + BLOCK * b][l] = 0.0;
-  const int off[4] = {0, 1, BLOCK + 1, BLOCK};       /* slots of unit corners 0..3 */
-  unsigned used = 0;
-  int cnt = 0;
-  double *const col[3] = {S, dSx, dSy};
-  for (int c = 0; c < 4; c++) {
-    double N[4];
-    const unsigned mask = mpm_mesh_shape_corners(m, ci[c], cu[c], cv[c], N);
-    const double G[4] = {0.25, wg[2 * c], wg[2 * c + 1], 0.0};
-    if (wide) {
-      int id[4];
-      mpm_mesh_unit_corners(m, ci[c], cj[c], id);
-      for (int a = 0; a < 4; a++)
-        if (mask >> a & 1u) {
-          const double v[3] = {G[0] * N[a], G[1] * N[a], G[2] * N[a]};
-          mpm_shape_in_list_add(id[a], 3, v, node, col, &cnt);
-        }
-      continue;
-    }
-    const int at = di[c] - i0 + BLOCK * (dj[c] - j0);  /* slot of unit corner 0 */
-    used |= ((mask & 3u) | (mask & 4u) << 3 | (mask & 8u) << 1) << at;
-    for (int a = 0; a < 4; a++) {
-      double *b = blk[at + off[a]];
-#pragma omp simd
-      for (int l = 0; l < 4; l++)
-        b[l] += G[l] * N[a];
-    }
-  }
-  if (wide)
-    return cnt;
-  /* the used nodes in row order (the set bits of `used`, k = a + BLOCK b,
-   * from the lowest); on a periodic axis of few units two of them can be
-   * one stored node: merged */
-  const int merge = (m->periodic_x && m->nx < bw) || (m->periodic_y && m->ny < bh);
-  int is[BLOCK], js[BLOCK];                  /* storage column, row offset of the block */
-  for (int a = 0; a < bw; a++)
-    is[a] = mpm_mesh_axis_node(iu + i0 + a, m->nx, m->periodic_x);
-  for (int b = 0; b < bh; b++)
-    js[b] = mpm_mesh_axis_node(ju + j0 + b, m->ny, m->periodic_y) * m->snx;
-  for (unsigned u = used; u; u &= u - 1) {
-    const int k = mpm_shape_in_lowest_bit(u);
-    const int id = js[k / BLOCK] + is[k % BLOCK];
-    if (merge) {
-      mpm_shape_in_list_add(id, 3, blk[k], node, col, &cnt);
-      continue;
-    }
-    node[cnt] = id;
-    S[cnt] = blk[k][0];
-    dSx[cnt] = blk[k][1];
-    dSy[cnt] = blk[k][2];
-    cnt++;
-  }
-  return cnt;
-}
 
 /* The corners of an extent along the axes fall in 1 x 1, 2 x 1, 1 x 2 or
  * 2 x 2 units (dx, dy = 0 or 1 more units along x, y): the weights of the
@@ -298,17 +176,34 @@ axes_sum(const mpm_mesh *m, int ti, int diag, int cls, const int k[4], const dou
   }
 }
 
-static int ugimp_eval(const mpm_mesh *mesh, double x, double y, const double r[4],
-                      int *node, double *S, double *dSx, double *dSy)
+static int ugimp_eval(const mpm_mesh *mesh, const double x[3], const double *r, int *node,
+                      double *S, double *const dS[3])
 {
-  const mpm_mesh mc = *mesh;  /* a copy: no store through node, S, dSx, dSy can change it */
-  lanes L;
-  lanes_of(&mc, &L);
-  int k[4], row;
-  double t[4], g[2];
-  const int cls = axes_locate(&L, x, y, r, k, t, g, &row);
-  return cls >= 0 ? axes_sum(&mc, mc.topology, mc.diagonal, cls, k, t, g, node, S, dSx, dSy)
-                  : eval_general(&mc, x, y, r, node, S, dSx, dSy);
+  const mpm_mesh mc = *mesh;  /* a copy: no store through node, S, dS can change it */
+  if (mc.dim == 2) {
+    lanes L;
+    lanes_of(&mc, &L);
+    int k[4], row;
+    double t[4], g[2];
+    const int cls = axes_locate(&L, x[0], x[1], r, k, t, g, &row);
+    if (cls >= 0)
+      return axes_sum(&mc, mc.topology, mc.diagonal, cls, k, t, g, node, S, dS[0], dS[1]);
+  } else {
+    double h[3];
+    int c[3];
+    double l[3];
+    if (mpm_mesh_locate(&mc, x, c, l))
+      return -1;                               /* the centre decides */
+    mpm_shape_axes ax;
+    if (mpm_shape_in_axes_extent(3, r, h)) {   /* along the axes: a box */
+      const int rc = mpm_shape_in_separable(&mc, x, c, h, &ax);
+      if (rc == -1)
+        return -1;
+      if (rc == 0)
+        return mpm_shape_in_separable_list(&mc, &ax, node, S, dS);
+    }
+  }
+  return mpm_shape_in_corner_general(&mc, x, r, node, S, dS);
 }
 
 /* The points [lo, hi) (mpm_shape_type.fill's contract), for topology ti
@@ -352,13 +247,14 @@ fill_range(const mpm_mesh *m, const lanes *L, int ti, int diag, const mpm_points
         const double t[4] = {tb[0][i], tb[1][i], tb[2][i], tb[3][i]};
         const double g[2] = {gb[0][i], gb[1][i]};
         st->count[p] = axes_sum(m, ti, diag, cls[i], k, t, g, st->node + o, st->S + o,
-                                st->dSx + o, st->dSy + o);
+                                st->dS[0] + o, st->dS[1] + o);
         st->row[p] = rowb[i];
         continue;
       }
       const double r[4] = {r1x[p], r1y[p], r2x[p], r2y[p]};
-      const int c = eval_general(m, px[p], py[p], r, st->node + o, st->S + o, st->dSx + o,
-                                 st->dSy + o);
+      const double x[3] = {px[p], py[p], 0.0};
+      double *const dS[3] = {st->dS[0] + o, st->dS[1] + o, NULL};
+      const int c = mpm_shape_in_corner_general(m, x, r, st->node + o, st->S + o, dS);
       if (mpm_shape_stencil_point(m, st, p, py[p], c) < 0 && p < first)
         first = p;
     }
@@ -384,41 +280,59 @@ static long ugimp_fill(const mpm_mesh *mesh, const mpm_points *pts, long lo, lon
   }
 }
 
-/* The corners of a point lie within hx = |r1x| + |r2x|, hy = |r1y| + |r2y|
- * of it; the node columns and rows they touch and the rows they reach
- * follow per axis (mpm_shape_in_span_axis). */
+/* The corners of a point lie within h_d = sum_k |r_kd| of it along axis d;
+ * the nodes they touch and, along the last axis, the units they reach
+ * follow per axis (mpm_shape_in_span_axis), from the largest h_d of the
+ * points. */
 static void ugimp_span(const mpm_mesh *m, const mpm_points *pts, int *width, int *reach)
 {
-  const double *const r1x = pts->r1x, *const r1y = pts->r1y, *const r2x = pts->r2x,
-               *const r2y = pts->r2y;
+  const int D = m->dim, cap = mpm_shape_width_cap(D);
   const size_t n = pts->n;
-  double hx = 0.0, hy = 0.0;
-#pragma omp simd reduction(max : hx, hy)
-  for (size_t p = 0; p < n; p++) {
-    const double ax = fabs(r1x[p]) + fabs(r2x[p]);
-    const double ay = fabs(r1y[p]) + fabs(r2y[p]);
-    hx = ax > hx ? ax : hx;
-    hy = ay > hy ? ay : hy;
+  double h[3] = {0.0, 0.0, 0.0};
+  for (int d = 0; d < D; d++) {
+    const double *const r0 = pts->ext[0][d], *const r1 = pts->ext[1][d];
+    const double *const r2 = D == 3 ? pts->ext[2][d] : NULL;
+    double hd = 0.0;
+    if (D == 3) {
+#pragma omp simd reduction(max : hd)
+      for (size_t p = 0; p < n; p++) {
+        const double a = fabs(r0[p]) + fabs(r1[p]) + fabs(r2[p]);
+        hd = a > hd ? a : hd;
+      }
+    } else {
+#pragma omp simd reduction(max : hd)
+      for (size_t p = 0; p < n; p++) {
+        const double a = fabs(r0[p]) + fabs(r1[p]);
+        hd = a > hd ? a : hd;
+      }
+    }
+    h[d] = hd;
   }
-  int cols, rows, rx;                        /* node columns and rows, reaches */
-  mpm_shape_in_span_axis(hx, m->idx, m->nx, MPM_STENCIL_W, &cols, &rx);
-  mpm_shape_in_span_axis(hy, m->idy, m->ny, MPM_STENCIL_W, &rows, reach);
-  *width = cols * rows < MPM_STENCIL_W ? cols * rows : MPM_STENCIL_W;
+  int w = 1, re = 0;
+  for (int d = 0; d < D; d++) {
+    int nd, rd;
+    mpm_shape_in_span_axis(h[d], m->ih[d], m->n[d], cap, &nd, &rd);
+    w = w < cap ? w * nd : cap;                              /* nodes along the axes */
+    re = rd;                                                 /* the last axis' */
+  }
+  *width = w < cap ? w : cap;
+  *reach = re;
 }
 
 const mpm_shape_type mpm_shape_ugimp = {
   .name = "ugimp",
-  .description = "uGIMP, CPDI corner rule with a fixed parallelogram extent (r1, r2)",
+  .description = "uGIMP, CPDI corner rule with a fixed extent (r1, r2, r3 in 3D) as filled",
   .eval = ugimp_eval,
   .fill = ugimp_fill,
   .span = ugimp_span,
   .at_point = 0,
   .convect = 0,
+  .separable = 1,
 };
 
 const mpm_shape_type mpm_shape_cpdi = {
   .name = "cpdi",
-  .description = "CPDI1, the corner rule with the extent (r1, r2) convected by the deformation",
+  .description = "CPDI1, the corner rule with the extent convected by the deformation",
   .eval = ugimp_eval,
   .fill = ugimp_fill,
   .span = ugimp_span,

@@ -29,8 +29,7 @@ static void likely_cause(const mpm_sim *s, char *buf, size_t len)
              "(key 'time.dt', allowed only with time.dt_unstable_ok)", s->dt, s->dt / st, st);
   else if (d && d->stability_limited &&
            mpm_material_ngf_check_diffusion(&s->par, s->dt, s->n_sub, s->mesh.dx, s->mesh.dy,
-                                            s->dim == 3 ? s->mesh3.dz : 0.0,
-                                            &e) != MPM_OK)
+                                            s->dim == 3 ? s->mesh.dz : 0.0, &e) != MPM_OK)
     snprintf(buf, len, "the diffusion of g: %.200s (key 'material.n_sub')", e.msg);
   else
     snprintf(buf, len, "a material parameter or a boundary condition (key 'material.*'; the "
@@ -40,9 +39,8 @@ static void likely_cause(const mpm_sim *s, char *buf, size_t len)
 /* The smallest side of a mesh unit. */
 static double unit_size(const mpm_sim *s)
 {
-  if (s->dim == 3)
-    return fmin(fmin(s->mesh3.dx, s->mesh3.dy), s->mesh3.dz);
-  return fmin(s->mesh.dx, s->mesh.dy);
+  double h = fmin(s->mesh.dx, s->mesh.dy);
+  return s->dim == 3 ? fmin(h, s->mesh.dz) : h;
 }
 
 /* "(x, y)" or "(x, y, z)" of point p, for a message. */

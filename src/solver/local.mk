@@ -1,6 +1,7 @@
 noinst_LTLIBRARIES += libmpm_solver.la
-libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h src/solver/remove.c \
-	src/solver/transfer.c src/solver/transfer3.c src/solver/step3.c src/solver/transfer.h src/solver/transfer.inc src/solver/health.c src/solver/plan.c src/solver/state.c
+libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h \
+	src/solver/solver_internal.h src/solver/remove.c src/solver/kernels.c src/solver/kernels.inc \
+	src/solver/units.c src/solver/health.c src/solver/plan.c src/solver/state.c
 
 check_PROGRAMS += tests/test_solver
 TESTS += tests/test_solver
@@ -22,8 +23,3 @@ tests_test_silo_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_silo_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
 	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_linalg.la \
 	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
-check_PROGRAMS += tests/test_solver3
-TESTS += tests/test_solver3
-tests_test_solver3_SOURCES = tests/test_solver3.c tests/sim_config.h
-tests_test_solver3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_solver3_LDADD = $(tests_test_solver_LDADD)

@@ -14,21 +14,52 @@
 #include <math.h>
 #include <string.h>
 
-#include "nonlocal/field3.h"
 #include "scenario/scenario.h"
 
-/* Bytes per point of the (2D) point store: every stored field it has. */
-#define ONE_(f, nm, d, u, dim) +((dim) == 2 ? sizeof(((mpm_points *)0)->f[0]) : 0)
-static const size_t point_store_bytes = 0 MPM_POINT_REAL_FIELDS(ONE_) MPM_POINT_INT_FIELDS(ONE_);
-/* Bytes per point of a frame in run.h5: every output field (the derived ones
- * in double precision) and the XDMF connectivity when the point count changes. */
-#define OUT_REAL_(f, nm, d, u, dim) +((dim) == 2 ? 8 : 0)
-#define OUT_INT_(f, nm, d, u, dim) +((dim) == 2 ? 4 : 0)
-static const size_t frame_point_bytes =
-    4 MPM_POINT_FIELDS(OUT_REAL_, OUT_INT_, OUT_REAL_);
+/* Bytes per point of a point store of dimension dim, with the deformation
+ * gradients or not: every stored field it has. */
+static double point_store_bytes(int dim, int defgrad)
+{
+  double b = 0.0;
+#define ONE_(f, nm, d, u, kind)                                                          \
+  b += (kind) == MPM_POINT_EVERY || ((kind) == MPM_POINT_3D && dim == 3) ||             \
+               ((kind) == MPM_POINT_DEFGRAD && defgrad)                                 \
+           ? (double)sizeof(((mpm_points *)0)->f[0]) : 0.0;
+  MPM_POINT_REAL_FIELDS(ONE_)
+  MPM_POINT_INT_FIELDS(ONE_)
 #undef ONE_
-#undef OUT_REAL_
+  return b;
+}
+
+/* Bytes per point of a frame in run.h5: every output field of the
+ * dimension (the derived ones in double precision) and the XDMF
+ * connectivity when the point count changes. */
+static double frame_point_bytes(int dim)
+{
+  double b = 4.0;
+#define OUT_(f, nm, d, u, kind) b += (kind) == MPM_POINT_EVERY || dim == 3 ? 8.0 : 0.0;
+#define OUT_INT_(f, nm, d, u, kind) b += (kind) == MPM_POINT_EVERY || dim == 3 ? 4.0 : 0.0;
+  MPM_POINT_FIELDS(OUT_, OUT_INT_, OUT_)
+#undef OUT_
 #undef OUT_INT_
+  return b;
+}
+
+/* Bytes per point of the weights of a step: the located points' units
+ * and local coordinates, the plane's stencil at its widest, the factorised
+ * weights of a separable shape on boxes, or the stencil list of 3D. */
+static double weights_bytes(const mpm_config *cfg)
+{
+  const mpm_shape_type *t = mpm_shape_lookup(cfg->mesh.shape);
+  const int dim = cfg->mesh.nz > 0 ? 3 : 2;
+  const double list = sizeof(int) + (double)(dim == 3 ? 64 : 16) *
+                      (sizeof(int) + (1 + dim) * sizeof(double));
+  if (dim == 2 || !t)
+    return list;
+  if (t->at_point)
+    return dim * (sizeof(int) + sizeof(double)) + sizeof(int);
+  return t->separable && !t->convect ? sizeof(mpm_shape_axes) + 2 * sizeof(int) : list;
+}
 
 /* Measured on the 2-core Xeon this is developed on (HDF5 1.10.8, Debian 12):
  * a run of 4 points holds 15 MB, and HDF5's metadata cache adds about 160
@@ -52,13 +83,13 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
   const int nonlocal = mt && mt->nonlocal;
   const int density = cfg->material.state_density != MPM_DENSITY_POINT;
   const int extent = cfg->material.g_average == MPM_NONLOCAL_EXTENT;
-  const int parts = cfg->mesh.nz > 0 ? MPM_NONLOCAL3_PARTS : MPM_NONLOCAL_PARTS;
-  double per_point = (double)point_store_bytes                 /* the store */
-                     + sizeof(int) + MPM_STENCIL_W * (sizeof(int) + 3 * sizeof(double))
+  const int dim = cfg->mesh.nz > 0 ? 3 : 2, parts = 1 << dim;
+  double per_point = point_store_bytes(dim, mt && mt->defgrad)  /* the store */
+                     + weights_bytes(cfg)
                      + sizeof(double) + 1.0;                   /* output work, removal flags */
   const int bbar = cfg->mesh.dilatation != MPM_DILATATION_POINT;
   if (nonlocal || density || bbar)
-    per_point += 4 * sizeof(double);                           /* L_p kept over the substeps */
+    per_point += dim * dim * sizeof(double);                   /* L_p kept over the substeps */
   if (density)
     per_point += sizeof(double);
   if (nonlocal)
@@ -66,8 +97,8 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
                  + (extent ? parts * (sizeof(int) + sizeof(double)) : 0);
   if (bbar)
     per_point += sizeof(int);                                  /* the unit of each point */
-  const int dim = cfg->mesh.nz > 0 ? 3 : 2;
-  double per_node = 9 * sizeof(double) + sizeof(int) + 2 + 2 * sizeof(double);  /* + bc */
+  double per_node = (1 + 2 * dim + 4) * sizeof(double)       /* m_i, the record, ... */
+                    + sizeof(int) + 2 + 2 * sizeof(double);   /* ... and the bc */
   if (cfg->time.transfer == MPM_TRANSFER_APIC)
     per_node += dim * sizeof(double);                          /* the nodes' positions */
   double per_unit = 0.0;
@@ -89,15 +120,9 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   mpm_mesh m;
   if (mpm_mesh_from_config(&m, cfg, NULL) != MPM_OK)
     return;
-  const int dim3 = cfg->mesh.nz > 0;
-  mpm_mesh3 m3;
-  if (dim3 && mpm_mesh3_from_config(&m3, cfg, NULL) != MPM_OK)
-    return;
+  const int dim3 = m.dim == 3;
   for (int f = 0; f < cfg->nfill; f++) {
-    mpm_fill3_region r;
-    if (dim3)
-      mpm_scenario_region3(&cfg->fill[f], &r);
-    sz->fill_points[f] = dim3 ? mpm_scenario_count3(&r, &m3) : mpm_scenario_count(&cfg->fill[f], &m);
+    sz->fill_points[f] = mpm_scenario_count(&cfg->fill[f], &m);
     sz->points += sz->fill_points[f];
   }
   sz->nodes = (long)(cfg->mesh.nx + 1) * (cfg->mesh.ny + 1) * (dim3 ? cfg->mesh.nz + 1 : 1);
@@ -108,13 +133,14 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   sz->steps = ceil(cfg->time.t_end / sz->dt * (1.0 - 1e-12));
   /* one frame at t = 0, at most one per step on the schedule, one at the end */
   sz->frames = 2.0 + fmin(sz->steps, floor(cfg->time.t_end / cfg->time.frame_dt));
-  const double n = (double)sz->points,
-               units = (double)cfg->mesh.nx * cfg->mesh.ny * (dim3 ? cfg->mesh.nz : 1);
+  const double n = (double)sz->points, units = (double)m.nunits;
+  const mpm_material_type *mt = mpm_material_lookup(cfg->material.model);
+  const double store = point_store_bytes(m.dim, mt && mt->defgrad);
   sz->memory = BASE_BYTES + fmin(sz->frames * H5_CACHE_PER_FRAME, H5_CACHE_MAX) +
                workspace_bytes(cfg, n, (double)sz->nodes, units) +
-               n * (double)point_store_bytes;        /* a checkpoint assembled in memory */
-  const double frame = n * (double)frame_point_bytes + FRAME_META_BYTES + FRAME_TEXT_BYTES;
-  const double checkpoint = 2.0 * (n * (double)point_store_bytes + HEADER_BYTES);  /* + its
-                                                                                       temporary */
-  sz->output = HEADER_BYTES + 8.0 * (cfg->mesh.nx + cfg->mesh.ny) + sz->frames * frame + checkpoint;
+               n * store;                            /* a checkpoint assembled in memory */
+  const double frame = n * frame_point_bytes(m.dim) + FRAME_META_BYTES + FRAME_TEXT_BYTES;
+  const double checkpoint = 2.0 * (n * store + HEADER_BYTES);  /* + its temporary */
+  sz->output = HEADER_BYTES + 8.0 * (cfg->mesh.nx + cfg->mesh.ny + (dim3 ? cfg->mesh.nz : 0)) +
+               sz->frames * frame + checkpoint;
 }

@@ -10,57 +10,29 @@
 
 #include "diag/region.h"
 
-/* fate of point p of a 3D run (see fate). */
-static int fate3(const mpm_sim *s, size_t p)
-{
-  const mpm_mesh3 *m = &s->mesh3;
-  const mpm_points *P = s->pts;
-  const double x[3] = {P->x[p], P->y[p], P->z[p]};
-  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
-    return -1;
-  if (x[1] < s->cfg.remove.below)
-    return 1;
-  const double lo[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
-  const int per[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
-  int out = 0, blocked = 0;
-  for (int d = 0; d < 3; d++) {
-    const int below = !per[d] && x[d] < lo[d], above = !per[d] && x[d] > lo[d] + len[d];
-    out |= below | above;
-    blocked |= (below && s->bc3.face[2 * d] != MPM_BC_FREE) ||
-               (above && s->bc3.face[2 * d + 1] != MPM_BC_FREE);
-  }
-  if (!out)
-    return 0;
-  if (mpm_bc3_left_through_outlet(&s->bc3, m, x))
-    return 1;
-  return s->cfg.remove.free_edges && !blocked ? 1 : -1;
-}
-
 /* 0: stays; 1: removed; -1: outside the mesh where nothing lets it leave. */
 static int fate(const mpm_sim *s, size_t p)
 {
-  if (s->dim == 3)
-    return fate3(s, p);
   const mpm_mesh *m = &s->mesh;
-  const mpm_config *c = &s->cfg;
-  const double x = s->pts->x[p], y = s->pts->y[p];
-  if (!isfinite(x) || !isfinite(y))
+  const mpm_points *P = s->pts;
+  const double x[3] = {P->x[p], P->y[p], s->dim == 3 ? P->z[p] : 0.0};
+  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
     return -1;                                   /* nowhere: said by mpm_sim_check_state */
-  if (y < c->remove.below)
+  if (x[1] < s->cfg.remove.below)
     return 1;
-  const int out_l = !m->periodic_x && x < m->x0, out_r = !m->periodic_x && x > m->x0 + m->lx;
-  const int out_b = !m->periodic_y && y < m->y0, out_t = !m->periodic_y && y > m->y0 + m->ly;
-  if (!(out_l || out_r || out_b || out_t))
+  int out = 0, blocked = 0;
+  for (int d = 0; d < m->dim; d++) {
+    const int per = m->periodic[d];
+    const int below = !per && x[d] < m->o[d], above = !per && x[d] > m->o[d] + m->len[d];
+    out |= below | above;
+    blocked |= (below && s->bc.face[2 * d] != MPM_BC_FREE) ||
+               (above && s->bc.face[2 * d + 1] != MPM_BC_FREE);
+  }
+  if (!out)
     return 0;
-  if (mpm_bc_left_through_outlet(&s->bc, m, x, y))
+  if (mpm_bc_left_through_outlet(&s->bc, m, x))
     return 1;
-  if (!c->remove.free_edges)
-    return -1;
-  const int *e = s->bc.edge;
-  if ((out_l && e[MPM_EDGE_LEFT] != MPM_BC_FREE) || (out_r && e[MPM_EDGE_RIGHT] != MPM_BC_FREE) ||
-      (out_b && e[MPM_EDGE_BOTTOM] != MPM_BC_FREE) || (out_t && e[MPM_EDGE_TOP] != MPM_BC_FREE))
-    return -1;
-  return 1;
+  return s->cfg.remove.free_edges && !blocked ? 1 : -1;
 }
 
 /* Keep the entries of a per-point array of n values whose keep flag is set,
@@ -73,42 +45,33 @@ static void compact_values(double *a, const unsigned char *keep, size_t n)
       a[q++] = a[p];
 }
 
-/* mpm_sim_may_leave for a 3D run. */
-static int may_leave3(const mpm_sim *s, size_t a, size_t b)
+/* mpm_sim_may_leave over D axes (a constant where it is inlined): one pass
+ * that vectorises. */
+static inline int may_leave_dim(const mpm_sim *s, int D, size_t a, size_t b)
 {
-  const mpm_mesh3 *m = &s->mesh3;
+  const mpm_mesh *m = &s->mesh;
   const mpm_points *P = s->pts;
-  const double lo[3] = {m->x0, m->y0, m->z0}, len[3] = {m->lx, m->ly, m->lz};
-  const int per[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
-  const double *const x[3] = {P->x, P->y, P->z};
-  int any = 0;
-  for (int d = 0; d < 3; d++) {
-    double l = per[d] ? -INFINITY : lo[d];
-    const double h = per[d] ? INFINITY : lo[d] + len[d];
-    if (d == 1 && s->cfg.remove.below > l)
-      l = s->cfg.remove.below;
-    for (size_t p = a; p < b; p++)
-      any |= !(x[d][p] >= l) | !(x[d][p] <= h);
+  double lo[3], hi[3];
+  for (int d = 0; d < D; d++) {
+    lo[d] = m->periodic[d] ? -INFINITY : m->o[d];
+    hi[d] = m->periodic[d] ? INFINITY : m->o[d] + m->len[d];
   }
+  lo[1] = s->cfg.remove.below > lo[1] ? s->cfg.remove.below : lo[1];
+  const double *const x = P->x, *const y = P->y, *const z = P->z;
+  int any = 0;
+  if (D == 3)
+    for (size_t p = a; p < b; p++)
+      any |= !(x[p] >= lo[0]) | !(x[p] <= hi[0]) | !(y[p] >= lo[1]) | !(y[p] <= hi[1]) |
+             !(z[p] >= lo[2]) | !(z[p] <= hi[2]);
+  else
+    for (size_t p = a; p < b; p++)
+      any |= !(x[p] >= lo[0]) | !(x[p] <= hi[0]) | !(y[p] >= lo[1]) | !(y[p] <= hi[1]);
   return any;
 }
 
 int mpm_sim_may_leave(const mpm_sim *s, size_t a, size_t b)
 {
-  if (s->dim == 3)
-    return may_leave3(s, a, b);
-  const mpm_mesh *m = &s->mesh;
-  const mpm_points *P = s->pts;
-  const double xlo = m->periodic_x ? -INFINITY : m->x0;
-  const double xhi = m->periodic_x ? INFINITY : m->x0 + m->lx;
-  const double yhi = m->periodic_y ? INFINITY : m->y0 + m->ly;
-  double ylo = m->periodic_y ? -INFINITY : m->y0;
-  ylo = s->cfg.remove.below > ylo ? s->cfg.remove.below : ylo;
-  const double *x = P->x, *y = P->y;
-  int any = 0;
-  for (size_t p = a; p < b; p++)
-    any |= !(x[p] >= xlo) | !(x[p] <= xhi) | !(y[p] >= ylo) | !(y[p] <= yhi);
-  return any;
+  return s->dim == 3 ? may_leave_dim(s, 3, a, b) : may_leave_dim(s, 2, a, b);
 }
 
 int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
@@ -146,11 +109,8 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
   }
   const size_t n = P->n;
   mpm_points_compact(P, keep);
-  if (s->lxx) {                                  /* NGF's stored L_p follow their points */
-    double *arrs[] = {s->lxx, s->lxy, s->lyx, s->lyy};
-    for (size_t k = 0; k < 4; k++)
-      compact_values(arrs[k], keep, n);
-  }
+  for (int k = 0; k < s->dim * s->dim && s->L[k]; k++)  /* the stored L_p follow their points */
+    compact_values(s->L[k], keep, n);
   free(keep);
   return MPM_OK;
 }

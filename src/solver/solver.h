@@ -11,7 +11,6 @@
 #include <stddef.h>
 
 #include "bc/bc.h"
-#include "bc/bc3.h"
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
@@ -23,24 +22,27 @@
 #include "nonlocal/field.h"
 #include "nonlocal/nonlocal.h"
 #include "shape/shape.h"
-#include "shape/shape3.h"
+
+struct mpm_sim_kernels;
 
 typedef struct mpm_sim {
   mpm_config cfg;                 /* resolved input (copy) */
+  int dim;                        /* 2 (plane strain) or 3: the mesh's */
   mpm_mesh mesh;
   mpm_bc bc;
   const mpm_shape_type *shape;
   const mpm_material_type *mat;
   mpm_material_params par;
   mpm_points *pts;
+  const struct mpm_sim_kernels *k;  /* the step's kernels for the run's dimension (kernels.c) */
 
   /* weights of the step: a shape whose weights are the element basis at the
-   * point (located = 1) keeps each point's unit (i, j) and local (u, v);
-   * the others store a stencil */
+   * point (located = 1) keeps each point's unit and local coordinates; the
+   * others store a stencil */
   int located;
-  int *loc_i, *loc_j;             /* [loc_cap] */
+  int *loc_c[3];                  /* [loc_cap] the unit of each point along each axis */
   int *loc_n;                     /* [loc_cap] storage id of the unit's first corner */
-  double *loc_u, *loc_v;
+  double *loc_l[3];               /* [loc_cap] the local coordinates in it */
   size_t loc_cap;
   mpm_shape_stencil *st;          /* the stored stencil (computed when a step needs it) */
   mpm_mesh_bands *bands;          /* the points by bands of unit rows, for point-to-grid */
@@ -49,23 +51,15 @@ typedef struct mpm_sim {
 
   /* nodal workspace [mesh.nnodes] */
   double *nm;                     /* m_i */
-  double (*nq)[4];                /* after point-to-grid ((mv)_x, (mv)_y, f_x, f_y),
-                                   * after the grid update (v_x, v_y, a_x, a_y) */
-
-  /* A 3D run (dim = 3, mesh.nz > 0; step3.c): the box mesh, its faces'
-   * conditions and shape, and its nodal records; mesh, bc and shape above
-   * stay empty (the plane step never reads these). nm is shared. */
-  int dim;                        /* 2 or 3 */
-  mpm_mesh3 mesh3;
-  mpm_bc3 bc3;
-  const mpm_shape3_type *shape3;
-  double (*nq3)[6];               /* [mesh3.nnodes] ((mv), f), then (v, a) */
-  struct mpm_sim3_work *w3;       /* a nonlocal model's workspace (step3.c), else NULL */
+  double *nq;                     /* records of 2 dim lanes (mpm_sim_node): after
+                                   * point-to-grid ((mv)_1..D, f_1..D), after the
+                                   * grid update (v_1..D, a_1..D) */
 
   /* constitutive substepping and the nonlocal fluidity (MODEL.md section 5) */
   int n_sub;                      /* constitutive substeps per step, L fixed */
   mpm_nonlocal *nl;               /* element g and Laplacian; NULL for local models */
-  double *lxx, *lxy, *lyx, *lyy;  /* [pts->cap] L_p of the step, kept over the substeps */
+  double *L[9];                   /* [lcap] L_p of the step, kept over the substeps:
+                                     L[D i + j] = dv_i/dx_j */
   size_t lcap;                    /* length of the L arrays */
   int seeded;                     /* NGF: 1 once g was seeded from the local run */
 
@@ -74,15 +68,15 @@ typedef struct mpm_sim {
   double *rho;                    /* [rcap] density each point's update sees [kg/m^3] */
   size_t rcap;                    /* length of rho */
   /* mesh.dilatation = "unit" or "element" (B-bar with the mean stress per
-   * unit, transfer.c); else NULL */
+   * unit, units.c); else NULL */
   int *uof;                       /* [ucap] the unit of each point, -1 outside the mesh */
   size_t ucap;
   int uof_moved;                  /* 1: uof holds the units of x_{n+1} of this step */
   double *xnode;                  /* APIC: [dim nnodes] the nodes' coordinates, axis by
-                                     axis (mpm_sim_in_node_offset); else NULL */
-  double *usum;                   /* [2 nx ny] per unit: sum V_p, sum V_p f_p */
-  double *uel;                    /* "element": [5 nx ny] per unit: fill of a filled
-                                     unit (else 0), centroid and slope of s_m */
+                                     axis; else NULL */
+  double *usum;                   /* [2 units] per unit: sum V_p, sum V_p f_p */
+  double *uel;                    /* "element": [(1 + 2 dim) units] per unit: fill of a
+                                     filled unit (else 0), centroid and slope of s_m */
 
   double t, dt;                   /* current time, time step [s] */
   long step;
@@ -107,9 +101,16 @@ typedef struct mpm_sim {
   long check_next;                /* the next checkpoint at check_next * checkpoint_dt */
 } mpm_sim;
 
-/* The point store is reordered by unit row at every step that is a multiple
- * of this (transfer.c), so that the points of a band of rows lie together
- * in memory. */
+/* The nodal record of node i: 2 dim doubles (the plane's on 32-byte
+ * boundaries). */
+static inline double *mpm_sim_node(const mpm_sim *s, int i)
+{
+  return s->nq + (size_t)(2 * s->dim) * (size_t)i;
+}
+
+/* The point store is reordered by unit row (along the mesh's last axis) at
+ * every step that is a multiple of this (kernels.inc), so that the points of
+ * a band of rows lie together in memory. */
 #define MPM_SIM_REORDER_EVERY 16
 
 /* Build a simulation from a resolved configuration. */
@@ -147,24 +148,11 @@ typedef struct mpm_sim_size {
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
 
-/* Gravity vector at time t (linear ramp over t_ramp): its plane
- * components, or all three. */
-void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy);
-void mpm_sim_gravity3(const mpm_sim *s, double t, double g[3]);
+/* Gravity vector at time t (linear ramp over t_ramp). */
+void mpm_sim_gravity(const mpm_sim *s, double t, double g[3]);
 
 /* One explicit USL step of length s->dt. */
 int mpm_sim_step(mpm_sim *s, mpm_err *err);
-
-/* The 3D module (step3.c): mpm_sim_create's part for a 3D input (mesh,
- * faces, shape, points and nodal records of s->cfg), and the step that
- * mpm_sim_step takes for it. */
-int mpm_sim3_build(mpm_sim *s, mpm_err *err);
-int mpm_sim3_step(mpm_sim *s, mpm_err *err);
-typedef struct mpm_sim3_work mpm_sim3_work;
-void mpm_sim3_work_free(mpm_sim3_work *w);   /* accepts NULL */
-/* The unit grid of a 3D nonlocal model's fluidity field, with the ghost
- * rules in force (an open outlet's faces included); NULL for a local model. */
-const struct mpm_nonlocal_grid *mpm_sim3_field_grid(const mpm_sim *s);
 
 /* Frame callback of the run driver, called at t = 0, every frame_dt and at the end. */
 typedef int (*mpm_frame_fn)(void *ctx, const mpm_sim *s, mpm_err *err);

@@ -37,7 +37,13 @@ int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err)
   if (st->pts->dim != s->pts->dim)
     return mpm_err_set(err, MPM_EINPUT, "checkpoint: points of a %dD store, the run is %dD",
                        st->pts->dim, s->pts->dim);
+  if (s->pts->defgrad && !st->pts->defgrad)
+    return mpm_err_set(err, MPM_EINPUT, "checkpoint: no deformation gradients, which model '%s' "
+                       "needs", s->mat->name);
+  const int defgrad = s->pts->defgrad;
   int rc = mpm_points_copy(s->pts, st->pts);
+  if (rc == MPM_OK)
+    rc = mpm_points_set_defgrad(s->pts, defgrad);   /* a model without them drops them */
   if (rc != MPM_OK)
     return mpm_err_set(err, rc, "checkpoint: no memory for %zu points", st->pts->n);
   s->t = st->t;

@@ -1,28 +1,32 @@
 /* step.c: simulation set-up and the explicit Update-Stress-Last MPM step
- * (MODEL.md section 2, [DK15] section 3.1).
+ * (MODEL.md section 2, [DK15] section 3.1), for either dimension: the step
+ * names no dimension, it calls the kernels of the run's (s->k,
+ * solver_internal.h).
  *
- * One step: stencil (once) -> point-to-grid (mass, momentum, force) -> grid
+ * One step: weights (once) -> point-to-grid (mass, momentum, force) -> grid
  * update with boundary conditions -> grid-to-point (FLIP velocity, position,
- * velocity gradient) -> volume -> constitutive update -> periodic wrap.
- * The constitutive update runs in n_sub substeps of dt/n_sub with L fixed.
+ * velocity gradient) -> volume -> constitutive update -> walls and periodic
+ * wraps. The constitutive update runs in n_sub substeps of dt/n_sub with L
+ * fixed, through the model's batch update (the material table).
  * A nonlocal model (NGF, [DK-silo] section 5.2) moves the points first, freezes
  * their units, and per substep has nonlocal/ rebuild the element field (the
  * model's dense points, g_e, lap_e by the chosen diffusion solver: field.h)
  * before the point updates (nonlocal_phase); a model with a seeding phase
  * runs as its local model before t_seed, then seeds its field from it
- * (seeding). The step names no model: it asks the material table.
+ * (seeding); one without runs its own update with lap = 0 until then.
  * The density a point's state is decided with is m / V_{n+1} by default;
  * with material.state_density = "element", "hybrid" ([D-thesis] §3.4) or "unit"
  * all points move first and the unit sums are taken from x_{n+1} before the
  * updates (density_phase, and likewise in nonlocal_phase). V_p always keeps its
- * local update. With mesh.dilatation = "unit" (B-bar, transfer.c) the in-plane
- * mean stress enters point-to-grid as its unit's mean, all points move before
- * tr L_p is replaced by its unit's mean (density_phase or nonlocal_phase), and
- * after the update the dense points of a unit share its mean stress.
- * Threads: the stencil is parallel over points; point-to-grid and the grid
- * update over ranges of nodes (grid_phase); the rest over points
- * (point_phase), except the element sums of g and of mass, which run in
- * point order on one thread. No sum depends on the thread count, so neither do results. */
+ * local update. With mesh.dilatation = "unit" or "element" (B-bar, units.c)
+ * the mean stress enters point-to-grid as its unit's mean, all points move
+ * before tr L_p is replaced by its unit's mean (density_phase or
+ * nonlocal_phase), and after the update the dense points of a unit share its
+ * mean stress.
+ * Threads: the weights are parallel over points; point-to-grid and the grid
+ * update over bands and ranges of nodes (kernels.inc); the rest over points
+ * in chunks, except the unit sums of the per-unit rules, which run in point
+ * order. No sum depends on the thread count, so neither do results. */
 #include "solver/solver.h"
 
 #include <math.h>
@@ -30,11 +34,7 @@
 #include <string.h>
 
 #include "scenario/scenario.h"
-#include "solver/transfer.h"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "solver/solver_internal.h"
 
 /* ---- set-up -------------------------------------------------------------- */
 
@@ -43,10 +43,12 @@ static int nodal_alloc(mpm_sim *s)
   const size_t n = s->mesh.nnodes > 0 ? (size_t)s->mesh.nnodes : 1;
   if (!(s->nm = calloc(n, sizeof *s->nm)))
     return MPM_ENOMEM;
-  /* records of four doubles on 32-byte boundaries: one vector each */
-  if (!(s->nq = aligned_alloc(32, n * sizeof *s->nq)))
+  /* records of 2 dim doubles on 32-byte boundaries (the plane's: one vector
+   * each) */
+  const size_t bytes = (n * (size_t)(2 * s->dim) * sizeof *s->nq + 31) / 32 * 32;
+  if (!(s->nq = aligned_alloc(32, bytes)))
     return MPM_ENOMEM;
-  memset(s->nq, 0, n * sizeof *s->nq);
+  memset(s->nq, 0, bytes);
   return MPM_OK;
 }
 
@@ -91,18 +93,25 @@ void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
 }
 
 /* Per-point L storage for the phases that move every point before any
- * update (nonlocal models, element and hybrid densities); once per run. */
+ * update (nonlocal models, the per-unit rules); once per run. */
 static int L_alloc(mpm_sim *s, mpm_err *err)
 {
-  if (s->lxx)
+  if (s->L[0])
     return MPM_OK;
   size_t n = s->pts->cap > 0 ? s->pts->cap : 1;
-  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
-  for (size_t k = 0; k < 4; k++)
-    if (!(*arrs[k] = calloc(n, sizeof(double))))
+  for (int k = 0; k < s->dim * s->dim; k++)
+    if (!(s->L[k] = calloc(n, sizeof(double))))
       return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
   s->lcap = n;
   return MPM_OK;
+}
+
+/* The kinds of the mesh's 2 dim faces, in MPM_FACE_* order. */
+static void face_kinds(const mpm_config *cfg, int face[6])
+{
+  const int f[6] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top,
+                    cfg->bc.front, cfg->bc.back};
+  memcpy(face, f, sizeof f);
 }
 
 /* Per-point L storage and the nonlocal workspace for models that need them. */
@@ -111,8 +120,9 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   if (!s->mat->nonlocal)
     return MPM_OK;
   const mpm_config *cfg = &s->cfg;
-  int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
-  int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, edge, cfg->material.g_average, s->pts->cap, err);
+  int face[6];
+  face_kinds(cfg, face);
+  int rc = mpm_nonlocal_alloc(&s->nl, &s->mesh, face, cfg->material.g_average, s->pts->cap, err);
   if (rc == MPM_OK)
     rc = mpm_nonlocal_set_diffusion(s->nl, cfg->material.diffusion, err);
   if (rc != MPM_OK)
@@ -120,7 +130,7 @@ static int nonlocal_alloc(mpm_sim *s, mpm_err *err)
   if (cfg->material.g_wall == MPM_NONLOCAL_WALL_NEUMANN)
     mpm_nonlocal_walls_neumann(s->nl);
   if (mpm_nonlocal_is_steady(s->nl)) {     /* g from the stress each step: nothing to seed */
-    if (!s->mat->steady_terms || !s->mat->update_steady_plane)
+    if (!s->mat->steady_terms || !s->mat->update_steady)
       return mpm_err_set(err, MPM_EINPUT, "material.diffusion = \"steady\": model '%s' has no "
                          "steady form", s->mat->name);
     s->seeded = 1;
@@ -148,29 +158,37 @@ static int density_alloc(mpm_sim *s, mpm_err *err)
   return L_alloc(s, err);
 }
 
-/* mpm_sim_create's part for a plane input: mesh, edges, walls, shape,
- * points, nodal records and the workspaces of the options. */
-static int build_plane(mpm_sim *s, mpm_err *err)
+/* The outlet of the input on the bc of mesh m. */
+static int set_outlet(mpm_sim *s, mpm_err *err)
 {
   const mpm_config *cfg = &s->cfg;
-  if (s->mat->hyper)
-    return mpm_err_set(err, MPM_EINPUT, "material.model '%s' runs in 3D runs only (mesh.nz > 0)",
-                       s->mat->name);
+  const double lo[2] = {cfg->outlet.from, cfg->outlet.from2};
+  const double hi[2] = {cfg->outlet.to, cfg->outlet.to2};
+  const int shape = cfg->outlet.shape == MPM_OUTLET_DISC ? MPM_BC_OUTLET_DISC : MPM_BC_OUTLET_BOX;
+  return mpm_bc_set_outlet(&s->bc, &s->mesh, cfg->outlet.edge - MPM_OUTLET_LEFT, shape, lo, hi,
+                           cfg->outlet.closed, cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED, err);
+}
+
+/* mpm_sim_create's part from the input: mesh, faces, walls, shape, points,
+ * nodal records and the workspaces of the options. */
+static int build(mpm_sim *s, mpm_err *err)
+{
+  const mpm_config *cfg = &s->cfg;
   int rc = mpm_mesh_from_config(&s->mesh, cfg, err);
   if (rc == MPM_OK) {
-    int edge[4] = {cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top};
-    rc = mpm_bc_setup(&s->bc, &s->mesh, edge, err);
+    int face[6];
+    face_kinds(cfg, face);
+    rc = mpm_bc_setup(&s->bc, &s->mesh, face, err);
   }
   if (rc == MPM_OK && cfg->outlet.edge != MPM_OUTLET_NONE)
-    rc = mpm_bc_set_outlet(&s->bc, &s->mesh, cfg->outlet.edge - MPM_OUTLET_LEFT + MPM_EDGE_LEFT,
-                           cfg->outlet.from, cfg->outlet.to, cfg->outlet.closed,
-                           cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED, err);
-  if (rc == MPM_OK && cfg->wall.nvert > 0)
+    rc = set_outlet(s, err);
+  if (rc == MPM_OK && cfg->wall.nvert > 0)    /* in 3D its prism along z */
     rc = mpm_bc_add_polygon(&s->bc, &s->mesh, cfg->wall.nvert, cfg->wall.px, cfg->wall.py,
                             cfg->wall.kind, NULL, err);
   if (rc == MPM_OK && !(s->shape = mpm_shape_lookup(cfg->mesh.shape)))
     rc = mpm_err_set(err, MPM_EINPUT, "mesh.shape '%s' unknown", cfg->mesh.shape);
-  if (rc == MPM_OK && !(s->pts = mpm_points_alloc(1024)))
+  if (rc == MPM_OK && (!(s->pts = mpm_points_alloc_dim(1024, s->dim)) ||
+                       mpm_points_set_defgrad(s->pts, s->mat->defgrad) != MPM_OK))
     rc = mpm_err_set(err, MPM_ENOMEM, "points: out of memory");
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++)
     rc = mpm_scenario_fill(s->pts, &s->mesh, &cfg->fill[f], &s->par, cfg->gravity.gy, err);
@@ -183,7 +201,7 @@ static int build_plane(mpm_sim *s, mpm_err *err)
     rc = nonlocal_alloc(s, err);
   if (rc == MPM_OK)
     rc = density_alloc(s, err);
-  const size_t nu = (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  const size_t nu = s->mesh.nunits;
   if (rc == MPM_OK && cfg->mesh.dilatation != MPM_DILATATION_POINT &&
       (!(s->usum = malloc(2 * nu * sizeof *s->usum)) ||
        (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT &&
@@ -208,8 +226,9 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
     mpm_material_params_from_config(&s->par, cfg);
     rc = s->mat->check(&s->par, err);
   }
+  s->k = s->dim == 3 ? &mpm_sim_kernels_3 : &mpm_sim_kernels_2;
   if (rc == MPM_OK)
-    rc = s->dim == 3 ? mpm_sim3_build(s, err) : build_plane(s, err);
+    rc = build(s, err);
   if (rc == MPM_OK && s->pts->n == 0)
     rc = mpm_err_set(err, MPM_EINPUT, "the fills hold no point");
   if (rc == MPM_OK && cfg->time.transfer == MPM_TRANSFER_APIC)
@@ -222,7 +241,7 @@ int mpm_sim_create(mpm_sim **out, const mpm_config *cfg, mpm_err *err)
   for (size_t p = 0; p < s->pts->n; p++)
     s->mass0 += s->pts->mass[p];
   s->mtiny = 1e-12 * s->mass0 / (double)s->pts->n;          /* skip nodes lighter than this */
-  if (s->dim == 3 ? s->shape3->at_point : s->shape->at_point) {  /* body force only below this */
+  if (s->shape->at_point) {                                 /* body force only below this */
     s->mlight = 1e-3 * s->mass0 / (double)s->pts->n;
     double mmin = s->pts->mass[0];
     for (size_t p = 1; p < s->pts->n; p++)
@@ -238,7 +257,6 @@ void mpm_sim_free(mpm_sim *s)
   if (!s)
     return;
   mpm_bc_clear(&s->bc);
-  mpm_bc3_clear(&s->bc3);
   mpm_points_free(s->pts);
   mpm_shape_stencil_free(s->st);
   mpm_mesh_bands_free(s->bands);
@@ -249,24 +267,20 @@ void mpm_sim_free(mpm_sim *s)
   free(s->uel);
   free(s->uof);
   free(s->xnode);
-  free(s->lxx);
-  free(s->lxy);
-  free(s->lyx);
-  free(s->lyy);
-  free(s->loc_i);
-  free(s->loc_j);
+  for (int k = 0; k < 9; k++)
+    free(s->L[k]);
+  for (int d = 0; d < 3; d++) {
+    free(s->loc_c[d]);
+    free(s->loc_l[d]);
+  }
   free(s->loc_n);
-  free(s->loc_u);
-  free(s->loc_v);
   free(s->scratch);
   free(s->nm);
   free(s->nq);
-  free(s->nq3);
-  mpm_sim3_work_free(s->w3);
   free(s);
 }
 
-void mpm_sim_gravity3(const mpm_sim *s, double t, double g[3])
+void mpm_sim_gravity(const mpm_sim *s, double t, double g[3])
 {
   double r = s->cfg.gravity.t_ramp;
   double f = (r > 0.0 && t < r) ? t / r : 1.0;             /* linear ramp 0 -> 1 over t_ramp */
@@ -275,86 +289,16 @@ void mpm_sim_gravity3(const mpm_sim *s, double t, double g[3])
   g[2] = f * s->cfg.gravity.gz;
 }
 
-void mpm_sim_gravity(const mpm_sim *s, double t, double *gx, double *gy)
-{
-  double g[3];
-  mpm_sim_gravity3(s, t, g);
-  *gx = g[0];
-  *gy = g[1];
-}
-
 /* ---- the step ------------------------------------------------------------ */
 
-/* The points are moved and updated in chunks: grid-to-point for the chunk
- * (its velocity gradients and grid velocities kept here), then the model's
- * update of the whole chunk at once (mpm_material_batch), then step 7. */
-enum { CHUNK = 64 };
+typedef mpm_sim_chunk chunk;
+enum { CHUNK = MPM_SIM_CHUNK };
 
-typedef struct chunk {
-  double lxx[CHUNK], lxy[CHUNK], lyx[CHUNK], lyy[CHUNK];  /* L_p */
-  double rho[CHUNK], lap[CHUNK], isp[CHUNK];             /* the update's inputs */
-  double vgx[CHUNK], vgy[CHUNK];                         /* grid velocity that moves p */
-  double agx[CHUNK], agy[CHUNK];                         /* grid acceleration at p */
-} chunk;
-
-/* Steps 4-5 for points [a, b): L_p to lxx[p - a] ..., the grid velocity
- * that moved point p to ck->vgx[p - a], ck->vgy[p - a]; with APIC (apic
- * 1), L_p is also the point's affine matrix C_p for the next step, its
- * empty nodes taking the point's velocity (mpm_sim_in_affine). */
-static inline void g2p_range(mpm_sim *s, size_t a, size_t b, int kind, int apic, double *lxx,
-                             double *lxy, double *lyx, double *lyy, chunk *ck)
+/* The chunk's L arrays, as the kernels take them. */
+static void chunk_L(chunk *ck, double *L[9])
 {
-  for (size_t p = a; p < b; p++) {
-    mpm_sim_in_basis buf;
-    const int *node;
-    const double *S, *gx, *gy;
-    double L[4], vg[2], ag[2];
-    const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    mpm_sim_in_gather(s, c, node, S, gx, gy, vg, ag, L);
-    if (apic) {                               /* C_p = sum v_i (x) gradS_ip */
-      mpm_sim_in_affine(s, c, node, S, gx, gy, vg, L);
-      s->pts->cxx[p] = L[0];
-      s->pts->cxy[p] = L[1];
-      s->pts->cyx[p] = L[2];
-      s->pts->cyy[p] = L[3];
-    }
-    lxx[p - a] = L[0];
-    lxy[p - a] = L[1];
-    lyx[p - a] = L[2];
-    lyy[p - a] = L[3];
-    ck->vgx[p - a] = vg[0];
-    ck->vgy[p - a] = vg[1];
-    ck->agx[p - a] = ag[0];
-    ck->agy[p - a] = ag[1];
-  }
-  mpm_sim_in_advance(s, a, b, ck->vgx, ck->vgy, ck->agx, ck->agy, lxx, lxy, lyx, lyy);
-}
-
-/* Steps 4-5 for points [a, b) with the weights of the step; see g2p_range,
- * compiled once per kind of weights and transfer. */
-static void move_range(mpm_sim *s, size_t a, size_t b, double *lxx, double *lxy, double *lyx,
-                       double *lyy, chunk *ck)
-{
-  const int apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
-  switch (mpm_sim_in_kind(s)) {
-  case MPM_SIM_IN_Q4:
-    if (apic)
-      g2p_range(s, a, b, MPM_SIM_IN_Q4, 1, lxx, lxy, lyx, lyy, ck);
-    else
-      g2p_range(s, a, b, MPM_SIM_IN_Q4, 0, lxx, lxy, lyx, lyy, ck);
-    break;
-  case MPM_SIM_IN_ELEMENT:
-    if (apic)
-      g2p_range(s, a, b, MPM_SIM_IN_ELEMENT, 1, lxx, lxy, lyx, lyy, ck);
-    else
-      g2p_range(s, a, b, MPM_SIM_IN_ELEMENT, 0, lxx, lxy, lyx, lyy, ck);
-    break;
-  default:
-    if (apic)
-      g2p_range(s, a, b, MPM_SIM_IN_STORED, 1, lxx, lxy, lyx, lyy, ck);
-    else
-      g2p_range(s, a, b, MPM_SIM_IN_STORED, 0, lxx, lxy, lyx, lyy, ck);
-  }
+  for (int k = 0; k < 9; k++)
+    L[k] = ck->L[k];
 }
 
 /* Step 6 for points [a, b): n substeps of length h of the update of model
@@ -362,24 +306,33 @@ static void move_range(mpm_sim *s, size_t a, size_t b, double *lxx, double *lxy,
  * mpm_material_batch. Returns the largest index of a point whose stress
  * became non-finite, or -1. */
 static long update_range(mpm_sim *s, const mpm_material_type *mat, int steady, size_t a, size_t b,
-                         const double *lxx, const double *lxy, const double *lyx,
-                         const double *lyy, const double *rho, const double *lap,
+                         double *const L[9], const double *rho, const double *lap,
                          const double *isp, double h, int n)
 {
   mpm_points *P = s->pts;
-  const mpm_material_batch bt = {
-    .n = b - a, .lxx = lxx, .lxy = lxy, .lyx = lyx, .lyy = lyy, .rho = rho, .lap = lap,
-    .isp = isp, .sxx = P->sxx + a, .syy = P->syy + a, .szz = P->szz + a, .sxy = P->sxy + a,
-    .g = P->g + a, .gdp = P->gdp + a, .state = P->state + a,
-  };
+  const int D = s->dim, ns = D == 3 ? 6 : 4;
+  mpm_material_batch bt = {.n = b - a, .dim = D, .rho = rho, .lap = lap, .isp = isp,
+                           .g = P->g + a, .gdp = P->gdp + a, .state = P->state + a};
+  for (int k = 0; k < D * D; k++)
+    bt.L[k] = L[k];
+  for (int k = 0; k < ns; k++)
+    bt.sig[k] = P->sig[k] + a;
+  for (int e = 0; mat->defgrad && e < 9; e++) {
+    bt.F[e] = P->F[e / 3][e % 3] + a;
+    bt.Fp[e] = P->Fp[e / 3][e % 3] + a;
+  }
   if (steady)
-    mat->update_steady_plane(&s->par, h, n, &bt);
+    mat->update_steady(&s->par, h, n, &bt);
   else
-    mat->update_plane(&s->par, h, n, &bt);
+    mat->update(&s->par, h, n, &bt);
   long bad = -1;
-  for (size_t p = a; p < b; p++)
-    if (!isfinite(P->sxx[p] + P->syy[p] + P->szz[p] + P->sxy[p]))
+  for (size_t p = a; p < b; p++) {
+    double t = P->sig[0][p];
+    for (int k = 1; k < ns; k++)
+      t += P->sig[k][p];
+    if (!isfinite(t))
       bad = (long)p;
+  }
   return bad;
 }
 
@@ -415,12 +368,14 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
 #pragma omp parallel for schedule(static) reduction(max : bad) reduction(| : scan)
   for (size_t c = 0; c < nc; c++) {
     chunk ck;
+    double *L[9];
+    chunk_L(&ck, L);
     const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
-    move_range(s, a, b, ck.lxx, ck.lxy, ck.lyx, ck.lyy, &ck);
-    long bc = update_range(s, mat, 0, a, b, ck.lxx, ck.lxy, ck.lyx, ck.lyy,
-                           state_rho(s, a, b, ck.rho), NULL, NULL, h, s->n_sub);
+    s->k->move(s, a, b, L, &ck);
+    long bc = update_range(s, mat, 0, a, b, L, state_rho(s, a, b, ck.rho), NULL, NULL, h,
+                           s->n_sub);
     bad = bc > bad ? bc : bad;
-    mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
+    s->k->bookkeeping(s, a, b, &ck);
     scan |= moved_scan(s, a, b);
   }
   s->scan = scan;
@@ -431,10 +386,9 @@ static long point_phase(mpm_sim *s, const mpm_material_type *mat)
  * unit: the points' units of x_{n+1} when already found (NULL: found here). */
 static void update_density(mpm_sim *s, const int *unit)
 {
-  const mpm_points *P = s->pts;
   if (s->dens)
-    mpm_material_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, P->n, P->x,
-                                 P->y, unit, P->mass, P->vol, s->rho);
+    mpm_material_density_compute(s->dens, &s->mesh, s->cfg.material.state_density, s->pts,
+                                 unit, s->rho);
 }
 
 /* Grow the per-point L arrays (and densities) with the point store. */
@@ -450,15 +404,21 @@ static int reserve_L(mpm_sim *s, mpm_err *err)
   }
   if (n <= s->lcap)
     return MPM_OK;
-  double **arrs[] = {&s->lxx, &s->lxy, &s->lyx, &s->lyy};
-  for (size_t k = 0; k < 4; k++) {
-    double *a = realloc(*arrs[k], n * sizeof(double));
+  for (int k = 0; k < s->dim * s->dim; k++) {
+    double *a = realloc(s->L[k], n * sizeof(double));
     if (!a)
       return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu velocity gradients", n);
-    *arrs[k] = a;
+    s->L[k] = a;
   }
   s->lcap = n;
   return MPM_OK;
+}
+
+/* The stored L arrays from point a on. */
+static void stored_L(const mpm_sim *s, size_t a, double *L[9])
+{
+  for (int k = 0; k < 9; k++)
+    L[k] = s->L[k] ? s->L[k] + a : NULL;
 }
 
 /* Steps 4, 5 and 7 for every point before any constitutive update (models
@@ -474,9 +434,11 @@ static int move_points(mpm_sim *s, mpm_err *err)
 #pragma omp parallel for schedule(static) reduction(| : scan)
   for (size_t c = 0; c < nc; c++) {
     chunk ck;
+    double *L[9];
     const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
-    move_range(s, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a, &ck);
-    mpm_sim_in_bookkeeping(s, a, b, ck.vgx, ck.vgy);
+    stored_L(s, a, L);
+    s->k->move(s, a, b, L, &ck);
+    s->k->bookkeeping(s, a, b, &ck);
     scan |= moved_scan(s, a, b);
   }
   s->scan = scan;
@@ -496,15 +458,16 @@ static long update_stored(mpm_sim *s, const mpm_material_type *mat, int steady, 
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (size_t c = 0; c < nc; c++) {
     chunk ck;
+    double *L[9];
     const size_t a = c * CHUNK, b = a + CHUNK < n ? a + CHUNK : n;
+    stored_L(s, a, L);
     if (nonlocal)
       for (size_t p = a; p < b; p++) {
         ck.lap[p - a] = mpm_nonlocal_point_lap(s->nl, p);
         ck.isp[p - a] = mpm_nonlocal_point_isp(s->nl, p);
       }
-    long bc = update_range(s, mat, steady, a, b, s->lxx + a, s->lxy + a, s->lyx + a, s->lyy + a,
-                           state_rho(s, a, b, ck.rho), nonlocal ? ck.lap : NULL,
-                           nonlocal ? ck.isp : NULL, h, n_sub);
+    long bc = update_range(s, mat, steady, a, b, L, state_rho(s, a, b, ck.rho),
+                           nonlocal ? ck.lap : NULL, nonlocal ? ck.isp : NULL, h, n_sub);
     bad = bc > bad ? bc : bad;
   }
   return bad;
@@ -516,23 +479,31 @@ static long update_stored(mpm_sim *s, const mpm_material_type *mat, int steady, 
 static int locate(mpm_sim *s, mpm_err *err)
 {
   const mpm_points *P = s->pts;
-  const double *const r[4] = {P->r1x, P->r1y, P->r2x, P->r2y};
-  int rc = mpm_nonlocal_locate_extents(s->nl, &s->mesh, P->n, P->x, P->y, r, err);
+  int rc = mpm_nonlocal_locate(s->nl, &s->mesh, P, err);
   if (rc != MPM_EOUTSIDE)
     return rc;
+  if (mpm_sim_check_state(s, s->t + s->dt, err) != MPM_OK)
+    return MPM_ENONFINITE;
   for (size_t p = 0; p < P->n; p++) {
-    int i, j;
-    if (mpm_mesh_unit(&s->mesh, P->x[p], P->y[p], &i, &j) != MPM_OK)
-      return mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s",
-                         P->id[p], P->x[p], P->y[p], s->t + s->dt);
+    const double x[3] = {P->x[p], P->y[p], s->dim == 3 ? P->z[p] : 0.0};
+    int c[3];
+    if (mpm_mesh_unit(&s->mesh, x, c) == MPM_OK)
+      continue;
+    if (s->dim == 3)
+      return mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g, %.6g) m, "
+                         "t = %.6g s", P->id[p], P->x[p], P->y[p], P->z[p], s->t + s->dt);
+    return mpm_err_set(err, MPM_EOUTSIDE, "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s",
+                       P->id[p], P->x[p], P->y[p], s->t + s->dt);
   }
   return rc;
 }
 
 /* Steps 4-7 for a nonlocal model ([DK-silo] section 5.2; MODEL.md section 5):
- * grid-to-point and bookkeeping first (L_p stored), membership frozen, then
- * per substep: dense flags, element g (summed in point order: no dependence on
- * the thread count), its Laplacian, and the point updates with lap_e.
+ * grid-to-point and bookkeeping first (L_p stored), the points that left
+ * through the outlet removed, membership frozen, then per substep: dense
+ * flags, element g (summed band by band: no dependence on the thread
+ * count), its Laplacian (0 while a model without a seeding model runs
+ * locally), and the point updates with lap_e.
  * With the steady solver (MODEL.md section 6, [D-thesis] Algorithm 2) the
  * field is solved once, before the points move: from the stress at the start
  * of the step, on the nodes of the step's stencil, each point's g set to
@@ -561,9 +532,10 @@ static long nonlocal_phase(mpm_sim *s, int *rc, mpm_err *err)
   update_density(s, nl->unit);  /* the units just frozen */
   if (steady)                                /* g given: the substeps with L fixed */
     return update_stored(s, s->mat, 1, 0, s->n_sub);
+  const int local = s->t < s->par.t_seed - 1e-9 * s->dt;   /* no seeding model: lap = 0 */
   long bad = -1;
   for (int k = 0; k < s->n_sub; k++) {
-    *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, err);
+    *rc = mpm_nonlocal_field(nl, s->mat, &s->par, P, s->dens ? s->rho : NULL, h, local, err);
     if (*rc != MPM_OK) {                     /* g_e, lap_e, isp_e of the dense points */
       mpm_err_prefix(err, *rc, "step %ld, t = %.6g s", s->step + 1, s->t + s->dt);
       return -1;
@@ -588,8 +560,8 @@ static long density_phase(mpm_sim *s, const mpm_material_type *mat, int *rc, mpm
 }
 
 /* Seeding ([DK-silo] section 6, for NGF: g = 0 is always a solution): a
- * model with a seeding phase runs as its local model while t < t_seed, then
- * sets the field of each dense point from that run (g = gdot_p / mu).
+ * model with a seeding model runs as that local model while t < t_seed,
+ * then sets the field of each dense point from that run (g = gdot_p / mu).
  * Returns the model for this step. */
 static const mpm_material_type *seeding(mpm_sim *s)
 {
@@ -606,26 +578,63 @@ static const mpm_material_type *seeding(mpm_sim *s)
   return s->mat;
 }
 
+/* The outlet opens at t_open: its nodes are freed, and for a nonlocal
+ * model its unit faces become a free surface of g (a disc's, unit by unit). */
+static int open_outlet(mpm_sim *s, mpm_err *err)
+{
+  mpm_bc_open_outlet(&s->bc);
+  if (!s->nl)
+    return MPM_OK;
+  int lo[3], hi[3];
+  const int f = mpm_bc_outlet_faces(&s->bc, &s->mesh, lo, hi);
+  if (f < 0)
+    return MPM_OK;
+  unsigned char *open = NULL;
+  if (s->bc.out_shape == MPM_BC_OUTLET_DISC) {
+    if (!(open = calloc(s->mesh.nunits, 1)))
+      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for the outlet's unit faces");
+    int c[3];
+    for (c[2] = lo[2]; c[2] < hi[2]; c[2]++)
+      for (c[1] = lo[1]; c[1] < hi[1]; c[1]++)
+        for (c[0] = lo[0]; c[0] < hi[0]; c[0]++)
+          open[mpm_mesh_unit_index(&s->mesh, c)] =
+              (unsigned char)mpm_bc_outlet_face_open(&s->bc, &s->mesh, c);
+  }
+  const int rc = mpm_nonlocal_open_faces(s->nl, f, lo, hi, open, err);
+  free(open);
+  return rc;
+}
+
+/* The end of a step, once every point was updated (bad: the largest index
+ * of a point whose stress became non-finite, or -1): the report of a
+ * blow-up, the B-bar projection, the clock, the speed check and the
+ * removal of the points that left. */
+static int step_end(mpm_sim *s, long bad, mpm_err *err)
+{
+  if (bad >= 0)                              /* a non-finite stress: what, where, why */
+    return mpm_sim_check_state(s, s->t + s->dt, err);
+  if (s->usum)                               /* one mean stress per unit */
+    mpm_sim_in_unit_project(s);
+  s->t += s->dt;
+  s->step++;
+  const int rc = mpm_sim_check_speeds(s, s->t, err);
+  return rc != MPM_OK ? rc : mpm_sim_remove_points(s, s->t, err);
+}
+
 /* One step (see mpm_sim_step). */
 static int step(mpm_sim *s, mpm_err *err)
 {
-  int rc = mpm_sim_in_weights_all(s, err);
-  if (rc != MPM_OK)
-    return rc;
+  int rc;
   if (s->cfg.outlet.edge != MPM_OUTLET_NONE && !s->bc.open &&
-      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt) {
-    mpm_bc_open_outlet(&s->bc);                              /* the orifice opens */
-    if (s->nl) {                                             /* a free surface for g */
-      int lo, hi;
-      const int e = mpm_bc_outlet_faces(&s->bc, &s->mesh, &lo, &hi);
-      mpm_nonlocal_open_faces(s->nl, e, lo, hi);
-    }
-  }
-  double bx, by;
-  mpm_sim_gravity(s, s->t, &bx, &by);
+      s->t >= s->cfg.outlet.t_open - 1e-9 * s->dt && (rc = open_outlet(s, err)) != MPM_OK)
+    return rc;                                               /* the orifice opens */
+  if ((rc = s->k->weights(s, err)) != MPM_OK)
+    return rc;
+  double b[3];
+  mpm_sim_gravity(s, s->t, b);
   if (s->usum && (rc = mpm_sim_in_unit_stress(s, err)) != MPM_OK)
     return rc;
-  mpm_sim_in_grid(s, bx, by);
+  s->k->grid(s, b);
   const mpm_material_type *mat = seeding(s);
   long bad;
   if (mat->nonlocal) {
@@ -639,24 +648,12 @@ static int step(mpm_sim *s, mpm_err *err)
   } else {
     bad = point_phase(s, mat);
   }
-  return mpm_sim_in_step_end(s, bad, err);
-}
-
-int mpm_sim_in_step_end(mpm_sim *s, long bad, mpm_err *err)
-{
-  if (bad >= 0)                              /* a non-finite stress: what, where, why */
-    return mpm_sim_check_state(s, s->t + s->dt, err);
-  if (s->usum)                               /* one mean stress per unit */
-    mpm_sim_in_unit_project(s);
-  s->t += s->dt;
-  s->step++;
-  const int rc = mpm_sim_check_speeds(s, s->t, err);
-  return rc != MPM_OK ? rc : mpm_sim_remove_points(s, s->t, err);
+  return step_end(s, bad, err);
 }
 
 int mpm_sim_step(mpm_sim *s, mpm_err *err)
 {
-  const int rc = s->dim == 3 ? mpm_sim3_step(s, err) : step(s, err);
+  const int rc = step(s, err);
   s->scan = MPM_SIM_SCAN_ALL;                /* outside a step nothing is known */
   return rc;
 }

@@ -1,101 +1,15 @@
-/* transfer.c: the weights of the step, the bands of points, the reordering
- * of the point store, and the grid phase (transfer.h; MODEL.md section 2
- * steps 1-3, [DK15] section 3.1).
- *
- * Threads. Point-to-grid adds every point's share to the nodes around it.
- * The points are binned by bands of unit rows (mesh.h, mpm_mesh_bands) deep
- * enough that two bands of one colour never share a node: the bands of one
- * colour run in parallel, the colours one after the other, and every node
- * sums its shares band by band and in point order within a band, whatever
- * the number of threads and whichever thread takes a band. The grid update
- * is independent per node. Results are bitwise independent of the thread
- * count. */
-#include "solver/transfer.h"
+/* units.c: the per-unit sums of the scheme's options (mesh.dilatation =
+ * "unit" and "element": B-bar with one mean stress per unit, the filled
+ * units as mixed Q1/P0 elements; docs/model.md), the reordering of the
+ * point store by unit rows, and APIC's table of node positions, for either
+ * dimension (solver_internal.h). The functions over units take the
+ * dimension D as an argument that is a constant where they are inlined (the
+ * callers dispatch once), so the loops over axes unroll. The unit sums run
+ * in point order on one thread: thread-count free. */
+#include "solver/solver_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
-/* ---- step 1: weights ------------------------------------------------------ */
-
-/* Room for the located points of n points. */
-static int reserve_located(mpm_sim *s, size_t n, mpm_err *err)
-{
-  if (n <= s->loc_cap && s->loc_i)
-    return MPM_OK;
-  if (n == 0)
-    n = 1;
-  int **ints[] = {&s->loc_i, &s->loc_j, &s->loc_n};
-  double **reals[] = {&s->loc_u, &s->loc_v};
-  for (size_t k = 0; k < sizeof ints / sizeof ints[0]; k++) {
-    int *a = realloc(*ints[k], n * sizeof **ints[k]);
-    if (!a)
-      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
-    *ints[k] = a;
-  }
-  for (size_t k = 0; k < sizeof reals / sizeof reals[0]; k++) {
-    double *a = realloc(*reals[k], n * sizeof **reals[k]);
-    if (!a)
-      return mpm_err_set(err, MPM_ENOMEM, "simulation: no memory for %zu located points", n);
-    *reals[k] = a;
-  }
-  s->loc_cap = n;
-  return MPM_OK;
-}
-
-/* Unit (i, j) and local (u, v) of points [a, b) as mpm_mesh_locate gives
- * them, for the points whose distances from the mesh origin lie in
- * [0, lx] x [0, ly] (on a periodic axis [0, lx): no wrap needed), which
- * periodic wraps and walls keep nearly all points to: one pass without
- * calls or branches, that vectorises. Returns 1 if a point was outside. */
-static int locate_inside(mpm_sim *s, size_t a, size_t b)
-{
-  const mpm_mesh *m = &s->mesh;
-  const double *restrict x = s->pts->x, *restrict y = s->pts->y;
-  int *restrict li = s->loc_i, *restrict lj = s->loc_j, *restrict ln = s->loc_n;
-  double *restrict lu = s->loc_u, *restrict lv = s->loc_v;
-  const double x0 = m->x0, y0 = m->y0, lx = m->lx, ly = m->ly, idx = m->idx, idy = m->idy;
-  const double x1 = x0 + lx, y1 = y0 + ly;
-  const int nx = m->nx, ny = m->ny, px = m->periodic_x, py = m->periodic_y, snx = m->snx;
-  int out = 0;
-#pragma omp simd reduction(| : out)
-  for (size_t p = a; p < b; p++) {
-    const double sx = x[p] - x0, sy = y[p] - y0;
-    /* the tests of mpm_mesh_axis_locate on each axis, less the wrap */
-    const int in = (px ? sx >= 0.0 && sx < lx : x[p] >= x0 && x[p] <= x1) &&
-                   (py ? sy >= 0.0 && sy < ly : y[p] >= y0 && y[p] <= y1);
-    out |= !in;
-    mpm_mesh_axis_unit(in ? sx : 0.0, idx, nx, &li[p], &lu[p]);
-    mpm_mesh_axis_unit(in ? sy : 0.0, idy, ny, &lj[p], &lv[p]);
-    ln[p] = lj[p] * snx + li[p];              /* storage id of node (i, j) */
-  }
-  return out;
-}
-
-/* Unit (i, j) and local (u, v) of every point; returns the index of the
- * first point outside the mesh, or n. */
-static long locate_all(mpm_sim *s)
-{
-  const mpm_points *P = s->pts;
-  const long n = (long)P->n, nc = (n + 255) / 256;
-  long first = n;
-#pragma omp parallel for schedule(static) reduction(min : first)
-  for (long c = 0; c < nc; c++) {
-    const long a = 256 * c, b = a + 256 < n ? a + 256 : n;
-    if (!locate_inside(s, (size_t)a, (size_t)b))
-      continue;
-    for (long p = a; p < b; p++) {           /* wraps, and points outside the mesh */
-      if (mpm_mesh_locate(&s->mesh, P->x[p], P->y[p], &s->loc_i[p], &s->loc_j[p],
-                          &s->loc_u[p], &s->loc_v[p]) && p < first)
-        first = p;
-      s->loc_n[p] = s->loc_j[p] * s->mesh.snx + s->loc_i[p];
-    }
-  }
-  return first;
-}
 
 /* The geometry of the run's units, axis by axis (the plane's third axis a
  * single unit): counts, sizes, origins, the index step of unit e along
@@ -111,20 +25,15 @@ typedef struct unit_grid {
 static unit_grid unit_grid_of(const mpm_sim *s)
 {
   const mpm_config *cfg = &s->cfg;
+  const mpm_mesh *m = &s->mesh;
   unit_grid g = {.bc = {{cfg->bc.left, cfg->bc.right}, {cfg->bc.bottom, cfg->bc.top},
                         {cfg->bc.front, cfg->bc.back}},
                  .side = {{MPM_OUTLET_LEFT, MPM_OUTLET_RIGHT}, {MPM_OUTLET_BOTTOM, MPM_OUTLET_TOP},
                           {MPM_OUTLET_FRONT, MPM_OUTLET_BACK}}};
-  if (s->dim == 3) {
-    const mpm_mesh3 *m = &s->mesh3;
-    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = m->nz;
-    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = m->dz;
-    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = m->z0;
-  } else {
-    const mpm_mesh *m = &s->mesh;
-    g.n[0] = m->nx, g.n[1] = m->ny, g.n[2] = 1;
-    g.h[0] = m->dx, g.h[1] = m->dy, g.h[2] = 1.0;
-    g.o[0] = m->x0, g.o[1] = m->y0, g.o[2] = 0.0;
+  for (int a = 0; a < 3; a++) {
+    g.n[a] = m->n[a];
+    g.h[a] = m->h[a];
+    g.o[a] = a < m->dim ? m->o[a] : 0.0;
   }
   g.step[0] = 1;
   g.step[1] = (size_t)g.n[0];
@@ -165,43 +74,6 @@ int mpm_sim_in_apic_extents_fit(const mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
-int mpm_sim_in_weights_all(mpm_sim *s, mpm_err *err)
-{
-  const mpm_points *P = s->pts;
-  int rc;
-  if (s->step % MPM_SIM_REORDER_EVERY == 0 && (rc = mpm_sim_in_reorder(s, err)) != MPM_OK)
-    return rc;
-  const int *row;
-  int reach;
-  if (s->located) {
-    if ((rc = reserve_located(s, P->n, err)) != MPM_OK)
-      return rc;
-    const long bad = locate_all(s);
-    if (bad < (long)P->n)
-      return mpm_err_set(err, MPM_EOUTSIDE,
-                         "point %d left the mesh at (%.6g, %.6g) m, t = %.6g s "
-                         "(mesh [%g, %g] x [%g, %g] m)", P->id[bad], P->x[bad], P->y[bad],
-                         s->t, s->mesh.x0, s->mesh.x0 + s->mesh.lx, s->mesh.y0,
-                         s->mesh.y0 + s->mesh.ly);
-    row = s->loc_j;
-    reach = 0;
-  } else {
-    if ((rc = mpm_shape_stencil_compute(s->st, s->shape, &s->mesh, P, s->t, err)) != MPM_OK) {
-      /* a point "outside" at a non-finite position or extent: say that */
-      if (rc == MPM_EOUTSIDE && mpm_sim_check_state(s, s->t, err) != MPM_OK)
-        return MPM_ENONFINITE;
-      return rc;
-    }
-    if (s->cfg.time.transfer == MPM_TRANSFER_APIC && s->shape->convect &&
-        (rc = mpm_sim_in_apic_extents_fit(s, err)) != MPM_OK)
-      return rc;
-    row = s->st->row;
-    reach = s->st->reach;
-  }
-  /* node rows j - reach .. j + 1 + reach of a point in unit row j */
-  return mpm_mesh_bands_sort(s->bands, s->mesh.ny, s->mesh.periodic_y, reach, reach + 1, P->n, row, err);
-}
-
 /* ---- reordering ------------------------------------------------------------ */
 
 int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
@@ -209,13 +81,15 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
   mpm_points *P = s->pts;
   const size_t n = P->n;
   const mpm_mesh *m = &s->mesh;
+  const int a = m->dim - 1;                    /* the band axis */
+  const double *y = P->pos[a];
   /* already in row order (a fresh fill, a still run)? A point outside the
    * mesh leaves the order alone: the step reports it. */
   int sorted = 1, prev = 0;
   for (size_t p = 0; p < n; p++) {
     int j;
     double v;
-    if (mpm_mesh_axis_locate(P->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y, &j, &v))
+    if (mpm_mesh_locate_axis(m, a, y[p], &j, &v))
       return MPM_OK;
     sorted &= j >= prev;
     prev = j;
@@ -232,9 +106,9 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
   int *row = s->scratch;                       /* unit row of each point */
   for (size_t p = 0; p < n; p++) {
     double v;
-    mpm_mesh_axis_locate(P->y[p], m->y0, m->ly, m->idy, m->ny, m->periodic_y, &row[p], &v);
+    mpm_mesh_locate_axis(m, a, y[p], &row[p], &v);
   }
-  int rc = mpm_mesh_bands_sort(s->bands, s->mesh.ny, s->mesh.periodic_y, 0, 0, n, row, err);  /* one row a band */
+  int rc = mpm_mesh_bands_sort(s->bands, m->n[a], m->periodic[a], 0, 0, n, row, err);  /* one row a band */
   if (rc == MPM_OK)
     mpm_points_permute(P, s->bands->idx, s->scratch);
   return rc;
@@ -244,11 +118,10 @@ int mpm_sim_in_reorder(mpm_sim *s, mpm_err *err)
 
 /* With mesh.dilatation = "unit" the units of the mesh carry the volumetric
  * part of the scheme (docs/model.md, "Volumetric strain rate and mean stress
- * per unit"): each point's in-plane mean stress s_m = (s_xx + s_yy)/2 acts
+ * per unit"): each point's mean stress s_m = (s_xx + s_yy [+ s_zz])/D acts
  * in point-to-grid as its unit's volume-weighted mean, its tr L is replaced
  * by its unit's volume-weighted mean, and after the update the dense
- * points of a unit share their unit's mean s_m. The unit sums run in point
- * order on one thread: thread-count free. */
+ * points of a unit share their unit's mean s_m. */
 
 int mpm_sim_in_node_table(mpm_sim *s, mpm_err *err)
 {
@@ -284,32 +157,18 @@ static int reserve_units(mpm_sim *s, mpm_err *err)
   return MPM_OK;
 }
 
-void mpm_sim_in_boxes(const mpm_sim *s, int *unit)
-{
-  const mpm_points *P = s->pts;
-  const mpm_mesh3 *m = &s->mesh3;
-  for (size_t p = 0; p < P->n; p++) {
-    const double x[3] = {P->x[p], P->y[p], P->z[p]};
-    int u[3];
-    double l[3];
-    unit[p] = mpm_mesh3_locate(m, x, u, l) ? -1 : u[0] + m->nx * (u[1] + m->ny * u[2]);
-  }
-}
-
-/* s->uof[p]: the unit holding point p now, -1 outside the mesh (3D: the
- * box, i + nx (j + ny k)). */
+/* s->uof[p]: the unit holding point p now, i + nx (j + ny k), -1 outside
+ * the mesh. */
 static void find_units(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
-  if (s->dim == 3) {
-    mpm_sim_in_boxes(s, s->uof);
-    return;
-  }
   const mpm_mesh m = s->mesh;             /* a copy: its fields stay in registers */
+  const int three = m.dim == 3;
   for (size_t p = 0; p < P->n; p++) {
-    int i, j;
-    double u, v;
-    s->uof[p] = mpm_mesh_locate(&m, P->x[p], P->y[p], &i, &j, &u, &v) ? -1 : i + m.nx * j;
+    const double x[3] = {P->x[p], P->y[p], three ? P->z[p] : 0.0};
+    int c[3];
+    double l[3];
+    s->uof[p] = mpm_mesh_locate(&m, x, c, l) ? -1 : (int)mpm_mesh_unit_index(&m, c);
   }
 }
 
@@ -318,15 +177,12 @@ static void find_units(mpm_sim *s)
  * all points or of the dense ones, or tr L_p over the D axes. */
 enum { MEAN_SM, MEAN_SM_DENSE, MEAN_TRL };
 
-/* The velocity gradient of point p kept over the step: the plane's per-point
- * arrays, or the 3D step's rows of 9 (mpm_sim_in_l3). */
+/* tr L_p of the velocity gradient of point p kept over the step. */
 static inline double trace_L(const mpm_sim *s, size_t p)
 {
-  if (s->dim == 3) {
-    const double *L = mpm_sim_in_l3(s) + 9 * p;
-    return L[0] + L[4] + L[8];
-  }
-  return s->lxx[p] + s->lyy[p];
+  if (s->dim == 3)
+    return s->L[0][p] + s->L[4][p] + s->L[8][p];
+  return s->L[0][p] + s->L[3][p];
 }
 
 static inline double mean_value(const mpm_sim *s, size_t p, int what)
@@ -337,9 +193,7 @@ static inline double mean_value(const mpm_sim *s, size_t p, int what)
 /* Units of the run's mesh. */
 static size_t unit_count(const mpm_sim *s)
 {
-  if (s->dim == 3)
-    return (size_t)s->mesh3.nx * (size_t)s->mesh3.ny * (size_t)s->mesh3.nz;
-  return (size_t)s->mesh.nx * (size_t)s->mesh.ny;
+  return s->mesh.nunits;
 }
 
 /* s->usum[2u + 1] = sum V_p f_p / sum V_p over the points of unit u
@@ -455,18 +309,15 @@ EL_INLINE void unit_corners(const mpm_sim *s, const unit_grid *g, int dim, size_
 {
   int at[3];
   unit_places(g, e, dim, at);
-  if (dim == 2)
-    for (int c = 0; c < 4; c++)
-      n[c] = mpm_mesh_node(&s->mesh, at[0] + (c & 1), at[1] + (c >> 1 & 1));
-  else
-    for (int c = 0; c < 8; c++)
-      n[c] = mpm_mesh3_node(&s->mesh3, at[0] + (c & 1), at[1] + (c >> 1 & 1), at[2] + (c >> 2 & 1));
+  for (int c = 0; c < 1 << dim; c++)
+    n[c] = mpm_mesh_node(&s->mesh, at[0] + (c & 1), at[1] + (c >> 1 & 1),
+                         dim == 3 ? at[2] + (c >> 2 & 1) : 0);
 }
 
 /* The nodal record of node i in a run of dimension D: its 2D lanes. */
 EL_INLINE double *node_record(const mpm_sim *s, int dim, int i)
 {
-  return dim == 3 ? s->nq3[i] : s->nq[i];
+  return s->nq + (size_t)(2 * dim) * (size_t)i;
 }
 
 /* |int_e dN_c/dx_d dV| over a unit, the same for every corner (its sign
@@ -507,7 +358,7 @@ EL_INLINE void element_forces_dim(mpm_sim *s, int dim)
   }
 }
 
-static void element_forces(mpm_sim *s)
+void mpm_sim_in_element_forces(mpm_sim *s)
 {
   if (s->dim == 3)
     element_forces_dim(s, 3);
@@ -714,20 +565,15 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
   else if (el)
     element_rates_dim(s, 2);
   const double dt = s->dt;
-  double *L3 = s->dim == 3 ? mpm_sim_in_l3(s) : NULL;
+  const int D = s->dim;
   for (size_t p = 0; p < P->n; p++) {
     const int u = s->uof[p];
     const double tr = trace_L(s, p);
     double div = u < 0 ? tr : s->usum[2 * u + 1];          /* the unit's divergence */
     if (el && u >= 0 && el[w * (size_t)u] > 0.0)
       div = el[w * (size_t)u + 1];
-    if (L3) {                                                /* L_ii += (div - tr)/D */
-      for (int i = 0; i < 3; i++)
-        L3[9 * p + 4 * i] += (div - tr) / 3.0;
-    } else {
-      s->lxx[p] += 0.5 * (div - tr);
-      s->lyy[p] += 0.5 * (div - tr);
-    }
+    for (int i = 0; i < D; i++)                              /* L_ii += (div - tr)/D */
+      s->L[(D + 1) * i][p] += D == 3 ? (div - tr) / 3.0 : 0.5 * (div - tr);
     P->vol[p] *= mpm_sim_volume_ratio(dt * div);             /* V *= exp(dt tr L) */
   }
 }
@@ -766,183 +612,4 @@ void mpm_sim_in_unit_project(mpm_sim *s)
     project_dim(s, 3);
   else
     project_dim(s, 2);
-}
-
-/* ---- steps 2-3 ---------------------------------------------------------------- */
-
-/* APIC's share of step 2 for point p: (mv)_i += S m_p C_p (x_i - x_p).
- * Out of line, so that the FLIP loops stay as lean as they were. */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void p2g_affine(const mpm_sim *s, double (*restrict nq)[4], size_t p, int c,
-                       const int *node, const double *S)
-{
-  const mpm_points *P = s->pts;
-  const double m = P->mass[p];
-  const double C[4] = {P->cxx[p], P->cxy[p], P->cyx[p], P->cyy[p]};
-  for (int k = 0; k < c; k++) {
-    double e[2];
-    mpm_sim_in_node_offset(s, node[k], P->x[p], P->y[p], &e[0], &e[1]);
-    mpm_tr_p2g_affine2(nq[node[k]], S[k] * m, C, e);
-  }
-}
-
-/* Step 2 for point p with weights (c, node, S, gx, gy):
- *   m_i += S m_p,  (mv)_i += S m_p v_p,  f_i += -V_p sigma_p . gradS_ip + S m_p b,
- * as one operation on four lanes per node: q_i += S a + dS/dx ax + dS/dy ay
- * with a = m_p (v_x, v_y, b_x, b_y), ax = -V_p (0, 0, s_xx, s_xy),
- * ay = -V_p (0, 0, s_xy, s_yy). With the B-bar dilatation the in-plane
- * mean stress s_m of the point is its unit's mean, or nothing in a filled
- * unit of "element" (el: s->uel, read once per band). With APIC the
- * momentum takes the affine part too, (mv)_i += S m_p C_p (x_i - x_p)
- * ([JSS+15]: it adds no momentum, sum S (x_i - x_p) = 0 for every shape
- * here). */
-static inline void p2g_point(const mpm_sim *s, double *restrict nm, double (*restrict nq)[4],
-                             size_t p, int c, const int *node, const double *S,
-                             const double *gx, const double *gy, double bx, double by, int bbar,
-                             const double *el, int apic)
-{
-  const mpm_points *P = s->pts;
-  const double m = P->mass[p], V = P->vol[p];
-  double sxx = P->sxx[p], syy = P->syy[p];
-  const double sxy = P->sxy[p];
-  if (bbar && s->uof[p] >= 0) {             /* s_m -> the unit's mean */
-    const double d = mpm_sim_in_bbar_shift(s, el, p);
-    sxx += d;
-    syy += d;
-  }
-  const double a[4] = {m * P->vx[p], m * P->vy[p], m * bx, m * by};
-  const double ad[2][4] = {{0.0, 0.0, -V * sxx, -V * sxy}, {0.0, 0.0, -V * sxy, -V * syy}};
-  const double *const g[2] = {gx, gy};
-  mpm_tr_p2g2(nm, nq, c, node, S, g, m, a, ad);
-  if (apic)
-    p2g_affine(s, nq, p, c, node, S);
-}
-
-/* Step 2 for the points of band k with the tests of the options. */
-static inline void p2g_points(const mpm_sim *s, int k, int kind, double bx, double by, int bbar,
-                              int apic)
-{
-  const mpm_mesh_bands *b = s->bands;
-  double *restrict nm = s->nm;
-  double (*restrict nq)[4] = s->nq;
-  const double *el = s->uel;
-  const int end = b->start[k + 1];
-  for (int q = b->start[k]; q < end; q++) {
-    const size_t p = (size_t)b->idx[q];
-    mpm_sim_in_basis buf;
-    const int *node;
-    const double *S, *gx, *gy;
-    const int c = mpm_sim_in_weights(s, p, kind, &buf, &node, &S, &gx, &gy);
-    p2g_point(s, nm, nq, p, c, node, S, gx, gy, bx, by, bbar, el, apic);
-  }
-}
-
-/* Step 2 for the points of band k; the plain FLIP loop compiled without the
- * B-bar and APIC tests. */
-static inline void p2g_band(const mpm_sim *s, int k, int kind, double bx, double by)
-{
-  const int bbar = s->usum != NULL, apic = s->cfg.time.transfer == MPM_TRANSFER_APIC;
-  if (bbar || apic)
-    p2g_points(s, k, kind, bx, by, bbar, apic);
-  else
-    p2g_points(s, k, kind, bx, by, 0, 0);
-}
-
-/* Step 3 on node i: boundary conditions, (mv)_i += dt f_i, v_i = (mv)_i/m_i.
- * A wall zeroes the constrained components of (mv)_i and of f_i ([DK15]
- * section 4: momentum fixed, its update suppressed). The acceleration the
- * points receive is the change of nodal velocity over the step,
- * a_i = f_i/m_i + (v_i^bc - v_i^n)/dt, where v_i^n = (mv)_i/m_i as mapped
- * and v_i^bc the same after the wall acted: f_i/m_i on free components (the
- * jump is exactly 0 there) and -v_i^n/dt on constrained ones. With
- * a_i = f_i/m_i = 0 there instead (boundary.wall_acceleration = "zero",
- * [DK15] read literally), a point stopped by a wall would keep its velocity
- * for ever (FLIP only adds increments): its position follows the grid and
- * stays put, but it reports kinetic energy it does not have, and a
- * kinetic-energy stop test never fires; in steady flow along a wall the jump
- * kicks the points beside it every step instead (docs/model.md).
- * With delta shape functions a node lighter than mlight (1e-3 of the mean
- * point mass: the points near it lie within about a thousandth of a unit of
- * its far edge) takes the body force only. Its internal force
- * -V sigma.gradS does not shrink with its weight S, so f_i/m_i grows as 1/S
- * when a stressed point crosses into an empty unit, and that velocity, times
- * gradS, enters L_p: a point's volume overflowed (1e111 m^2) this way at a
- * heap's surface. uGIMP gradients vanish with the weights (mlight = 0).
- * Nodes lighter than mtiny are empty: v_i = a_i = 0. */
-static inline void grid_node(mpm_sim *s, int i, double bx, double by, double idt)
-{
-  const double b[2] = {bx, by};
-  mpm_tr_grid_node2(&s->bc, i, s->bc.fix[i] != 0, s->nm[i], s->nq[i], b, s->dt, idt, s->mtiny,
-                    s->mlight);
-}
-
-/* Step 2 for band k with the weights of the step (a constant kind at each
- * call, so each is compiled for its weights). */
-static void p2g_band_of(const mpm_sim *s, int k, int kind, double bx, double by)
-{
-  switch (kind) {
-  case MPM_SIM_IN_Q4:
-    p2g_band(s, k, MPM_SIM_IN_Q4, bx, by);
-    break;
-  case MPM_SIM_IN_ELEMENT:
-    p2g_band(s, k, MPM_SIM_IN_ELEMENT, bx, by);
-    break;
-  default:
-    p2g_band(s, k, MPM_SIM_IN_STORED, bx, by);
-  }
-}
-
-/* Steps 2-3 in one parallel region: clear the nodes, each colour's bands in
- * parallel, the colours in turn, then the grid update by nodes; dim (a
- * constant at each call) picks the plane or the 3D records and kernels. */
-static inline void grid_phase(mpm_sim *s, int dim, const double b[3])
-{
-  const int kind = mpm_sim_in_kind(s);
-  const mpm_mesh_bands *bd = s->bands;
-  const int nn = dim == 3 ? s->mesh3.nnodes : s->mesh.nnodes;
-  const double idt = s->cfg.bc.wall_acceleration == MPM_WALL_ZERO ? 0.0 : 1.0 / s->dt;
-#pragma omp parallel
-  {
-#pragma omp for schedule(static)
-    for (int i = 0; i < nn; i++) {
-      s->nm[i] = 0.0;
-      if (dim == 3)
-        memset(s->nq3[i], 0, sizeof s->nq3[i]);
-      else
-        s->nq[i][0] = s->nq[i][1] = s->nq[i][2] = s->nq[i][3] = 0.0;
-    }
-    for (int col = 0; col < bd->ncolour; col++) {
-#pragma omp for schedule(dynamic, 1)
-      for (int k = col; k < bd->nb; k += bd->ncolour) {
-        if (dim == 3)
-          mpm_sim_in_p2g_band3(s, k, b);
-        else
-          p2g_band_of(s, k, kind, b[0], b[1]);
-      }
-    }
-    if (s->uel) {
-#pragma omp single
-      element_forces(s);
-    }
-#pragma omp for schedule(static)
-    for (int i = 0; i < nn; i++) {
-      if (dim == 3)
-        mpm_sim_in_grid_node3(s, i, b, idt);
-      else
-        grid_node(s, i, b[0], b[1], idt);
-    }
-  }
-}
-
-void mpm_sim_in_grid(mpm_sim *s, double bx, double by)
-{
-  const double b[3] = {bx, by, 0.0};
-  grid_phase(s, 2, b);
-}
-
-void mpm_sim_in_grid3(mpm_sim *s, const double b[3])
-{
-  grid_phase(s, 3, b);
 }

@@ -1,0 +1,235 @@
+/* corner.c: the CPDI corner rule (MODEL.md section 3, [DK-silo] App. B)
+ * summed over a mesh of either dimension (corners.h):
+ *   S_ip     = 2^-D sum_c N_i(x_c),
+ *   gradS_ip = sum_c w_c N_i(x_c),  w_c = 2^-D R^-T s_c,
+ * in the general form for any extent, and factorised by axis for an extent
+ * along the axes. In the plane the general form is [DK-silo]'s
+ *   gradS_ip = (1/A_p) { [N_i(x1) - N_i(x3)] (r1y - r2y, r2x - r1x)
+ *                      + [N_i(x2) - N_i(x4)] (r1y + r2y, -r1x - r2x) },
+ * A_p = 4 (r1x r2y - r1y r2x), term for term. Corners beyond a non-periodic
+ * face are clamped onto it (then the first-order invariants hold only
+ * approximately there); periodic axes wrap through the mesh basis. */
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+
+#include "shape/corners.h"
+
+/* Block side (nodes along each axis): slot a + BLOCK b (+ BLOCK^2 c). */
+enum { BLOCK = 4 };
+
+/* The general rule in D dimensions (D = m->dim, a constant where it is
+ * inlined). */
+static inline __attribute__((always_inline)) int
+general(const mpm_mesh *m, int D, const double x[3], const double *r, int *node, double *S,
+        double *const dS[3])
+{
+  int uc[3];
+  double lc[3];
+  if (mpm_mesh_locate(m, x, uc, lc))
+    return -1;                               /* the centre decides */
+  double co[24], wg[24];                     /* offsets x_c - x_p, weights w_c */
+  const double A = mpm_shape_in_corner_rule(D, r, co, wg);
+  if (A == 0.0)                              /* flat: the delta limit */
+    return mpm_mesh_basis_at(m, uc, lc, node, S, dS);
+  if (!isfinite(A))
+    return -1;                               /* extent not finite (or overflowing) */
+  const int nc = 1 << D;
+  int fin = 1;
+  for (int q = 0; q < D * nc; q++)
+    fin &= isfinite(co[q]) && isfinite(wg[q]);
+  if (!fin)
+    return -1;
+  /* per axis d: the corners located, unit ck (storage) and local cl, their
+   * offsets dk from the centre's unit, the block's first offset lo and its
+   * side bs in nodes */
+  int ck[3][8], dk[3][8], lo[3] = {0, 0, 0}, bs[3] = {1, 1, 1}, wide = 0;
+  double cl[3][8];
+  for (int d = 0; d < D; d++) {
+    double s[8];
+    for (int c = 0; c < nc; c++)
+      s[c] = x[d] + co[D * c + d];
+    if (mpm_shape_in_corners_axis(nc, s, m->o[d], m->len[d], m->ih[d], m->n[d], m->periodic[d],
+                                  ck[d], cl[d]))
+      return -1;
+    int a0 = INT_MAX, a1 = INT_MIN;
+    for (int c = 0; c < nc; c++) {
+      dk[d][c] = mpm_mesh_axis_offset(ck[d][c] - uc[d], m->n[d], m->periodic[d]);
+      a0 = dk[d][c] < a0 ? dk[d][c] : a0;
+      a1 = dk[d][c] > a1 ? dk[d][c] : a1;
+    }
+    lo[d] = a0;
+    bs[d] = a1 - a0 + 2;
+    wide |= bs[d] > BLOCK;
+  }
+  for (int c = 0; c < nc; c++)
+    ck[2][c] = D == 3 ? ck[2][c] : 0;
+  double *const col[4] = {S, dS[0], dS[1], dS[2]};
+  int cnt = 0;
+  /* S += N / 2^D, gradS += w_c N on the nodes of each corner's element, as
+   * records (S, g_x, g_y[, g_z]): one vector operation per node of a corner
+   * (a T3 element's fourth unit corner has N = 0: it adds nothing and is not
+   * marked used) */
+  const double share = D == 3 ? 0.125 : 0.25;
+  if (wide) {                                /* node by node, in corner order */
+    for (int c = 0; c < nc; c++) {
+      double N[8];
+      int id[8];
+      const int cu[3] = {ck[0][c], ck[1][c], ck[2][c]};
+      const double cv[3] = {cl[0][c], cl[1][c], D == 3 ? cl[2][c] : 0.0};
+      const unsigned mask = mpm_mesh_shape_corners(m, cu, cv, N);
+      mpm_mesh_unit_corners(m, cu, id);
+      for (int a = 0; a < nc; a++)
+        if (mask >> a & 1u) {
+          double v[4] = {share * N[a], wg[D * c] * N[a], wg[D * c + 1] * N[a], 0.0};
+          if (D == 3)
+            v[3] = wg[D * c + 2] * N[a];
+          mpm_shape_in_list_add(id[a], D + 1, v, node, col, &cnt);
+        }
+    }
+    return cnt;
+  }
+  double blk[BLOCK * BLOCK * BLOCK][4];
+  for (int k = 0; k < bs[2]; k++)
+    for (int j = 0; j < bs[1]; j++)
+      for (int i = 0; i < bs[0]; i++)
+        for (int l = 0; l < 4; l++)
+          blk[i + BLOCK * (j + BLOCK * k)][l] = 0.0;
+  /* slots of the unit corners 0 .. 2^D - 1 (corner order) from corner 0's */
+  const int slot[8] = {0, 1, BLOCK + 1, BLOCK, BLOCK * BLOCK, BLOCK * BLOCK + 1,
+                       BLOCK * BLOCK + BLOCK + 1, BLOCK * BLOCK + BLOCK};
+  uint64_t used = 0;
+  for (int c = 0; c < nc; c++) {
+    double N[8];
+    const int cu[3] = {ck[0][c], ck[1][c], ck[2][c]};
+    const double cv[3] = {cl[0][c], cl[1][c], D == 3 ? cl[2][c] : 0.0};
+    const unsigned mask = mpm_mesh_shape_corners(m, cu, cv, N);
+    const double G[4] = {share, wg[D * c], wg[D * c + 1], D == 3 ? wg[D * c + 2] : 0.0};
+    int at = dk[0][c] - lo[0] + BLOCK * (dk[1][c] - lo[1]);
+    if (D == 3)
+      at += BLOCK * BLOCK * (dk[2][c] - lo[2]);
+    for (int a = 0; a < nc; a++) {
+      if (!(mask >> a & 1u))
+        continue;
+      used |= (uint64_t)1 << (at + slot[a]);
+      double *b = blk[at + slot[a]];
+#pragma omp simd
+      for (int l = 0; l < 4; l++)
+        b[l] += G[l] * N[a];
+    }
+  }
+  /* the used nodes along the axes from the last; on a periodic axis of few
+   * units two of them can be one stored node: merged */
+  int merge = 0;
+  for (int d = 0; d < D; d++)
+    merge |= m->periodic[d] && m->n[d] < bs[d];
+  for (int k = 0; k < bs[2]; k++) {
+    const int ks = D == 3 ? mpm_mesh_axis_node(uc[2] + lo[2] + k, m->nz, m->periodic_z) : 0;
+    for (int j = 0; j < bs[1]; j++) {
+      const int js = mpm_mesh_axis_node(uc[1] + lo[1] + j, m->ny, m->periodic_y);
+      for (int i = 0; i < bs[0]; i++) {
+        const int q = i + BLOCK * (j + BLOCK * k);
+        if (!(used >> q & 1u))
+          continue;
+        const int id = (ks * m->sny + js) * m->snx +
+                       mpm_mesh_axis_node(uc[0] + lo[0] + i, m->nx, m->periodic_x);
+        if (merge) {
+          mpm_shape_in_list_add(id, D + 1, blk[q], node, col, &cnt);
+          continue;
+        }
+        node[cnt] = id;
+        S[cnt] = blk[q][0];
+        dS[0][cnt] = blk[q][1];
+        dS[1][cnt] = blk[q][2];
+        if (D == 3)
+          dS[2][cnt] = blk[q][3];
+        cnt++;
+      }
+    }
+  }
+  return cnt;
+}
+
+int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const double *r,
+                                int *node, double *S, double *const dS[3])
+{
+  const mpm_mesh mc = *m;    /* a copy: no store through node, S, dS can change it */
+  return mc.dim == 3 ? general(&mc, 3, x, r, node, S, dS) : general(&mc, 2, x, r, node, S, dS);
+}
+
+int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
+                           const double h[3], mpm_shape_axes *ax)
+{
+  enum { W = MPM_SHAPE_AXIS_NODES };
+  for (int d = 0; d < 3; d++) {
+    if (d >= m->dim) {                         /* the plane's z: one factor 1 */
+      ax->n[d] = 1;
+      ax->idx[d][0] = 0;
+      ax->A[d][0] = 1.0;
+      ax->B[d][0] = 0.0;
+      continue;
+    }
+    const double s[2] = {x[d] - h[d], x[d] + h[d]};
+    int ck[2], dk[2];
+    double cl[2];
+    if (mpm_shape_in_corners_axis(2, s, m->o[d], m->len[d], m->ih[d], m->n[d], m->periodic[d],
+                                  ck, cl))
+      return -1;
+    for (int q = 0; q < 2; q++)
+      dk[q] = mpm_mesh_axis_offset(ck[q] - c[d], m->n[d], m->periodic[d]);
+    const int lo = dk[0] < dk[1] ? dk[0] : dk[1];
+    const int bs = (dk[0] < dk[1] ? dk[1] : dk[0]) - lo + 2;
+    if (bs > W)
+      return -2;
+    double A[W], B[W];
+    for (int k = 0; k < W; k++)
+      A[k] = B[k] = 0.0;
+    const double ib = 0.5 / h[d];
+    for (int q = 0; q < 2; q++) {              /* corner -h (q = 0), +h (q = 1) */
+      const int at = dk[q] - lo;
+      const double phi[2] = {1.0 - cl[q], cl[q]}, sg = q ? ib : -ib;
+      for (int a = 0; a < 2; a++) {
+        A[at + a] += 0.5 * phi[a];
+        B[at + a] += sg * phi[a];
+      }
+    }
+    int cnt = 0;                               /* stored nodes; on a periodic axis of */
+    for (int k = 0; k < bs; k++) {             /* few units one can come twice: merged */
+      const int id = mpm_mesh_axis_node(c[d] + lo + k, m->n[d], m->periodic[d]);
+      int q = 0;
+      while (q < cnt && ax->idx[d][q] != id)
+        q++;
+      if (q == cnt) {
+        ax->idx[d][cnt] = id;
+        ax->A[d][cnt] = A[k];
+        ax->B[d][cnt] = B[k];
+        cnt++;
+      } else {
+        ax->A[d][q] += A[k];
+        ax->B[d][q] += B[k];
+      }
+    }
+    ax->n[d] = cnt;
+  }
+  return 0;
+}
+
+int mpm_shape_in_separable_list(const mpm_mesh *m, const mpm_shape_axes *ax, int *node,
+                                double *S, double *const dS[3])
+{
+  const int D = m->dim;
+  int cnt = 0;
+  for (int k = 0; k < ax->n[2]; k++)
+    for (int j = 0; j < ax->n[1]; j++) {
+      const int row = (ax->idx[2][k] * m->sny + ax->idx[1][j]) * m->snx;
+      for (int i = 0; i < ax->n[0]; i++) {
+        double g[3];
+        node[cnt] = row + ax->idx[0][i];
+        S[cnt] = mpm_shape_axes_weight(ax, D, i, j, k, g);
+        for (int d = 0; d < D; d++)
+          dS[d][cnt] = g[d];
+        cnt++;
+      }
+    }
+  return cnt;
+}
