@@ -120,7 +120,7 @@ START_TEST(t_elastic_update)
   ck_assert_double_eq_tol(par.K, 1e6 / 1.2, 1e-8);
   mpm_mat3 L = {{{0, 0, 0}, {0, -0.01, 0}, {0, 0, 0}}};
   mpm_mpoint pt = {.sigma = mpm_sym3_zero(), .rho = 1500};
-  mpm_material_elastic.update(&par, &L, 1e-3, &pt);
+  mpm_material_elastic.update_point(&par, &L, 1e-3, &pt, NULL);
   double dyy = -0.01 * 1e-3;
   ck_assert_double_eq_tol(pt.sigma.yy, (par.K + 4 * par.G / 3) * dyy, 1e-9);
   ck_assert_double_eq_tol(pt.sigma.xx, (par.K - 2 * par.G / 3) * dyy, 1e-9);

@@ -54,9 +54,27 @@ static void fill_units(pointset *ps, const mpm_mesh *m, int i0, int i1, int j0, 
       }
 }
 
+/* A point store holding the points of ps (positions, masses, volumes). */
+static mpm_points *store_of(const pointset *ps, int dim)
+{
+  mpm_points *P = mpm_points_alloc_dim(ps->n, dim);
+  ck_assert_ptr_nonnull(P);
+  for (size_t p = 0; p < ps->n; p++) {
+    size_t q;
+    ck_assert_int_eq(mpm_points_push(P, &q), MPM_OK);
+    P->x[q] = ps->x[p];
+    P->y[q] = ps->y[p];
+    P->mass[q] = ps->m[p];
+    P->vol[q] = ps->v[p];
+  }
+  return P;
+}
+
 static void compute(mpm_material_density *ws, const mpm_mesh *m, int rule, pointset *ps)
 {
-  mpm_material_density_compute(ws, m, rule, ps->n, ps->x, ps->y, NULL, ps->m, ps->v, ps->rho);
+  mpm_points *P = store_of(ps, 2);
+  mpm_material_density_compute(ws, m, rule, P, NULL, ps->rho);
+  mpm_points_free(P);
 }
 
 static mpm_material_density *density_ws(const mpm_mesh *m)
@@ -197,9 +215,9 @@ START_TEST(t_density_hybrid_block)
 }
 END_TEST
 
-/* The element and hybrid rules on a 3D grid of 5 x 4 x 5 boxes (the 3D
- * step gives every point's box, e = i + nx (j + ny k)): one point at the
- * centre of each box of i 1..3, j 0..2, k 0..3. Element: m / V_e in every
+/* The element and hybrid rules on a 3D mesh of 5 x 4 x 5 boxes of 0.1 m
+ * (with the points' boxes given, e = i + nx (j + ny k), and found from the
+ * positions): one point at the centre of each box of i 1..3, j 0..2, k 0..3. Element: m / V_e in every
  * box. Hybrid: the element density only where all 26 neighbours hold points
  * or lie beyond a non-periodic face, i = 2, j 0..1 and k 0..2 (k = -1 is
  * beyond the face); with z periodic, box k = 0 sees the empty k = 4, so
@@ -207,17 +225,20 @@ END_TEST
 START_TEST(t_density_3d_grid)
 {
   const int n[3] = {5, 4, 5};
-  const double vol = 1e-3;                          /* 0.1 m boxes */
   enum { NP = 3 * 3 * 4 };
-  double x[NP], y[NP], mass[NP], v[NP], rho[NP];
+  double rho[NP];
   int unit[NP], at[NP][3], np = 0;
+  mpm_points *P = mpm_points_alloc_dim(NP, 3);
   for (int k = 0; k <= 3; k++)
     for (int j = 0; j <= 2; j++)
       for (int i = 1; i <= 3; i++, np++) {
-        x[np] = 0.1 * i + 0.05;
-        y[np] = 0.1 * j + 0.05;
-        mass[np] = PM;
-        v[np] = PV;
+        size_t q;
+        ck_assert_int_eq(mpm_points_push(P, &q), MPM_OK);
+        P->x[q] = 0.1 * i + 0.05;
+        P->y[q] = 0.1 * j + 0.05;
+        P->z[q] = 0.1 * k + 0.05;
+        P->mass[q] = PM;
+        P->vol[q] = PV;
         unit[np] = i + n[0] * (j + n[1] * k);
         at[np][0] = i;
         at[np][1] = j;
@@ -225,14 +246,20 @@ START_TEST(t_density_3d_grid)
       }
   ck_assert_int_eq(np, NP);
   for (int pz = 0; pz <= 1; pz++) {
-    const int periodic[3] = {0, 0, pz};
-    mpm_material_density *ws = NULL;
+    mpm_mesh m = {.dim = 3, .nx = n[0], .ny = n[1], .nz = n[2], .dx = 0.1, .dy = 0.1,
+                  .dz = 0.1, .periodic_z = pz};
     mpm_err err = {0};
-    ck_assert_int_eq(mpm_material_density_alloc_grid(&ws, n, periodic, vol, &err), MPM_OK);
-    mpm_material_density_compute(ws, NULL, MPM_DENSITY_ELEMENT, NP, x, y, unit, mass, v, rho);
+    ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
+    const double vol = m.dx * m.dy * m.dz;
+    mpm_material_density *ws = NULL;
+    ck_assert_int_eq(mpm_material_density_alloc(&ws, &m, &err), MPM_OK);
+    mpm_material_density_compute(ws, &m, MPM_DENSITY_ELEMENT, P, unit, rho);
     for (int p = 0; p < NP; p++)
       ck_assert(near_rel(rho[p], PM / vol));
-    mpm_material_density_compute(ws, NULL, MPM_DENSITY_HYBRID, NP, x, y, unit, mass, v, rho);
+    mpm_material_density_compute(ws, &m, MPM_DENSITY_ELEMENT, P, NULL, rho);   /* from x */
+    for (int p = 0; p < NP; p++)
+      ck_assert(near_rel(rho[p], PM / vol));
+    mpm_material_density_compute(ws, &m, MPM_DENSITY_HYBRID, P, unit, rho);
     int inner = 0;
     for (int p = 0; p < NP; p++) {
       const int k0 = pz ? 1 : 0;
@@ -245,6 +272,7 @@ START_TEST(t_density_3d_grid)
     ck_assert_int_eq(inner, pz ? 4 : 6);
     mpm_material_density_free(ws);
   }
+  mpm_points_free(P);
 }
 END_TEST
 

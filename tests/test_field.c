@@ -85,7 +85,7 @@ static mpm_nonlocal *make_ws(const mpm_mesh *m, const mpm_points *P)
   mpm_nonlocal *ws = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, m, edge, MPM_NONLOCAL_CENTRE, P->n, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, m, P->n, P->x, P->y, &err), MPM_OK);
+  ck_assert_int_eq(mpm_nonlocal_locate(ws, m, P, &err), MPM_OK);
   return ws;
 }
 
@@ -128,7 +128,8 @@ START_TEST(t_explicit_is_the_steps)
     mpm_material_params par = ngf_params(sample);
     mpm_nonlocal *a = make_ws(&m, P), *b = make_ws(&m, P);
     mpm_err err = {0};
-    ck_assert_int_eq(mpm_nonlocal_field(a, &mpm_material_ngf, &par, P, NULL, 1e-4, &err), MPM_OK);
+    ck_assert_int_eq(mpm_nonlocal_field(a, &mpm_material_ngf, &par, P, NULL, 1e-4, 0, &err),
+                     MPM_OK);
     for (size_t p = 0; p < P->n; p++) {
       mpm_sym3 sig = {P->sxx[p], P->syy[p], P->szz[p], P->sxy[p], 0.0, 0.0};
       b->dense[p] = (unsigned char)mpm_material_ngf_dense(&par, sig, P->mass[p] / P->vol[p]);
@@ -165,7 +166,7 @@ START_TEST(t_implicit_residual)
   for (int big = 0; big < 2; big++) {
     const double h = big ? 1e3 * dt : dt;  /* c |L_h| = 0.023 and 23 */
     const double ch = mpm_material_ngf_diffusivity(&par, h);
-    ck_assert_int_eq(mpm_nonlocal_field(ws, &mpm_material_ngf, &par, P, NULL, h, &err), MPM_OK);
+    ck_assert_int_eq(mpm_nonlocal_field(ws, &mpm_material_ngf, &par, P, NULL, h, 0, &err), MPM_OK);
     const double *gs = mpm_nonlocal_implicit_gstar(ws->diffusion_state);
     /* L_h g* by the explicit operator on the same filled units */
     memcpy(chk->sm, ws->sm, NX * NY * sizeof(double));
@@ -204,7 +205,7 @@ START_TEST(t_implicit_nothing_dense)
   ck_assert_int_eq(mpm_nonlocal_set_diffusion(ws, MPM_DIFFUSION_IMPLICIT, &err), MPM_OK);
   for (int e = 0; e < NX * NY; e++)
     ws->lap[e] = 1.0;
-  ck_assert_int_eq(mpm_nonlocal_field(ws, &mpm_material_ngf, &par, P, NULL, 1e-3, &err), MPM_OK);
+  ck_assert_int_eq(mpm_nonlocal_field(ws, &mpm_material_ngf, &par, P, NULL, 1e-3, 0, &err), MPM_OK);
   for (int e = 0; e < NX * NY; e++)
     ck_assert_double_eq(ws->lap[e], 0.0);
   mpm_nonlocal_free(ws);

@@ -419,20 +419,21 @@ START_TEST(t_open_outlet)
     ws->sm[e] = 1.0;
     ws->ge[e] = 1.0;
   }
-  mpm_nonlocal_open_faces(ws, BOTTOM, 2, 4);   /* columns 2 and 3 */
+  const int cols[2][3] = {{2, 0, 0}, {4, 0, 0}}, none[3] = {0, 0, 0};
+  mpm_nonlocal_open_faces(ws, BOTTOM, cols[0], cols[1], NULL, NULL);   /* columns 2 and 3 */
   mpm_nonlocal_laplacian(ws);
   for (int i = 0; i < nx; i++) {
     const double want = i == 2 || i == 3 ? 0.0 : -2.0 / (dy * dy);
     ck_assert_double_eq_tol(ws->lap[i], want, 1e-12 / (dy * dy));
     ck_assert_double_eq_tol(ws->lap[i + nx], 0.0, 1e-12 / (dy * dy));
   }
-  mpm_nonlocal_open_faces(ws, -1, 0, 0);       /* closed again */
+  mpm_nonlocal_open_faces(ws, -1, none, none, NULL, NULL);            /* closed again */
   solve(im, ws, c);
   unsigned long seed = 11;
   double *g = malloc(nu * sizeof *g);
   for (size_t e = 0; e < nu; e++)
     g[e] = ws->ge[e] = 1.0 + lcg(&seed);
-  mpm_nonlocal_open_faces(ws, BOTTOM, 2, 4);
+  mpm_nonlocal_open_faces(ws, BOTTOM, cols[0], cols[1], NULL, NULL);
   solve(im, ws, c);
   mpm_linalg_stats st = mpm_nonlocal_implicit_stats(im);
   ck_assert_int_eq(st.analyses, 1);
@@ -450,7 +451,8 @@ START_TEST(t_open_outlet)
   for (int j = 0; j < ny; j++)
     for (int i = 0; i < nx; i++)
       ws->ge[i + nx * j] = f[j] = 1.0 + 0.5 * sin(0.9 * j);
-  mpm_nonlocal_open_faces(ws, BOTTOM, 0, nx);
+  const int all[3] = {nx, 0, 0}, from[3] = {0, 0, 0};
+  mpm_nonlocal_open_faces(ws, BOTTOM, from, all, NULL, NULL);
   solve(im, ws, c);
   thomas_1d(ny, dy, c, 1, 1, f, x);
   double err = 0.0;

@@ -22,6 +22,11 @@
  *     the spin term computed here by hand from E, nu and full 3x3 products.
  *  4. Parameter check: NaN in any key the model reads gives MPM_EINPUT with a
  *     message naming that key; a model without a key list here fails.
+ *  5. The batch update the step calls (mpm_material_type.update, its kernel
+ *     inlined into a vectorised loop once per dimension) is the point update
+ *     (update_point) point by point, bitwise: plane-strain points (L and the
+ *     stress in the plane) and 3D points (full L), every model, the
+ *     hyperelastic one with its F and Fp.
  *
  * Material: [DK15] Table 1 through mpm_material_config_dk15 and
  * mpm_material_params_from_config, E = 1e6 Pa (G = 3.85e5 Pa, K = 8.33e5 Pa)
@@ -161,7 +166,7 @@ static int rate_close(double a, double b, double scale)
 static mpm_mpoint run(mpm_material_update_fn update, const mpm_material_params *par,
                       const mpm_mat3 *L, double dt, mpm_mpoint pt)
 {
-  update(par, L, dt, &pt);
+  update(par, L, dt, &pt, NULL);
   return pt;
 }
 
@@ -179,13 +184,13 @@ static int variants(variant v[NVARIANT])
 {
   int n = 0;
   for (const mpm_material_type *const *t = mpm_material_table; *t && n < NVARIANT - 1; t++) {
-    if ((*t)->hyper)
+    if ((*t)->defgrad)
       continue;                 /* F and Fp, not a stress rate: tests/test_hyper.c */
     snprintf(v[n].name, sizeof v[n].name, "%s", (*t)->name);
-    v[n++].update = (*t)->update;
-    if ((*t)->update_steady) {
+    v[n++].update = (*t)->update_point;
+    if ((*t)->update_steady_point) {
       snprintf(v[n].name, sizeof v[n].name, "%s/steady", (*t)->name);
-      v[n++].update = (*t)->update_steady;
+      v[n++].update = (*t)->update_steady_point;
     }
   }
   return n;
@@ -483,6 +488,115 @@ START_TEST(t_check_rejects_nan)
 }
 END_TEST
 
+/* ------------------------------------------- 5. the batch is the point update */
+
+/* xorshift64* generator; state passed by the caller. */
+static double rnd(unsigned long long *st)
+{
+  *st ^= *st >> 12;
+  *st ^= *st << 25;
+  *st ^= *st >> 27;
+  return (double)((*st * 0x2545F4914F6CDD1DULL) >> 11) * 0x1.0p-53;
+}
+
+enum { NB = 37 };   /* not a multiple of a vector's width: a remainder too */
+
+/* One batch of NB random points of dimension dim through model t's update
+ * (steady: its steady form), nsub substeps, against update_point (or
+ * update_steady_point) point by point; 1 when every output is bitwise the
+ * same. */
+static int batch_is_point(const mpm_material_type *t, int steady, int dim, unsigned long long seed)
+{
+  const mpm_material_params par = table1(1e6, MPM_NGF_DK);
+  const int nsub = 3;
+  const double dt = 2e-4;
+  double L[9][NB], rho[NB], lap[NB], isp[NB], sig[6][NB], g[NB], gdp[NB], F[9][NB], Fp[9][NB];
+  int state[NB];
+  mpm_mpoint pt[NB];
+  mpm_mdeform def[NB];
+  mpm_mat3 Lm[NB];
+  for (int q = 0; q < NB; q++) {
+    mpm_mat3 l = {{{0.0}}};
+    for (int i = 0; i < dim; i++)
+      for (int j = 0; j < dim; j++)
+        l.m[i][j] = (rnd(&seed) - 0.5) * 40.0;               /* |L| ~ 20 1/s */
+    const double p = P0 * (q % 5 == 4 ? -0.1 : rnd(&seed) + 0.2);  /* some in tension */
+    mpm_sym3 s = {-p + 100.0 * (rnd(&seed) - 0.5), -p + 100.0 * (rnd(&seed) - 0.5),
+                  -p + 100.0 * (rnd(&seed) - 0.5), 300.0 * (rnd(&seed) - 0.5),
+                  dim == 3 ? 300.0 * (rnd(&seed) - 0.5) : 0.0,
+                  dim == 3 ? 300.0 * (rnd(&seed) - 0.5) : 0.0};
+    mpm_mat3 f = {{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        if (dim == 3 || (i < 2 && j < 2) || i == j)     /* plane strain: no out-of-plane shear */
+          f.m[i][j] -= (i == j ? 3e-3 : 1e-3) * rnd(&seed);  /* a compressed F */
+    pt[q] = (mpm_mpoint){.sigma = s, .rho = q % 7 == 3 ? RHO_L : RHO_D, .g = 5.0 * rnd(&seed),
+                         .lap = 1e3 * (rnd(&seed) - 0.5), .isp = 0.03 * rnd(&seed),
+                         .gdp = 0.0, .state = MPM_STATE_DENSE};
+    def[q] = (mpm_mdeform){.F = f, .Fp = {{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}}};
+    Lm[q] = l;
+    for (int i = 0; i < dim; i++)
+      for (int j = 0; j < dim; j++)
+        L[dim * i + j][q] = l.m[i][j];
+    rho[q] = pt[q].rho;
+    lap[q] = pt[q].lap;
+    isp[q] = pt[q].isp;
+    const double sv[6] = {s.xx, s.yy, s.zz, s.xy, s.yz, s.zx};
+    for (int k = 0; k < 6; k++)
+      sig[k][q] = sv[k];
+    g[q] = pt[q].g;
+    gdp[q] = pt[q].gdp;
+    state[q] = pt[q].state;
+    for (int e = 0; e < 9; e++) {
+      F[e][q] = def[q].F.m[e / 3][e % 3];
+      Fp[e][q] = def[q].Fp.m[e / 3][e % 3];
+    }
+  }
+  mpm_material_batch b = {.n = NB, .dim = dim, .rho = rho, .lap = t->nonlocal ? lap : NULL,
+                          .isp = t->nonlocal ? isp : NULL, .g = g, .gdp = gdp, .state = state};
+  for (int k = 0; k < dim * dim; k++)
+    b.L[k] = L[k];
+  for (int k = 0; k < (dim == 3 ? 6 : 4); k++)
+    b.sig[k] = sig[k];
+  for (int e = 0; t->defgrad && e < 9; e++) {
+    b.F[e] = F[e];
+    b.Fp[e] = Fp[e];
+  }
+  (steady ? t->update_steady : t->update)(&par, dt, nsub, &b);
+  int same = 1;
+  for (int q = 0; q < NB; q++) {
+    if (!t->nonlocal)
+      pt[q].lap = pt[q].isp = 0.0;
+    for (int k = 0; k < nsub; k++)
+      (steady ? t->update_steady_point : t->update_point)(&par, &Lm[q], dt, &pt[q], &def[q]);
+    const double sv[6] = {pt[q].sigma.xx, pt[q].sigma.yy, pt[q].sigma.zz, pt[q].sigma.xy,
+                          pt[q].sigma.yz, pt[q].sigma.zx};
+    for (int k = 0; k < (dim == 3 ? 6 : 4); k++)
+      same &= !memcmp(&sv[k], &sig[k][q], sizeof(double));
+    same &= !memcmp(&pt[q].g, &g[q], sizeof(double)) && !memcmp(&pt[q].gdp, &gdp[q], sizeof(double));
+    same &= pt[q].state == state[q];
+    for (int e = 0; t->defgrad && e < 9; e++)
+      same &= !memcmp(&def[q].F.m[e / 3][e % 3], &F[e][q], sizeof(double)) &&
+              !memcmp(&def[q].Fp.m[e / 3][e % 3], &Fp[e][q], sizeof(double));
+  }
+  return same;
+}
+
+START_TEST(t_batch_is_point)
+{
+  int checked = 0;
+  for (const mpm_material_type *const *t = mpm_material_table; *t; t++)
+    for (int steady = 0; steady < 1 + ((*t)->update_steady != NULL); steady++)
+      for (int dim = 2; dim <= 3; dim++) {
+        ck_assert_msg(batch_is_point(*t, steady, dim, 0x9E3779B97F4A7C15ULL + (unsigned)dim),
+                      "model %s%s, %dD: the batch update differs from the point update",
+                      (*t)->name, steady ? "/steady" : "", dim);
+        checked++;
+      }
+  ck_assert_int_ge(checked, 8);                /* 4 models in 2 dimensions, and steady forms */
+}
+END_TEST
+
 /* ------------------------------------------------------- registry */
 
 START_TEST(t_registry)
@@ -491,10 +605,10 @@ START_TEST(t_registry)
   for (const mpm_material_type *const *t = mpm_material_table; *t; t++, n++) {
     ck_assert_ptr_nonnull((*t)->name);
     ck_assert_ptr_nonnull((*t)->description);
-    /* a model with a stress update, or the hyperelastic one (F and Fp: the 3D
-     * step calls its kernel, tests/test_hyper.c) */
-    ck_assert((*t)->update != NULL || (*t)->hyper);
-    ck_assert_int_eq((*t)->update == NULL, (*t)->update_plane == NULL);
+    /* every model has both updates; a steady form, both of its own */
+    ck_assert_ptr_nonnull((*t)->update);
+    ck_assert_ptr_nonnull((*t)->update_point);
+    ck_assert_int_eq((*t)->update_steady == NULL, (*t)->update_steady_point == NULL);
     ck_assert_ptr_eq(mpm_material_lookup((*t)->name), *t);  /* names unique */
   }
   ck_assert_int_ge(n, 1);
@@ -516,6 +630,7 @@ int main(void)
   tcase_add_test(tc, t_zero_stays_zero);
   tcase_add_test(tc, t_elastic_step);
   tcase_add_test(tc, t_check_rejects_nan);
+  tcase_add_test(tc, t_batch_is_point);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

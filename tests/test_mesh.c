@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "mesh/mesh.h"
+#include "plane.h"
 
 #define TOL 1e-12
 
@@ -54,7 +55,7 @@ static mpm_mesh make_mesh(int topo, int diag, int px, int py)
 static void node_near(const mpm_mesh *m, int id, double xp, double yp,
                       double *x, double *y)
 {
-  mpm_mesh_node_pos(m, id % m->snx, id / m->snx, x, y);
+  plane_node_pos(m, id % m->snx, id / m->snx, x, y);
   if (m->periodic_x)
     *x += m->lx * round((xp - *x) / m->lx);
   if (m->periodic_y)
@@ -131,7 +132,7 @@ START_TEST(t_setup_rejects)
   ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_OK);
   ck_assert_int_eq(m.snx, 1);
   ck_assert_int_eq(m.nnodes, m.ny + 1);
-  ck_assert_int_eq(mpm_mesh_node(&m, 1, 2), mpm_mesh_node(&m, 0, 2));
+  ck_assert_int_eq(plane_node(&m, 1, 2), plane_node(&m, 0, 2));
 }
 END_TEST
 
@@ -163,7 +164,7 @@ START_TEST(t_node_storage)
       int *hit = calloc((size_t)m.nnodes, sizeof *hit);
       for (int j = 0; j <= m.ny; j++)
         for (int i = 0; i <= m.nx; i++) {
-          int id = mpm_mesh_node(&m, i, j);
+          int id = plane_node(&m, i, j);
           ck_assert_int_ge(id, 0);
           ck_assert_int_lt(id, m.nnodes);
           int is = (px && i == m.nx) ? 0 : i, js = (py && j == m.ny) ? 0 : j;
@@ -175,18 +176,18 @@ START_TEST(t_node_storage)
       free(hit);
       for (int j = 0; j <= m.ny; j++) {   /* aliasing of the periodic edges */
         if (px)
-          ck_assert_int_eq(mpm_mesh_node(&m, m.nx, j), mpm_mesh_node(&m, 0, j));
+          ck_assert_int_eq(plane_node(&m, m.nx, j), plane_node(&m, 0, j));
         else
-          ck_assert_int_ne(mpm_mesh_node(&m, m.nx, j), mpm_mesh_node(&m, 0, j));
+          ck_assert_int_ne(plane_node(&m, m.nx, j), plane_node(&m, 0, j));
       }
       for (int i = 0; i <= m.nx; i++) {
         if (py)
-          ck_assert_int_eq(mpm_mesh_node(&m, i, m.ny), mpm_mesh_node(&m, i, 0));
+          ck_assert_int_eq(plane_node(&m, i, m.ny), plane_node(&m, i, 0));
         else
-          ck_assert_int_ne(mpm_mesh_node(&m, i, m.ny), mpm_mesh_node(&m, i, 0));
+          ck_assert_int_ne(plane_node(&m, i, m.ny), plane_node(&m, i, 0));
       }
       if (px && py)
-        ck_assert_int_eq(mpm_mesh_node(&m, m.nx, m.ny), 0);
+        ck_assert_int_eq(plane_node(&m, m.nx, m.ny), 0);
     }
 }
 END_TEST
@@ -195,10 +196,10 @@ START_TEST(t_node_pos)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 1, 0);
   double x, y;
-  mpm_mesh_node_pos(&m, 3, 2, &x, &y);
+  plane_node_pos(&m, 3, 2, &x, &y);
   ck_assert_double_eq_tol(x, -0.4 + 3 * 0.13, TOL);
   ck_assert_double_eq_tol(y, 0.25 + 2 * 0.11, TOL);
-  mpm_mesh_node_pos(&m, m.nx, 0, &x, &y);  /* logical, not wrapped */
+  plane_node_pos(&m, m.nx, 0, &x, &y);  /* logical, not wrapped */
   ck_assert_double_eq_tol(x, -0.4 + m.lx, TOL);
   ck_assert_double_eq_tol(y, 0.25, TOL);
 }
@@ -210,25 +211,25 @@ START_TEST(t_wrap)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 1, 0);
   double x = m.x0 + m.lx + 0.3 * m.dx, y = m.y0 - 0.2;
-  mpm_mesh_wrap(&m, &x, &y);
+  plane_wrap(&m, &x, &y);
   ck_assert_double_eq_tol(x, m.x0 + 0.3 * m.dx, TOL);
   ck_assert(y == m.y0 - 0.2);                     /* y not periodic: untouched */
   x = m.x0 - 2.5 * m.lx;                          /* several periods */
-  mpm_mesh_wrap(&m, &x, &y);
+  plane_wrap(&m, &x, &y);
   ck_assert_double_eq_tol(x, m.x0 + 0.5 * m.lx, TOL);
   x = m.x0 + m.lx;                                /* the right edge is x0 */
-  mpm_mesh_wrap(&m, &x, &y);
+  plane_wrap(&m, &x, &y);
   ck_assert_double_eq_tol(x, m.x0, TOL);
   x = m.x0 + 0.123;                               /* inside: bit-identical */
-  mpm_mesh_wrap(&m, &x, &y);
+  plane_wrap(&m, &x, &y);
   ck_assert(x == m.x0 + 0.123);
   x = -1e-300 + m.x0;
-  mpm_mesh_wrap(&m, &x, &y);
+  plane_wrap(&m, &x, &y);
   ck_assert(x >= m.x0 && x < m.x0 + m.lx);
   mpm_mesh b = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 1);
   x = 10.0;
   y = b.y0 + 3.25 * b.ly;
-  mpm_mesh_wrap(&b, &x, &y);
+  plane_wrap(&b, &x, &y);
   ck_assert(x == 10.0);
   ck_assert_double_eq_tol(y, b.y0 + 0.25 * b.ly, TOL);
 }
@@ -238,45 +239,45 @@ START_TEST(t_unit_lookup)
 {
   mpm_mesh m = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 0, 0);
   int i = -9, j = -9;
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + 2.5 * m.dx, m.y0 + 1.5 * m.dy, &i, &j),
+  ck_assert_int_eq(plane_unit(&m, m.x0 + 2.5 * m.dx, m.y0 + 1.5 * m.dy, &i, &j),
                    MPM_OK);
   ck_assert_int_eq(i, 2);
   ck_assert_int_eq(j, 1);
   /* corners of the domain */
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0, m.y0, &i, &j), MPM_OK);
+  ck_assert_int_eq(plane_unit(&m, m.x0, m.y0, &i, &j), MPM_OK);
   ck_assert_int_eq(i, 0);
   ck_assert_int_eq(j, 0);
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + m.lx, m.y0 + m.ly, &i, &j), MPM_OK);
+  ck_assert_int_eq(plane_unit(&m, m.x0 + m.lx, m.y0 + m.ly, &i, &j), MPM_OK);
   ck_assert_int_eq(i, m.nx - 1);   /* right/top boundary: last unit */
   ck_assert_int_eq(j, m.ny - 1);
   /* an interior unit boundary belongs to the unit above / to the right */
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + 0.5 * m.dx, m.y0 + 2 * m.dy, &i, &j),
+  ck_assert_int_eq(plane_unit(&m, m.x0 + 0.5 * m.dx, m.y0 + 2 * m.dy, &i, &j),
                    MPM_OK);
   ck_assert_int_eq(j, 2);
   /* just outside each edge, and non-finite */
   const double e = 1e-12;
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 - e, m.y0 + 0.1, &i, &j), MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + m.lx + e, m.y0 + 0.1, &i, &j),
+  ck_assert_int_eq(plane_unit(&m, m.x0 - e, m.y0 + 0.1, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&m, m.x0 + m.lx + e, m.y0 + 0.1, &i, &j),
                    MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + 0.1, m.y0 - e, &i, &j), MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + 0.1, m.y0 + m.ly + e, &i, &j),
+  ck_assert_int_eq(plane_unit(&m, m.x0 + 0.1, m.y0 - e, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&m, m.x0 + 0.1, m.y0 + m.ly + e, &i, &j),
                    MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&m, NAN, m.y0 + 0.1, &i, &j), MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&m, m.x0 + 0.1, INFINITY, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&m, NAN, m.y0 + 0.1, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&m, m.x0 + 0.1, INFINITY, &i, &j), MPM_EOUTSIDE);
   /* periodic x wraps, y still bounded */
   mpm_mesh p = make_mesh(MPM_TOPO_Q4, MPM_DIAG_SLASH, 1, 0);
-  ck_assert_int_eq(mpm_mesh_unit(&p, p.x0 - 0.5 * p.dx, p.y0, &i, &j), MPM_OK);
+  ck_assert_int_eq(plane_unit(&p, p.x0 - 0.5 * p.dx, p.y0, &i, &j), MPM_OK);
   ck_assert_int_eq(i, p.nx - 1);
-  ck_assert_int_eq(mpm_mesh_unit(&p, p.x0 + p.lx + 1.5 * p.dx, p.y0, &i, &j),
+  ck_assert_int_eq(plane_unit(&p, p.x0 + p.lx + 1.5 * p.dx, p.y0, &i, &j),
                    MPM_OK);
   ck_assert_int_eq(i, 1);
-  ck_assert_int_eq(mpm_mesh_unit(&p, p.x0 + p.lx, p.y0, &i, &j), MPM_OK);
+  ck_assert_int_eq(plane_unit(&p, p.x0 + p.lx, p.y0, &i, &j), MPM_OK);
   ck_assert_int_eq(i, 0);  /* x0 + lx is x0 on a periodic axis */
-  ck_assert_int_eq(mpm_mesh_unit(&p, p.x0, p.y0 - e, &i, &j), MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&p, NAN, p.y0, &i, &j), MPM_EOUTSIDE);
-  ck_assert_int_eq(mpm_mesh_unit(&p, -INFINITY, p.y0, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&p, p.x0, p.y0 - e, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&p, NAN, p.y0, &i, &j), MPM_EOUTSIDE);
+  ck_assert_int_eq(plane_unit(&p, -INFINITY, p.y0, &i, &j), MPM_EOUTSIDE);
   /* a huge coordinate has no meaningful period: either answer, but no UB */
-  if (mpm_mesh_unit(&p, 1e300, p.y0, &i, &j) == MPM_OK) {
+  if (plane_unit(&p, 1e300, p.y0, &i, &j) == MPM_OK) {
     ck_assert_int_ge(i, 0);
     ck_assert_int_lt(i, p.nx);
   }
@@ -290,10 +291,10 @@ START_TEST(t_diagonal_rule)
   mpm_mesh r = make_mesh(MPM_TOPO_T3, MPM_DIAG_MIRROR, 0, 0);
   for (int i = 0; i < s.nx; i++)
     for (int j = 0; j < s.ny; j++) {
-      ck_assert_int_eq(mpm_mesh_unit_is_slash(&s, i, j), 1);
-      ck_assert_int_eq(mpm_mesh_unit_is_slash(&b, i, j), 0);
+      ck_assert_int_eq(mpm_mesh_column_is_slash(&s, i), 1);
+      ck_assert_int_eq(mpm_mesh_column_is_slash(&b, i), 0);
       /* mirror line at node column 3: units 0..2 "/", 3.. "\" */
-      ck_assert_int_eq(mpm_mesh_unit_is_slash(&r, i, j), i < 3);
+      ck_assert_int_eq(mpm_mesh_column_is_slash(&r, i), i < 3);
     }
 }
 END_TEST
@@ -315,28 +316,28 @@ START_TEST(t_t3_triangle_choice)
   mpm_mesh b = make_mesh(MPM_TOPO_T3, MPM_DIAG_BACKSLASH, 0, 0);
   int node[4];
   double N[4], gx[4], gy[4];
-  const int n00 = mpm_mesh_node(&s, 2, 1), n10 = mpm_mesh_node(&s, 3, 1);
-  const int n11 = mpm_mesh_node(&s, 3, 2), n01 = mpm_mesh_node(&s, 2, 2);
+  const int n00 = plane_node(&s, 2, 1), n10 = plane_node(&s, 3, 1);
+  const int n11 = plane_node(&s, 3, 2), n01 = plane_node(&s, 2, 2);
   /* "/" unit, (u, v) = (0.7, 0.2): lower-right triangle 00 10 11 */
   double x = s.x0 + 2.7 * s.dx, y = s.y0 + 1.2 * s.dy;
-  ck_assert_int_eq(mpm_mesh_basis(&s, x, y, node, N, gx, gy), 3);
+  ck_assert_int_eq(plane_basis(&s, x, y, node, N, gx, gy), 3);
   ck_assert(has_node(node, 3, n00) && has_node(node, 3, n10) &&
             has_node(node, 3, n11));
   /* (0.2, 0.7): upper-left 00 11 01 */
   x = s.x0 + 2.2 * s.dx;
   y = s.y0 + 1.7 * s.dy;
-  ck_assert_int_eq(mpm_mesh_basis(&s, x, y, node, N, gx, gy), 3);
+  ck_assert_int_eq(plane_basis(&s, x, y, node, N, gx, gy), 3);
   ck_assert(has_node(node, 3, n00) && has_node(node, 3, n11) &&
             has_node(node, 3, n01));
   /* "\" unit, (0.2, 0.2): lower-left 00 10 01; (0.8, 0.7): 10 11 01 */
   x = b.x0 + 2.2 * b.dx;
   y = b.y0 + 1.2 * b.dy;
-  ck_assert_int_eq(mpm_mesh_basis(&b, x, y, node, N, gx, gy), 3);
+  ck_assert_int_eq(plane_basis(&b, x, y, node, N, gx, gy), 3);
   ck_assert(has_node(node, 3, n00) && has_node(node, 3, n10) &&
             has_node(node, 3, n01));
   x = b.x0 + 2.8 * b.dx;
   y = b.y0 + 1.7 * b.dy;
-  ck_assert_int_eq(mpm_mesh_basis(&b, x, y, node, N, gx, gy), 3);
+  ck_assert_int_eq(plane_basis(&b, x, y, node, N, gx, gy), 3);
   ck_assert(has_node(node, 3, n10) && has_node(node, 3, n11) &&
             has_node(node, 3, n01));
 }
@@ -357,7 +358,7 @@ static void check_reproduction(const mpm_mesh *m, uint64_t *s)
     const double yp = m->y0 - ey + (m->ly + 2 * ey) * rnd(s);
     int node[4];
     double N[4], gx[4], gy[4];
-    ck_assert_int_eq(mpm_mesh_basis(m, xp, yp, node, N, gx, gy), want);
+    ck_assert_int_eq(plane_basis(m, xp, yp, node, N, gx, gy), want);
     double f = 0, fx = 0, fy = 0;
     for (int k = 0; k < want; k++) {
       ck_assert_int_ge(node[k], 0);
@@ -398,21 +399,21 @@ START_TEST(t_basis_boundary_and_outside)
   int node[4];
   double N[4], gx[4], gy[4];
   /* top-right corner of the domain: N = 1 on the last node */
-  ck_assert_int_eq(mpm_mesh_basis(&m, m.x0 + m.lx, m.y0 + m.ly, node, N, gx, gy),
+  ck_assert_int_eq(plane_basis(&m, m.x0 + m.lx, m.y0 + m.ly, node, N, gx, gy),
                    4);
-  const int last = mpm_mesh_node(&m, m.nx, m.ny);
+  const int last = plane_node(&m, m.nx, m.ny);
   for (int k = 0; k < 4; k++)
     ck_assert_double_eq_tol(N[k], node[k] == last ? 1.0 : 0.0, TOL);
-  ck_assert_int_eq(mpm_mesh_basis(&m, m.x0 - 1e-9, m.y0, node, N, gx, gy), -1);
-  ck_assert_int_eq(mpm_mesh_basis(&m, m.x0, m.y0 + m.ly + 1e-9, node, N, gx, gy),
+  ck_assert_int_eq(plane_basis(&m, m.x0 - 1e-9, m.y0, node, N, gx, gy), -1);
+  ck_assert_int_eq(plane_basis(&m, m.x0, m.y0 + m.ly + 1e-9, node, N, gx, gy),
                    -1);
-  ck_assert_int_eq(mpm_mesh_basis(&m, NAN, m.y0, node, N, gx, gy), -1);
+  ck_assert_int_eq(plane_basis(&m, NAN, m.y0, node, N, gx, gy), -1);
   /* periodic: the first node column is reached from the right edge */
   mpm_mesh p = make_mesh(MPM_TOPO_T3, MPM_DIAG_BACKSLASH, 1, 1);
-  ck_assert_int_eq(mpm_mesh_basis(&p, p.x0 + p.lx - 0.25 * p.dx,
+  ck_assert_int_eq(plane_basis(&p, p.x0 + p.lx - 0.25 * p.dx,
                                   p.y0 + p.ly - 0.25 * p.dy, node, N, gx, gy), 3);
   ck_assert(has_node(node, 3, 0));  /* node (nx, ny) is stored as 0 */
-  ck_assert_int_eq(mpm_mesh_basis(&p, INFINITY, p.y0, node, N, gx, gy), -1);
+  ck_assert_int_eq(plane_basis(&p, INFINITY, p.y0, node, N, gx, gy), -1);
 }
 END_TEST
 

@@ -258,7 +258,7 @@ START_TEST(t_split_update_and_flow_rule)
       double g0 = lcg(&s) < 0.1 ? 0.0 : logu(&s, 1e-3, 1e3);
       double lap = (lcg(&s) - 0.5) * logu(&s, 1e-2, 1e8);
       mpm_mpoint pt = point(s0, 1600.0, g0, lap);
-      mpm_material_ngf.update(&par, &L, dt, &pt);
+      mpm_material_ngf.update_point(&par, &L, dt, &pt, NULL);
       mpm_sym3 st = trial(&par, L, dt, s0);
       double p = mpm_sym3_pressure(st), tau_tr = mpm_sym3_tau(st);
       if (!(p > 0.0)) {
@@ -320,7 +320,7 @@ static mpm_mpoint ngf_steady_shear(const mpm_material_params *par, double gdot, 
   for (long k = 0; k < nsteps; k++) {
     mpm_sym3 prev = pt.sigma;
     double gprev = pt.g;
-    mpm_material_ngf.update(par, &L, dt, &pt);
+    mpm_material_ngf.update_point(par, &L, dt, &pt, NULL);
     *change = fmax(sym3_maxabs(mpm_sym3_axpy(pt.sigma, -1.0, prev)) / p0,
                    fabs(pt.g - gprev) / pt.g);
   }
@@ -375,13 +375,13 @@ START_TEST(t_seed_from_local)
   mpm_mat3 L = plane_L(0.0, 1.0, 0.0, 0.0);
   mpm_mpoint pt = point(stress(1000.0, 0.0, 0.0, 0.0), 1600.0, 0.0, 0.0);
   for (int k = 0; k < 20000; k++)
-    mpm_material_mu_i.update(&par, &L, 1e-5, &pt);
+    mpm_material_mu_i.update_point(&par, &L, 1e-5, &pt, NULL);
   double mu = mpm_sym3_tau(pt.sigma) / mpm_sym3_pressure(pt.sigma);
   pt.g = mpm_material_ngf_seed(pt.sigma, pt.gdp);
   ck_assert_double_eq_tol(pt.g * mu, pt.gdp, 1e-15 * pt.gdp);
   mpm_mpoint q = pt;
   for (int k = 0; k < 100; k++)
-    mpm_material_ngf.update(&par, &L, 1e-5, &q);
+    mpm_material_ngf.update_point(&par, &L, 1e-5, &q, NULL);
   ck_assert_double_eq_tol(q.g, pt.g, 1e-11 * pt.g);
   ck_assert_double_eq_tol(q.sigma.xy, pt.sigma.xy, 1e-11 * fabs(pt.sigma.xy));
   ck_assert_double_eq_tol(q.gdp, pt.gdp, 1e-11 * pt.gdp);
@@ -414,7 +414,7 @@ START_TEST(t_g_nonnegative)
       pt.lap = (lcg(&s) - 0.6) * logu(&s, 1.0, 1e9);
       int was_dense = mpm_sym3_pressure(pt.sigma) > 0.0;
       mpm_mpoint before = pt;
-      mpm_material_ngf.update(&par, &L, dt, &pt);
+      mpm_material_ngf.update_point(&par, &L, dt, &pt, NULL);
       ck_assert(isfinite(pt.g) && pt.g >= 0.0);
       ck_assert(isfinite(pt.gdp) && pt.gdp >= 0.0);
       if (pt.state == MPM_STATE_DISCONNECTED) {
@@ -452,7 +452,7 @@ START_TEST(t_disconnected)
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     mpm_mpoint pt = point(cases[i].s, cases[i].rho, 5.0, 1e6);
-    mpm_material_ngf.update(&par, &L, 1e-3, &pt);
+    mpm_material_ngf.update_point(&par, &L, 1e-3, &pt, NULL);
     ck_assert_int_eq(pt.state, MPM_STATE_DISCONNECTED);
     ck_assert_double_eq(sym3_maxabs(pt.sigma), 0.0);
     ck_assert_double_eq(pt.g, 0.0);
@@ -476,7 +476,7 @@ START_TEST(t_limits)
     for (size_t i = 0; i < sizeof ps / sizeof ps[0]; i++) {
       mpm_mpoint pt = point(stress(ps[i], 0.0, 0.5 * ps[i], 0.0), 1600.0, 10.0, 1e3);
       pt.sigma.xx = pt.sigma.yy = pt.sigma.zz = -ps[i];          /* exact p = ps[i] */
-      mpm_material_ngf.update(&par, &L, 1e-3, &pt);
+      mpm_material_ngf.update_point(&par, &L, 1e-3, &pt, NULL);
       ck_assert_int_eq(pt.state, MPM_STATE_DENSE);
       ck_assert(isfinite(pt.g) && pt.g >= 0.0 && isfinite(pt.gdp));
       double tau = mpm_sym3_tau(pt.sigma), p = mpm_sym3_pressure(pt.sigma);
@@ -487,7 +487,7 @@ START_TEST(t_limits)
     /* tau_tr = 0: no division by it */
     mpm_mat3 Z = plane_L(0, 0, 0, 0);
     mpm_mpoint q = point(stress(1000.0, 0.0, 0.0, 0.0), 1600.0, 2.0, 0.0);
-    mpm_material_ngf.update(&par, &Z, 1e-3, &q);
+    mpm_material_ngf.update_point(&par, &Z, 1e-3, &q, NULL);
     ck_assert_double_eq(q.sigma.xy, 0.0);
     ck_assert_double_eq(q.gdp, 0.0);
     ck_assert(q.g > 0.0 && q.g <= 2.0);                         /* decays, stays >= 0 */

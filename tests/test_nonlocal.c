@@ -27,6 +27,36 @@
 #include "mesh/mesh.h"
 #include "nonlocal/nonlocal.h"
 
+/* Locate n points at (x, y) in ws, with the extents r = {r1x, r1y, r2x, r2y}
+ * (arrays of n) when r is not NULL: the points as a store. */
+static int locate_xy(mpm_nonlocal *ws, const mpm_mesh *m, size_t n, const double *x,
+                     const double *y, const double *const r[4], mpm_err *err)
+{
+  mpm_points *P = mpm_points_alloc(n);
+  ck_assert_ptr_nonnull(P);
+  for (size_t p = 0; p < n; p++) {
+    size_t q;
+    ck_assert_int_eq(mpm_points_push(P, &q), MPM_OK);
+    P->x[q] = x[p];
+    P->y[q] = y[p];
+    if (r) {
+      P->r1x[q] = r[0][p];
+      P->r1y[q] = r[1][p];
+      P->r2x[q] = r[2][p];
+      P->r2y[q] = r[3][p];
+    }
+  }
+  const int rc = mpm_nonlocal_locate(ws, m, P, err);
+  mpm_points_free(P);
+  return rc;
+}
+
+/* 1 if unit (i, j) holds dense mass. */
+static int filled(const mpm_nonlocal *ws, int i, int j)
+{
+  return ws->sm[i + ws->grid.n[0] * j] > 0.0;
+}
+
 enum { LEFT = 0, RIGHT, BOTTOM, TOP };
 
 static mpm_mesh make_mesh(int nx, int ny, double dx, double dy, int px, int py)
@@ -93,7 +123,7 @@ static mpm_nonlocal *run(const mpm_mesh *m, const int edge[4], const cloud *c)
   mpm_nonlocal *ws = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, m, edge, MPM_NONLOCAL_CENTRE, 4, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, m, c->n, c->x, c->y, &err), MPM_OK);
+  ck_assert_int_eq(locate_xy(ws, m, c->n, c->x, c->y, NULL, &err), MPM_OK);
   mpm_nonlocal_average(ws, c->n, c->m, c->g, c->dense);
   mpm_nonlocal_laplacian(ws);
   return ws;
@@ -137,13 +167,13 @@ START_TEST(t_average_mass_weighted)
   mpm_nonlocal *ws = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, edge, MPM_NONLOCAL_CENTRE, 1, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m, N, x, y, &err), MPM_OK);  /* grows */
+  ck_assert_int_eq(locate_xy(ws, &m, N, x, y, NULL, &err), MPM_OK);  /* grows */
   mpm_nonlocal_average(ws, N, ms, g, dense);
   mpm_nonlocal_laplacian(ws);
   for (int j = 0; j < 4; j++)
     for (int i = 0; i < 5; i++) {
       int e = i + 5 * j;
-      ck_assert_int_eq(mpm_nonlocal_filled(ws, i, j), sm[e] > 0.0);
+      ck_assert_int_eq(filled(ws, i, j), sm[e] > 0.0);
       if (sm[e] > 0.0)
         ck_assert_double_eq_tol(ws->ge[e], smg[e] / sm[e], 1e-14 * 10.0);
       else {
@@ -152,7 +182,7 @@ START_TEST(t_average_mass_weighted)
       }
     }
   for (int j = 3, i = 0; i < 5; i++)
-    ck_assert(!mpm_nonlocal_filled(ws, i, j));
+    ck_assert(!filled(ws, i, j));
   /* a point reads its own unit's Laplacian */
   for (int p = 0; p < N; p++) {
     int i = (int)((x[p] - m.x0) / m.dx), j = (int)((y[p] - m.y0) / m.dy);
@@ -324,7 +354,7 @@ START_TEST(t_empty_neighbour_neumann)
   mpm_nonlocal_average(ws, c.n, c.m, c.g, c.dense);
   mpm_nonlocal_laplacian(ws);
   for (int j = 0; j < m.ny; j++) {
-    ck_assert(!mpm_nonlocal_filled(ws, 2, j));
+    ck_assert(!filled(ws, 2, j));
     double g0 = ws->ge[1 + m.nx * j], g1 = ws->ge[m.nx * j];
     ck_assert_double_eq_tol(ws->lap[1 + m.nx * j], (g1 - g0) / (m.dx * m.dx),
                             lap_tol(6.0, m.dx, m.dy));
@@ -368,7 +398,7 @@ START_TEST(t_periodic_wrap)
   unsigned char d[2] = {1, 1};
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m2, e2, MPM_NONLOCAL_CENTRE, 2, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m2, 2, x, y, &err), MPM_OK);
+  ck_assert_int_eq(locate_xy(ws, &m2, 2, x, y, NULL, &err), MPM_OK);
   mpm_nonlocal_average(ws, 2, ms, g, d);
   mpm_nonlocal_laplacian(ws);
   ck_assert_double_eq_tol(ws->lap[0], (3.0 - 2.0 + 3.0) / 0.01, 1e-10);
@@ -402,7 +432,7 @@ static double checker_amplitude(double r_target, int steps)
   mpm_nonlocal *ws = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, edge, MPM_NONLOCAL_CENTRE, N, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m, N, x, y, &err), MPM_OK);
+  ck_assert_int_eq(locate_xy(ws, &m, N, x, y, NULL, &err), MPM_OK);
   for (int p = 0; p < N; p++)
     ws->dense[p] = 1;                                   /* the workspace's flag array */
   for (int s = 0; s < steps; s++) {
@@ -506,7 +536,7 @@ START_TEST(t_unit_pressure_column)
   unsigned char d[2] = {1, 1};
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m2, e2, MPM_NONLOCAL_CENTRE, 2, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m2, 2, x, y, &err), MPM_OK);
+  ck_assert_int_eq(locate_xy(ws, &m2, 2, x, y, NULL, &err), MPM_OK);
   mpm_nonlocal_average(ws, 2, ms, g, d);
   mpm_nonlocal_pressure(ws, 2, ms, pr, d);
   ck_assert_double_eq_tol(ws->isp[1], sqrt(2.0), 1e-14);
@@ -574,8 +604,8 @@ START_TEST(t_errors)
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, ok, MPM_NONLOCAL_EXTENT + 1, 1, &err), MPM_EINVAL);
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, ok, MPM_NONLOCAL_CENTRE, 0, &err), MPM_OK);
   double x[2] = {0.0, 0.0}, y[2] = {1.3, 1.0};   /* y0 = 1.25: the second is below */
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m, 2, x, y, &err), MPM_EOUTSIDE);
-  ck_assert_msg(strstr(err.msg, "point index 1") != NULL, "%s", err.msg);
+  ck_assert_int_eq(locate_xy(ws, &m, 2, x, y, NULL, &err), MPM_EOUTSIDE);
+  ck_assert_msg(strstr(err.msg, "point 1 at") != NULL, "%s", err.msg);
   mpm_nonlocal_free(ws);
   mpm_nonlocal_free(NULL);
 }
@@ -593,7 +623,7 @@ static mpm_nonlocal *extent_ws(const mpm_mesh *m, const int edge[4], size_t n, c
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, m, edge, MPM_NONLOCAL_EXTENT, 1, &err), MPM_OK);
   const double *const r[4] = {r1x, r1y, r2x, r2y};
-  ck_assert_msg(mpm_nonlocal_locate_extents(ws, m, n, x, y, r, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_msg(locate_xy(ws, m, n, x, y, r, &err) == MPM_OK, "%s", err.msg);
   return ws;
 }
 
@@ -601,9 +631,9 @@ static mpm_nonlocal *extent_ws(const mpm_mesh *m, const int edge[4], size_t n, c
 static double weight_of(const mpm_nonlocal *ws, size_t p, int e)
 {
   double w = 0.0;
-  for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
-    if (ws->part[MPM_NONLOCAL_PARTS * p + k] == e)
-      w += ws->w[MPM_NONLOCAL_PARTS * p + k];
+  for (int k = 0; k < ws->nparts; k++)
+    if (ws->part[ws->nparts * p + k] == e)
+      w += ws->w[ws->nparts * p + k];
   return w;
 }
 
@@ -639,7 +669,7 @@ START_TEST(t_extent_inside_is_centre)
   mpm_nonlocal *we = extent_ws(&m, edge, N, x, y, r1x, r1y, r2x, r2y), *wc = NULL;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_nonlocal_alloc(&wc, &m, edge, MPM_NONLOCAL_CENTRE, N, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(wc, &m, N, x, y, &err), MPM_OK);
+  ck_assert_int_eq(locate_xy(wc, &m, N, x, y, NULL, &err), MPM_OK);
   for (size_t p = 0; p < N; p++) {
     ck_assert_int_eq(we->unit[p], wc->unit[p]);
     ck_assert(weight_of(we, p, wc->unit[p]) == 1.0);   /* exactly one pair, weight 1 */
@@ -734,7 +764,7 @@ START_TEST(t_extent_point_lap_filled_only)
   double ms[2] = {1.0, 1.0}, g[2] = {2.0, 5.0};
   unsigned char d[2] = {0, 1};                          /* only the inside point is dense */
   mpm_nonlocal_average(ws, 2, ms, g, d);
-  ck_assert(mpm_nonlocal_filled(ws, 1, 1) && !mpm_nonlocal_filled(ws, 2, 1));
+  ck_assert(filled(ws, 1, 1) && !filled(ws, 2, 1));
   ws->lap[5] = 7.0;
   ws->lap[6] = 1e6;                                     /* must not be read: empty */
   ck_assert_double_eq_tol(mpm_nonlocal_point_lap(ws, 0), 7.0, 1e-14);
@@ -837,8 +867,8 @@ START_TEST(t_extent_quadratic_and_uniform)
   for (size_t p = 0; p < c.n; p++) {
     smass += c.m[p];
     double s = 0.0;
-    for (int k = 0; k < MPM_NONLOCAL_PARTS; k++)
-      s += ws->w[MPM_NONLOCAL_PARTS * p + k];
+    for (int k = 0; k < ws->nparts; k++)
+      s += ws->w[ws->nparts * p + k];
     ck_assert_double_eq_tol(s, 1.0, 4.0 * DBL_EPSILON);   /* weights sum to 1 */
   }
   ck_assert_double_eq_tol(sw, smass, 1e-12 * smass);      /* mass is conserved */
@@ -856,7 +886,7 @@ START_TEST(t_extent_quadratic_and_uniform)
 }
 END_TEST
 
-/* Extent errors: wider than a unit, no extents given, unknown rule names. */
+/* Extent errors: wider than a unit, unknown rule names. */
 START_TEST(t_extent_errors)
 {
   mpm_mesh m = make_mesh(3, 3, 0.1, 0.2, 0, 0);
@@ -867,10 +897,9 @@ START_TEST(t_extent_errors)
   double x[2] = {m.x0 + 0.15, m.x0 + 0.15}, y[2] = {m.y0 + 0.3, m.y0 + 0.3};
   double r1x[2] = {0.03, 0.03}, r1y[2] = {0.0, 0.0}, r2x[2] = {0.0, 0.021}, r2y[2] = {0.1, 0.1};
   const double *const r[4] = {r1x, r1y, r2x, r2y};
-  ck_assert_int_eq(mpm_nonlocal_locate_extents(ws, &m, 2, x, y, r, &err), MPM_EINVAL);
-  ck_assert_msg(strstr(err.msg, "point index 1") != NULL, "%s", err.msg);   /* 0.051 > dx/2 */
-  ck_assert_int_eq(mpm_nonlocal_locate_extents(ws, &m, 1, x, y, r, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_locate(ws, &m, 1, x, y, &err), MPM_EINVAL);
+  ck_assert_int_eq(locate_xy(ws, &m, 2, x, y, r, &err), MPM_EINVAL);
+  ck_assert_msg(strstr(err.msg, "point 1 at") != NULL, "%s", err.msg);   /* 0.051 > dx/2 */
+  ck_assert_int_eq(locate_xy(ws, &m, 1, x, y, r, &err), MPM_OK);
   mpm_nonlocal_free(ws);
   ck_assert_int_eq(mpm_nonlocal_alloc(&ws, &m, edge, 2, 1, &err), MPM_EINVAL);
   ck_assert_int_eq(mpm_nonlocal_rule_from_name("centre"), MPM_NONLOCAL_CENTRE);

@@ -29,7 +29,7 @@
 #include "io/h5err.h"
 #include "io/io.h"
 #include "tmpdir.h"
-#include "mesh/box.h"
+#include "mesh/mesh.h"
 
 #define NFRAMES 3
 #define NSIDE 10             /* points along x and y; 3 layers in z */
@@ -106,14 +106,15 @@ static mpm_points *frame_points(int f, int dim)
   return pts;
 }
 
-static int fill_box(mpm_mesh3 *m, mpm_err *err)
+static int fill_box(mpm_mesh *m, mpm_err *err)
 {
   memset(m, 0, sizeof *m);
+  m->dim = 3;
   m->nx = m->ny = 10;
   m->nz = 3;
   m->dx = m->dy = m->dz = 0.1;
   m->periodic_z = 1;
-  return mpm_mesh3_setup(m, err);
+  return mpm_mesh_setup(m, err);
 }
 
 /* A fresh directory for this test's runs. */
@@ -139,13 +140,13 @@ static int write_frame(mpm_io_output *out, int f, int dim, mpm_err *err)
 /* The 3D run of NFRAMES frames in dir (made if needed); 0 or the status. */
 static int write_run3(const char *dir, mpm_err *err)
 {
-  mpm_mesh3 m;
+  mpm_mesh m;
   mpm_io_output *out = NULL;
   int rc0 = fill_box(&m, err);
   if (rc0 != MPM_OK)
     return rc0;
   const char *input = "# 3D test run\nmesh {\n  shape = \"delta\"\n}\n";
-  int rc = mpm_io_output_open3(&out, dir, &origin, input, &m, err);
+  int rc = mpm_io_output_open(&out, dir, &origin, input, &m, err);
   for (int f = 0; rc == MPM_OK && f < NFRAMES; f++)
     rc = write_frame(out, f, 3, err);
   int rc2 = mpm_io_output_close(out, err);
@@ -223,18 +224,21 @@ static void check_3d_arrays(const mpm_points *pts, int want_null)
 {
   int n3 = 0;
 #define NULL_(f, nm, d, u, D)                                                  \
-  if ((D) == 3) {                                                             \
+  if ((D) == MPM_POINT_3D) {                                                  \
     n3++;                                                                     \
     ck_assert_msg((pts->f == NULL) == want_null, "field %s: %s", nm,           \
                   want_null ? "allocated in a 2D store" : "NULL in a 3D store"); \
+  } else if ((D) == MPM_POINT_DEFGRAD) {                                      \
+    ck_assert_msg((pts->f == NULL) == !pts->defgrad, "field %s of F, Fp: %s", nm, \
+                  pts->defgrad ? "NULL with them" : "allocated without them");     \
   } else {                                                                    \
     ck_assert_msg(pts->f != NULL, "field %s NULL", nm);                       \
   }
   MPM_POINT_REAL_FIELDS(NULL_)
   MPM_POINT_INT_FIELDS(NULL_)
 #undef NULL_
-  /* z, vz, syz, szx, r1z, r2z, r3x..r3z; C: xz, yz, zx, zy, zz; F and Fp (9 each) */
-  ck_assert_int_eq(n3, 32);
+  /* z, vz, syz, szx, r1z, r2z, r3x..r3z; C: xz, yz, zx, zy, zz */
+  ck_assert_int_eq(n3, 14);
 }
 
 /* Point i of pts holds the values of point `tag` of frame f, every field. */
@@ -512,9 +516,9 @@ START_TEST(t_frames2_have_no_3d_fields)
   free(tx.buf);
   remove_tree(dir);
   make_tmpdir(dir);                              /* a 3D run takes no 2D store */
-  mpm_mesh3 m;
+  mpm_mesh m;
   ck_assert_int_eq(fill_box(&m, &err), MPM_OK);
-  ck_assert_int_eq(mpm_io_output_open3(&out, dir, &origin, "", &m, &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_open(&out, dir, &origin, "", &m, &err), MPM_OK);
   ck_assert_int_eq(write_frame(out, 0, 2, &err), MPM_EINVAL);
   ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
   remove_tree(dir);
@@ -628,6 +632,20 @@ START_TEST(t_checkpoint3_roundtrip)
   mpm_io_checkpoint ck;
   ck_assert_msg(mpm_io_checkpoint_read(dir, &ck, &err) == MPM_OK, "%s", err.msg);
   ck_assert_int_eq(ck.state.pts->dim, 3);
+  ck_assert_int_eq(ck.state.pts->defgrad, 0);
+  same_points(st.pts, ck.state.pts);
+  mpm_io_checkpoint_clear(&ck);
+  /* with the deformation gradients of a model that carries them (any values) */
+  ck_assert_int_eq(mpm_points_set_defgrad(st.pts, 1), MPM_OK);
+  for (size_t p = 0; p < st.pts->n; p++)
+    for (int e = 0; e < 9; e++) {
+      st.pts->F[e / 3][e % 3][p] = value(2, p, e);
+      st.pts->Fp[e / 3][e % 3][p] = value(3, p, e);
+    }
+  ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "input", "test", &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_checkpoint_read(dir, &ck, &err), MPM_OK);
+  ck_assert_int_eq(ck.state.pts->defgrad, 1);
+  check_3d_arrays(ck.state.pts, 0);
   same_points(st.pts, ck.state.pts);
   mpm_io_checkpoint_clear(&ck);
   /* a 2D store's checkpoint stays 2D, without 3D arrays */

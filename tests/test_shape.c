@@ -26,6 +26,7 @@
 #include "core/points.h"
 #include "mesh/mesh.h"
 #include "shape/shape.h"
+#include "plane.h"
 
 #define TOL 1e-12
 
@@ -62,7 +63,7 @@ static mpm_mesh make_mesh(int nx, int ny, int topo, int diag, int px, int py)
 static void node_near(const mpm_mesh *m, int id, double xp, double yp,
                       double *x, double *y)
 {
-  mpm_mesh_node_pos(m, id % m->snx, id / m->snx, x, y);
+  plane_node_pos(m, id % m->snx, id / m->snx, x, y);
   if (m->periodic_x)
     *x += m->lx * round((xp - *x) / m->lx);
   if (m->periodic_y)
@@ -103,7 +104,7 @@ static int check_invariants(const mpm_mesh *m, const mpm_shape_type *type,
 {
   int node[MPM_STENCIL_W];
   double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-  const int n = type->eval(m, xp, yp, r, node, S, gx, gy);
+  const int n = plane_eval(type, m, xp, yp, r, node, S, gx, gy);
   ck_assert_int_ge(n, 3);
   ck_assert_int_le(n, MPM_STENCIL_W);
   double s0 = 0, gsx = 0, gsy = 0, mx = 0, my = 0;
@@ -199,8 +200,8 @@ static int axes_against_general(const mpm_mesh *m, double xp, double yp, double 
   int na[MPM_STENCIL_W], ng[MPM_STENCIL_W];
   double Sa[MPM_STENCIL_W], xa[MPM_STENCIL_W], ya[MPM_STENCIL_W];
   double Sg[MPM_STENCIL_W], xg[MPM_STENCIL_W], yg[MPM_STENCIL_W];
-  const int ca = mpm_shape_ugimp.eval(m, xp, yp, ra, na, Sa, xa, ya);
-  const int cg = mpm_shape_ugimp.eval(m, xp, yp, rg, ng, Sg, xg, yg);
+  const int ca = plane_eval(&mpm_shape_ugimp, m, xp, yp, ra, na, Sa, xa, ya);
+  const int cg = plane_eval(&mpm_shape_ugimp, m, xp, yp, rg, ng, Sg, xg, yg);
   ck_assert_int_gt(ca, 0);
   ck_assert_int_gt(cg, 0);
   int q = 0, l = 0, extra = 0;
@@ -296,9 +297,10 @@ START_TEST(t_cpdi_convect)
   const double w = 3.0, dt = 1e-3, e = -2.0;
   const int n = 1000;
   double a[4] = {0.4, 0.1, -0.05, 0.3}, b[4] = {0.4, 0.1, -0.05, 0.3};
+  const double spin[4] = {0.0, -w, w, 0.0}, stretch[4] = {e, 0.0, 0.0, 0.0};
   for (int k = 0; k < n; k++) {
-    mpm_shape_extent_convect(&a[0], &a[1], &a[2], &a[3], 0.0, -w, w, 0.0, dt);
-    mpm_shape_extent_convect(&b[0], &b[1], &b[2], &b[3], e, 0.0, 0.0, 0.0, dt);
+    mpm_shape_extent_convect_dim(2, a, spin, dt);
+    mpm_shape_extent_convect_dim(2, b, stretch, dt);
   }
   const double th = n * atan(w * dt), g = pow(1.0 + w * dt * w * dt, 0.5 * n);
   const double c = cos(th), sn = sin(th), sx = pow(1.0 + e * dt, n);
@@ -322,8 +324,8 @@ static void expect_same_as_delta(const mpm_mesh *m, double xp, double yp,
   int na[MPM_STENCIL_W], nb[MPM_STENCIL_W];
   double Sa[MPM_STENCIL_W], xa[MPM_STENCIL_W], ya[MPM_STENCIL_W];
   double Sb[MPM_STENCIL_W], xb[MPM_STENCIL_W], yb[MPM_STENCIL_W];
-  const int a = mpm_shape_delta.eval(m, xp, yp, r, na, Sa, xa, ya);
-  const int b = mpm_shape_ugimp.eval(m, xp, yp, r, nb, Sb, xb, yb);
+  const int a = plane_eval(&mpm_shape_delta, m, xp, yp, r, na, Sa, xa, ya);
+  const int b = plane_eval(&mpm_shape_ugimp, m, xp, yp, r, nb, Sb, xb, yb);
   ck_assert_int_eq(a, b);
   for (int k = 0; k < a; k++) {
     int l = 0;
@@ -360,23 +362,23 @@ START_TEST(t_ugimp_hand_values)
   const double h = 0.03;
   const double r[4] = {h, 0.0, 0.0, h};
   double xp, yp;
-  mpm_mesh_node_pos(&m, 3, 2, &xp, &yp);
+  plane_node_pos(&m, 3, 2, &xp, &yp);
   int node[MPM_STENCIL_W];
   double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-  const int n = mpm_shape_ugimp.eval(&m, xp, yp, r, node, S, gx, gy);
+  const int n = plane_eval(&mpm_shape_ugimp, &m, xp, yp, r, node, S, gx, gy);
   ck_assert_int_eq(n, 9);
   const double ux = h / m.dx, uy = h / m.dy;
   int seen = 0;
   for (int k = 0; k < n; k++) {
-    if (node[k] == mpm_mesh_node(&m, 3, 2)) {
+    if (node[k] == plane_node(&m, 3, 2)) {
       ck_assert_double_eq_tol(S[k], (1 - ux) * (1 - uy), TOL);
       ck_assert_double_eq_tol(gx[k], 0.0, TOL);
       ck_assert_double_eq_tol(gy[k], 0.0, TOL);
       seen++;
-    } else if (node[k] == mpm_mesh_node(&m, 4, 3)) {
+    } else if (node[k] == plane_node(&m, 4, 3)) {
       ck_assert_double_eq_tol(S[k], ux * uy / 4, TOL);
       seen++;
-    } else if (node[k] == mpm_mesh_node(&m, 4, 2)) {
+    } else if (node[k] == plane_node(&m, 4, 2)) {
       const double N = ux * (1 - uy);
       ck_assert_double_eq_tol(S[k], N / 2, TOL);
       ck_assert_double_eq_tol(gx[k], N / (2 * h), TOL);
@@ -399,7 +401,7 @@ START_TEST(t_ugimp_clamped)
   const double r[4] = {0.4 * m.dx, 0.0, 0.0, 0.25 * m.dy};
   int node[MPM_STENCIL_W];
   double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-  const int n = mpm_shape_ugimp.eval(&m, m.x0 + 0.1 * m.dx, m.y0 + 2.5 * m.dy, r,
+  const int n = plane_eval(&mpm_shape_ugimp, &m, m.x0 + 0.1 * m.dx, m.y0 + 2.5 * m.dy, r,
                                      node, S, gx, gy);
   ck_assert_int_eq(n, 4);
   double s0 = 0, gsx = 0, gsy = 0;
@@ -415,14 +417,14 @@ START_TEST(t_ugimp_clamped)
   ck_assert_double_eq_tol(gsy, 0.0, TOL);
   /* centres on the edges and corners: inside; just beyond: outside */
   const double big[4] = {0.45 * m.dx, 0.1 * m.dy, -0.1 * m.dx, 0.45 * m.dy};
-  ck_assert_int_gt(mpm_shape_ugimp.eval(&m, m.x0, m.y0, big, node, S, gx, gy), 0);
-  ck_assert_int_gt(mpm_shape_ugimp.eval(&m, m.x0 + m.lx, m.y0 + m.ly, big, node, S,
+  ck_assert_int_gt(plane_eval(&mpm_shape_ugimp, &m, m.x0, m.y0, big, node, S, gx, gy), 0);
+  ck_assert_int_gt(plane_eval(&mpm_shape_ugimp, &m, m.x0 + m.lx, m.y0 + m.ly, big, node, S,
                                         gx, gy), 0);
-  ck_assert_int_eq(mpm_shape_ugimp.eval(&m, m.x0 - 1e-9, m.y0 + 0.1, big, node, S,
+  ck_assert_int_eq(plane_eval(&mpm_shape_ugimp, &m, m.x0 - 1e-9, m.y0 + 0.1, big, node, S,
                                         gx, gy), -1);
-  ck_assert_int_eq(mpm_shape_delta.eval(&m, m.x0 - 1e-9, m.y0 + 0.1, big, node, S,
+  ck_assert_int_eq(plane_eval(&mpm_shape_delta, &m, m.x0 - 1e-9, m.y0 + 0.1, big, node, S,
                                         gx, gy), -1);
-  ck_assert_int_eq(mpm_shape_ugimp.eval(&m, m.x0 + 0.1, m.y0 + m.ly + 1e-9, big,
+  ck_assert_int_eq(plane_eval(&mpm_shape_ugimp, &m, m.x0 + 0.1, m.y0 + m.ly + 1e-9, big,
                                         node, S, gx, gy), -1);
 }
 END_TEST
@@ -435,7 +437,7 @@ START_TEST(t_ugimp_periodic_wrap)
   const double r[4] = {0.4 * m.dx, 0.0, 0.0, 0.25 * m.dy};
   int node[MPM_STENCIL_W];
   double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-  const int n = mpm_shape_ugimp.eval(&m, m.x0 + 0.1 * m.dx, m.y0 + 2.5 * m.dy, r,
+  const int n = plane_eval(&mpm_shape_ugimp, &m, m.x0 + 0.1 * m.dx, m.y0 + 2.5 * m.dy, r,
                                      node, S, gx, gy);
   ck_assert_int_eq(n, 6);  /* columns nx-1, 0, 1 times rows 2, 3 */
   int last = 0;
@@ -449,7 +451,7 @@ START_TEST(t_ugimp_periodic_wrap)
   /* the same point given one period to the right has the same stencil */
   int node2[MPM_STENCIL_W];
   double S2[MPM_STENCIL_W], gx2[MPM_STENCIL_W], gy2[MPM_STENCIL_W];
-  ck_assert_int_eq(mpm_shape_ugimp.eval(&m, m.x0 + m.lx + 0.1 * m.dx,
+  ck_assert_int_eq(plane_eval(&mpm_shape_ugimp, &m, m.x0 + m.lx + 0.1 * m.dx,
                                         m.y0 + 2.5 * m.dy, r, node2, S2, gx2, gy2),
                    n);
   for (int k = 0; k < n; k++) {
@@ -473,7 +475,7 @@ static void row_sums(const mpm_mesh *m, const mpm_shape_type *type, double xp, d
 {
   int node[MPM_STENCIL_W];
   double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-  const int n = type->eval(m, xp, yp, r, node, S, gx, gy);
+  const int n = plane_eval(type, m, xp, yp, r, node, S, gx, gy);
   ck_assert_int_ge(n, 1);
   for (int j = 0; j < nrow; j++)
     sums[j][0] = sums[j][1] = sums[j][2] = 0.0;
@@ -607,18 +609,18 @@ START_TEST(t_stencil_matches_eval)
           const double r[4] = {pts->r1x[p], pts->r1y[p], pts->r2x[p], pts->r2y[p]};
           int node[MPM_STENCIL_W];
           double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-          const int n = mpm_shape_ugimp.eval(&m, pts->x[p], pts->y[p], r, node, S, gx, gy);
+          const int n = plane_eval(&mpm_shape_ugimp, &m, pts->x[p], pts->y[p], r, node, S, gx, gy);
           ck_assert_int_eq(st->count[p], n);
           int i, j;
           double u, v;
-          ck_assert_int_eq(mpm_mesh_locate(&m, pts->x[p], pts->y[p], &i, &j, &u, &v), 0);
+          ck_assert_int_eq(plane_locate(&m, pts->x[p], pts->y[p], &i, &j, &u, &v), 0);
           ck_assert_int_eq(st->row[p], j);
           const size_t o = p * (size_t)st->w;
           for (int k = 0; k < n; k++) {
             ck_assert_int_eq(st->node[o + k], node[k]);
             ck_assert(st->S[o + k] == S[k]);  /* same arithmetic: bit-identical */
-            ck_assert(st->dSx[o + k] == gx[k]);
-            ck_assert(st->dSy[o + k] == gy[k]);
+            ck_assert(st->dS[0][o + k] == gx[k]);
+            ck_assert(st->dS[1][o + k] == gy[k]);
           }
         }
       }

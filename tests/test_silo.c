@@ -24,6 +24,7 @@
 #include "mesh/mesh.h"
 #include "solver/solver.h"
 #include "sim_config.h"
+#include "plane.h"
 
 START_TEST(t_flow_rate_exact_line)
 {
@@ -106,23 +107,23 @@ START_TEST(t_staircase_triangle)
     ck_assert_int_eq(held, 15);                      /* (i, j) with i + j <= 4 */
     for (int j = 0; j <= 8; j++)
       for (int i = 0; i <= 8; i++) {
-        unsigned char f = bc.fix[mpm_mesh_node(&m, i, j)];
+        unsigned char f = bc.fix[plane_node(&m, i, j)];
         if (i + j > 4)
           ck_assert_int_eq(f, 0);
         else if (kind == MPM_BC_NOSLIP || i + j < 3)
           ck_assert_int_eq(f, both);                 /* rough, or away from open units */
         else if (i > 0 && j > 0) {                   /* at units the 45 deg side cuts */
           ck_assert_int_eq(f, MPM_FIX_N);
-          ck_assert_double_eq_tol(fabs(bc.normal[2 * mpm_mesh_node(&m, i, j)]), sqrt(0.5), 1e-15);
-          ck_assert_double_eq_tol(fabs(bc.normal[2 * mpm_mesh_node(&m, i, j) + 1]), sqrt(0.5), 1e-15);
+          ck_assert_double_eq_tol(fabs(bc.normal[2 * plane_node(&m, i, j)]), sqrt(0.5), 1e-15);
+          ck_assert_double_eq_tol(fabs(bc.normal[2 * plane_node(&m, i, j) + 1]), sqrt(0.5), 1e-15);
         }
       }
     if (kind == MPM_BC_FRICTIONLESS) {
       /* sides on the mesh edge face no open unit: solid, so that nothing slides
        * along them through the wall */
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 2)], both);       /* on x = 0 */
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 0)], both);       /* on y = 0 */
-      const unsigned char top = bc.fix[mpm_mesh_node(&m, 0, 4)];    /* vertex, open above */
+      ck_assert_int_eq(bc.fix[plane_node(&m, 0, 2)], both);       /* on x = 0 */
+      ck_assert_int_eq(bc.fix[plane_node(&m, 2, 0)], both);       /* on y = 0 */
+      const unsigned char top = bc.fix[plane_node(&m, 0, 4)];    /* vertex, open above */
       ck_assert(top == MPM_FIX_X || top == MPM_FIX_Y);
     }
     mpm_bc_clear(&bc);
@@ -138,45 +139,45 @@ START_TEST(t_outlet_masks)
   mpm_bc bc;
   mpm_err err = {0};
   ck_assert_int_eq(mpm_bc_setup(&bc, &m, edges, &err), MPM_OK);
-  ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, 0.0, 0.3, MPM_BC_NOSLIP, 0, &err),
+  ck_assert_int_eq(plane_set_outlet(&bc, &m, MPM_FACE_YLO, 0.0, 0.3, MPM_BC_NOSLIP, 0, &err),
                    MPM_OK);
   const unsigned char both = MPM_FIX_X | MPM_FIX_Y;
   for (int i = 0; i <= 10; i++)
-    ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, i, 0)], both);    /* closed: the whole floor */
+    ck_assert_int_eq(bc.fix[plane_node(&m, i, 0)], both);    /* closed: the whole floor */
   mpm_bc_open_outlet(&bc);
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 0)], MPM_FIX_X);  /* the symmetry line's own */
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 1, 0)], 0);
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 2, 0)], 0);
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 3, 0)], 0);          /* x = to: ends included */
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 4, 0)], both);
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 10, 0)], both);
-  ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, 0, 1)], MPM_FIX_X);
+  ck_assert_int_eq(bc.fix[plane_node(&m, 0, 0)], MPM_FIX_X);  /* the symmetry line's own */
+  ck_assert_int_eq(bc.fix[plane_node(&m, 1, 0)], 0);
+  ck_assert_int_eq(bc.fix[plane_node(&m, 2, 0)], 0);
+  ck_assert_int_eq(bc.fix[plane_node(&m, 3, 0)], 0);          /* x = to: ends included */
+  ck_assert_int_eq(bc.fix[plane_node(&m, 4, 0)], both);
+  ck_assert_int_eq(bc.fix[plane_node(&m, 10, 0)], both);
+  ck_assert_int_eq(bc.fix[plane_node(&m, 0, 1)], MPM_FIX_X);
   /* the unit faces between free nodes 0 .. 3: columns 0, 1, 2 */
   int lo = -1, hi = -1;
-  ck_assert_int_eq(mpm_bc_outlet_faces(&bc, &m, &lo, &hi), MPM_EDGE_BOTTOM);
+  ck_assert_int_eq(plane_outlet_faces(&bc, &m, &lo, &hi), MPM_FACE_YLO);
   ck_assert_int_eq(lo, 0);
   ck_assert_int_eq(hi, 3);
   /* leaving below the floor: through the orifice only */
-  ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.25, -1e-3), 1);
-  ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.35, -1e-3), 0);
+  ck_assert_int_eq(plane_left_through(&bc, &m, 0.25, -1e-3), 1);
+  ck_assert_int_eq(plane_left_through(&bc, &m, 0.35, -1e-3), 0);
   double x = 0.35, y = -1e-3, vx = 0.2, vy = -3.0;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
+  plane_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
   ck_assert_double_eq(y, 0.0);                                   /* held by the floor */
   ck_assert_double_eq(vy, -0.5);                                 /* no faster into it than the grid */
   ck_assert_double_eq(vx, 0.2);                                  /* slides on */
   x = 0.35;
   y = -1e-3;
   vy = -0.2;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
+  plane_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
   ck_assert_double_eq(vy, -0.2);                                 /* slower than the grid: kept */
   y = -1e-3;
   vy = -3.0;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, 0.3);
+  plane_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, 0.3);
   ck_assert_double_eq(vy, 0.0);                                  /* grid moving off: none into it */
   x = 0.25;
   y = -1e-3;
   vy = -3.0;
-  mpm_bc_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
+  plane_clamp(&bc, &m, &x, &y, &vx, &vy, 0.1, -0.5);
   ck_assert_double_eq(y, -1e-3);                                 /* falls through */
   ck_assert_double_eq(vy, -3.0);
   mpm_bc_clear(&bc);
@@ -197,25 +198,25 @@ START_TEST(t_outlet_held_ends)
     mpm_bc bc;
     mpm_err err = {0};
     ck_assert_int_eq(mpm_bc_setup(&bc, &m, edges, &err), MPM_OK);
-    ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, 0.2, 0.6, MPM_BC_NOSLIP, held,
+    ck_assert_int_eq(plane_set_outlet(&bc, &m, MPM_FACE_YLO, 0.2, 0.6, MPM_BC_NOSLIP, held,
                                        &err), MPM_OK);
     for (int i = 0; i <= 10; i++)
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, i, 0)], both);  /* closed: the whole floor */
+      ck_assert_int_eq(bc.fix[plane_node(&m, i, 0)], both);  /* closed: the whole floor */
     mpm_bc_open_outlet(&bc);
     int nfree = 0;
     for (int i = 0; i <= 10; i++) {
-      const unsigned char f = bc.fix[mpm_mesh_node(&m, i, 0)];
+      const unsigned char f = bc.fix[plane_node(&m, i, 0)];
       const int inside = held ? (i > 2 && i < 6) : (i >= 2 && i <= 6);
       ck_assert_int_eq(f, inside ? 0 : both);
       nfree += f == 0;
     }
     ck_assert_int_eq(nfree, held ? 3 : 5);
     int lo = -1, hi = -1;
-    ck_assert_int_eq(mpm_bc_outlet_faces(&bc, &m, &lo, &hi), MPM_EDGE_BOTTOM);
+    ck_assert_int_eq(plane_outlet_faces(&bc, &m, &lo, &hi), MPM_FACE_YLO);
     ck_assert_int_eq(lo, 2);
     ck_assert_int_eq(hi, 6);
-    ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.25, -1e-3), 1);
-    ck_assert_int_eq(mpm_bc_left_through_outlet(&bc, &m, 0.65, -1e-3), 0);
+    ck_assert_int_eq(plane_left_through(&bc, &m, 0.25, -1e-3), 1);
+    ck_assert_int_eq(plane_left_through(&bc, &m, 0.65, -1e-3), 0);
     mpm_bc_clear(&bc);
   }
 }
@@ -234,20 +235,20 @@ START_TEST(t_outlet_held_ends_symmetry)
   for (int side = 0; side <= 1; side++)
     for (int sym = 0; sym <= 1; sym++) {
       int edges[4] = {MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_NOSLIP, MPM_BC_FREE};
-      edges[side ? MPM_EDGE_RIGHT : MPM_EDGE_LEFT] = sym ? MPM_BC_SYMMETRY : MPM_BC_FRICTIONLESS;
+      edges[side ? MPM_FACE_XHI : MPM_FACE_XLO] = sym ? MPM_BC_SYMMETRY : MPM_BC_FRICTIONLESS;
       mpm_bc bc;
       mpm_err err = {0};
       ck_assert_int_eq(mpm_bc_setup(&bc, &m, edges, &err), MPM_OK);
       const double from = side ? 0.7 : 0.0, to = side ? 1.0 : 0.3;
-      ck_assert_int_eq(mpm_bc_set_outlet(&bc, &m, MPM_EDGE_BOTTOM, from, to, MPM_BC_NOSLIP, 1,
+      ck_assert_int_eq(plane_set_outlet(&bc, &m, MPM_FACE_YLO, from, to, MPM_BC_NOSLIP, 1,
                                          &err), MPM_OK);
       mpm_bc_open_outlet(&bc);
       const int corner = side ? 10 : 0, inner[2] = {side ? 8 : 1, side ? 9 : 2};
       const int end = side ? 7 : 3;
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, corner, 0)], sym ? MPM_FIX_X : both);
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, inner[0], 0)], 0);
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, inner[1], 0)], 0);
-      ck_assert_int_eq(bc.fix[mpm_mesh_node(&m, end, 0)], both);
+      ck_assert_int_eq(bc.fix[plane_node(&m, corner, 0)], sym ? MPM_FIX_X : both);
+      ck_assert_int_eq(bc.fix[plane_node(&m, inner[0], 0)], 0);
+      ck_assert_int_eq(bc.fix[plane_node(&m, inner[1], 0)], 0);
+      ck_assert_int_eq(bc.fix[plane_node(&m, end, 0)], both);
       mpm_bc_clear(&bc);
     }
 }
@@ -423,25 +424,33 @@ START_TEST(t_nodal_density)
 {
   mpm_mesh m;
   unit_mesh(&m, 5, 4, 0.1);
-  double x[32], y[32], mass[32], rho[32];
-  size_t n = 0;
+  double rho[32];
+  mpm_points *P = mpm_points_alloc(16), *one = mpm_points_alloc(1);
   const double rho0 = 1500.0, mp = rho0 * 0.05 * 0.05;
   for (int j = 0; j < 4; j++)              /* units (1..2, 1..2): x, y in [0.1, 0.3] */
     for (int i = 0; i < 4; i++) {
-      x[n] = 0.1 + 0.025 + 0.05 * i;
-      y[n] = 0.1 + 0.025 + 0.05 * j;
-      mass[n++] = mp;
+      size_t q;
+      ck_assert_int_eq(mpm_points_push(P, &q), MPM_OK);
+      P->x[q] = 0.1 + 0.025 + 0.05 * i;
+      P->y[q] = 0.1 + 0.025 + 0.05 * j;
+      P->mass[q] = mp;
     }
   mpm_err err = {0};
-  ck_assert_int_eq(mpm_diag_nodal_density(&m, n, x, y, mass, rho, &err), MPM_OK);
-  for (size_t p = 0; p < n; p++)
+  ck_assert_int_eq(mpm_diag_nodal_density(&m, P, rho, &err), MPM_OK);
+  for (size_t p = 0; p < P->n; p++)
     ck_assert_double_eq_tol(rho[p], rho0, 1e-9 * rho0);
-  double x1 = 0.45, y1 = 0.35, m1 = 2.0, r1;
-  ck_assert_int_eq(mpm_diag_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_OK);
-  ck_assert_double_eq_tol(r1, m1 / (0.1 * 0.1), 1e-9 * r1);
-  x1 = 0.6;                                /* outside: an error naming it */
-  ck_assert_int_eq(mpm_diag_nodal_density(&m, 1, &x1, &y1, &m1, &r1, &err), MPM_EOUTSIDE);
+  size_t q;
+  ck_assert_int_eq(mpm_points_push(one, &q), MPM_OK);
+  one->x[q] = 0.45;
+  one->y[q] = 0.35;
+  one->mass[q] = 2.0;
+  ck_assert_int_eq(mpm_diag_nodal_density(&m, one, rho, &err), MPM_OK);
+  ck_assert_double_eq_tol(rho[0], 2.0 / (0.1 * 0.1), 1e-9 * rho[0]);
+  one->x[q] = 0.6;                         /* outside: an error naming it */
+  ck_assert_int_eq(mpm_diag_nodal_density(&m, one, rho, &err), MPM_EOUTSIDE);
   ck_assert_ptr_nonnull(strstr(err.msg, "(0.6, 0.35)"));
+  mpm_points_free(P);
+  mpm_points_free(one);
 }
 END_TEST
 

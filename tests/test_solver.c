@@ -15,7 +15,8 @@
 #include "core/config.h"
 #include "diag/diag.h"
 #include "solver/solver.h"
-#include "solver/transfer.h"
+#include "solver/solver_internal.h"
+#include "plane.h"
 #include "sim_config.h"
 
 #ifdef _OPENMP
@@ -191,7 +192,8 @@ START_TEST(t_volume_ratio)
   double vol[N];
   for (int k = 0; k < N; k++)
     vol[k] = 2.0;
-  mpm_sim_volume_update(vol, lxx, lyy, N, dt);
+  const double *const trl[3] = {lxx, lyy, NULL};
+  mpm_sim_volume_update(vol, trl, 2, N, dt);
   for (int k = 0; k < N; k++) {
     const double x = dt * (lxx[k] + lyy[k]);
     ck_assert_double_eq(vol[k], 2.0 * mpm_sim_volume_ratio(x));
@@ -222,7 +224,7 @@ START_TEST(t_bbar_unit_dilatation)
       s->pts->vx[p] = 3.0 * (x - 0.2) * (y - 0.2) / 0.01 + 0.5 * (x - 0.2) * (x - 0.2) / 0.01;
       s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
       v0[p] = s->pts->vol[p];
-      ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &unit[p][0], &unit[p][1]), MPM_OK);
+      ck_assert_int_eq(plane_unit(&s->mesh, x, y, &unit[p][0], &unit[p][1]), MPM_OK);
       xi[p] = (x - s->mesh.x0) / c.mesh.dx - unit[p][0];
       eta[p] = (y - s->mesh.y0) / c.mesh.dy - unit[p][1];
     }
@@ -231,13 +233,13 @@ START_TEST(t_bbar_unit_dilatation)
     double trl[16], ctr[16];                   /* tr L at the point and at the unit centre */
     for (size_t p = 0; p < n; p++) {
       int i = unit[p][0], j = unit[p][1];
-      int n0 = mpm_mesh_node(&s->mesh, i, j), n1 = mpm_mesh_node(&s->mesh, i + 1, j);
-      int n2 = mpm_mesh_node(&s->mesh, i + 1, j + 1), n3 = mpm_mesh_node(&s->mesh, i, j + 1);
+      int n0 = plane_node(&s->mesh, i, j), n1 = plane_node(&s->mesh, i + 1, j);
+      int n2 = plane_node(&s->mesh, i + 1, j + 1), n3 = plane_node(&s->mesh, i, j + 1);
       for (int at = 0; at < 2; at++) {
         const double a = at ? 0.5 : xi[p], b = at ? 0.5 : eta[p];
-        (at ? ctr : trl)[p] = ((1.0 - b) * (s->nq[n1][0] - s->nq[n0][0]) + b * (s->nq[n2][0] - s->nq[n3][0]))
+        (at ? ctr : trl)[p] = ((1.0 - b) * (mpm_sim_node(s, n1)[0] - mpm_sim_node(s, n0)[0]) + b * (mpm_sim_node(s, n2)[0] - mpm_sim_node(s, n3)[0]))
                                 / c.mesh.dx
-                            + ((1.0 - a) * (s->nq[n3][1] - s->nq[n0][1]) + a * (s->nq[n2][1] - s->nq[n1][1]))
+                            + ((1.0 - a) * (mpm_sim_node(s, n3)[1] - mpm_sim_node(s, n0)[1]) + a * (mpm_sim_node(s, n2)[1] - mpm_sim_node(s, n1)[1]))
                                 / c.mesh.dy;
       }
     }
@@ -303,7 +305,7 @@ static void bbar_run(const char *topo, const char *shape, int bbar, double *rate
     s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
     v0[p] = s->pts->vol[p];
     int i, j;
-    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &i, &j), MPM_OK);
+    ck_assert_int_eq(plane_unit(&s->mesh, x, y, &i, &j), MPM_OK);
     unit[p] = i + 4 * j;
   }
   ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
@@ -313,7 +315,7 @@ static void bbar_run(const char *topo, const char *shape, int bbar, double *rate
     sm[p] = 0.5 * (s->pts->sxx[p] + s->pts->syy[p]);
     dense[p] = s->pts->state[p] == MPM_STATE_DENSE;
     int i, j;
-    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+    ck_assert_int_eq(plane_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
     dense[p] = dense[p] ? 1 + i + 4 * j : 0;   /* 0, or 1 + the unit of x_1 */
   }
   mpm_sim_free(s);
@@ -500,8 +502,8 @@ START_TEST(t_element_uniform_pressure)
     double worst = 0.0;
     for (int j = 1; j < 4; j++)
       for (int i = 1; i < 4; i++) {
-        const int n = mpm_mesh_node(&s->mesh, i, j);
-        worst = fmax(worst, hypot(s->nq[n][2], s->nq[n][3]));
+        const int n = plane_node(&s->mesh, i, j);
+        worst = fmax(worst, hypot(mpm_sim_node(s, n)[2], mpm_sim_node(s, n)[3]));
       }
     if (r == 0)
       ck_assert_double_le(worst, 1e-12 * 6.7);
@@ -531,7 +533,7 @@ static void set_unit_stresses(mpm_sim *s)
 {
   for (size_t p = 0; p < s->pts->n; p++) {
     int i, j;
-    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+    ck_assert_int_eq(plane_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
     set_isotropic(s, p, unit_stress_of(i + 4 * j));
   }
 }
@@ -543,7 +545,7 @@ static void unit_sums(const mpm_sim *s, double sv[16], double svs[16])
     sv[e] = svs[e] = 0.0;
   for (size_t p = 0; p < s->pts->n; p++) {
     int i, j;
-    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
+    ck_assert_int_eq(plane_unit(&s->mesh, s->pts->x[p], s->pts->y[p], &i, &j), MPM_OK);
     sv[i + 4 * j] += s->pts->vol[p];
     svs[i + 4 * j] += s->pts->vol[p] * 0.5 * (s->pts->sxx[p] + s->pts->syy[p]);
   }
@@ -556,9 +558,9 @@ static void check_element_forces(const mpm_sim *s, const double P[16], double to
     for (int I = 1; I < 4; I++) {
       const double ll = P[I - 1 + 4 * (J - 1)], lr = P[I + 4 * (J - 1)];
       const double ul = P[I - 1 + 4 * J], ur = P[I + 4 * J];
-      const int n = mpm_mesh_node(&s->mesh, I, J);
-      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][2], 0.05 * (ur - ul + lr - ll), tol);
-      ck_assert_double_eq_tol(s->nm[n] * s->nq[n][3], 0.05 * (ur + ul - lr - ll), tol);
+      const int n = plane_node(&s->mesh, I, J);
+      ck_assert_double_eq_tol(s->nm[n] * mpm_sim_node(s, n)[2], 0.05 * (ur - ul + lr - ll), tol);
+      ck_assert_double_eq_tol(s->nm[n] * mpm_sim_node(s, n)[3], 0.05 * (ur + ul - lr - ll), tol);
     }
 }
 
@@ -619,7 +621,7 @@ START_TEST(t_element_divergence)
     s->pts->vy[p] = -2.0 * (y - 0.2) / 0.1 + (x - 0.2) * (y - 0.2) / 0.01;
     v0[s->pts->id[p]] = s->pts->vol[p];
     int i, j;
-    ck_assert_int_eq(mpm_mesh_unit(&s->mesh, x, y, &i, &j), MPM_OK);
+    ck_assert_int_eq(plane_unit(&s->mesh, x, y, &i, &j), MPM_OK);
     unit[s->pts->id[p]] = i + 4 * j;
     phi[i + 4 * j] += s->pts->vol[p] / 0.01;
   }
@@ -628,10 +630,10 @@ START_TEST(t_element_divergence)
   double worst = 0.0, spread = 0.0;
   for (size_t p = 0; p < n; p++) {
     const int e = unit[s->pts->id[p]], i = e % 4, j = e / 4;
-    const int n0 = mpm_mesh_node(&s->mesh, i, j), n1 = mpm_mesh_node(&s->mesh, i + 1, j);
-    const int n2 = mpm_mesh_node(&s->mesh, i, j + 1), n3 = mpm_mesh_node(&s->mesh, i + 1, j + 1);
-    const double div = (s->nq[n1][0] + s->nq[n3][0] - s->nq[n0][0] - s->nq[n2][0]) / 0.2 +
-                       (s->nq[n2][1] + s->nq[n3][1] - s->nq[n0][1] - s->nq[n1][1]) / 0.2;
+    const int n0 = plane_node(&s->mesh, i, j), n1 = plane_node(&s->mesh, i + 1, j);
+    const int n2 = plane_node(&s->mesh, i, j + 1), n3 = plane_node(&s->mesh, i + 1, j + 1);
+    const double div = (mpm_sim_node(s, n1)[0] + mpm_sim_node(s, n3)[0] - mpm_sim_node(s, n0)[0] - mpm_sim_node(s, n2)[0]) / 0.2 +
+                       (mpm_sim_node(s, n2)[1] + mpm_sim_node(s, n3)[1] - mpm_sim_node(s, n0)[1] - mpm_sim_node(s, n1)[1]) / 0.2;
     const double rate = log(s->pts->vol[p] / v0[s->pts->id[p]]) / s->dt;
     worst = fmax(worst, fabs(rate - phi[e] * div) / fabs(div));
     spread = fmax(spread, fabs(phi[e] - 1.0));

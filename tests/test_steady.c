@@ -41,6 +41,7 @@
 #include "nonlocal/nonlocal.h"
 #include "nonlocal/steady.h"
 #include "shape/shape.h"
+#include "plane.h"
 
 #define TOL 1e-12
 
@@ -126,7 +127,7 @@ static mpm_linalg_stats cosine_case(int mode, double w, int mass)
   double *c = malloc((size_t)m.nnodes * sizeof *c);
   for (int j = 0; j < ny; j++)
     for (int i = 0; i < nx; i++)
-      c[mpm_mesh_node(&m, i, j)] = cos(k * i * dx);
+      c[plane_node(&m, i, j)] = cos(k * i * dx);
   for (size_t p = 0; p < P->n; p++) {                  /* g_loc: the interpolant of c */
     in.gloc[p] = 0.0;
     for (int q = 0; q < st->count[p]; q++)
@@ -135,7 +136,7 @@ static mpm_linalg_stats cosine_case(int mode, double w, int mass)
   mpm_err err = {0};
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);
   ck_assert_ptr_nonnull(ss);
-  int rc = mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense, in.held, mass,
+  int rc = mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense, in.held, mass,
                                      &err);
   ck_assert_msg(rc == MPM_OK, "mode %d, w %g: %s", mode, w, err.msg);
   const double M = (2.0 + cos(k * dx)) / 3.0, K = (2.0 - 2.0 * cos(k * dx)) / (dx * dx);
@@ -152,8 +153,8 @@ static mpm_linalg_stats cosine_case(int mode, double w, int mass)
     double xl = i * dx, xr = (i + 1) * dx;
     double el = 0.5 * G * (cos(k * xl) + cos(k * xr));        /* mean of the 4 corners */
     double xi = (P->x[p] - xl) / dx, li = G * ((1.0 - xi) * cos(k * xl) + xi * cos(k * xr));
-    double ge = mpm_nonlocal_steady_point(ss, &m, st, p, P->x[p], P->y[p], MPM_STEADY_ELEMENT);
-    double gl = mpm_nonlocal_steady_point(ss, &m, st, p, P->x[p], P->y[p], MPM_STEADY_LINEAR);
+    double ge = mpm_nonlocal_steady_point(ss, &m, st, P, p, MPM_STEADY_ELEMENT);
+    double gl = mpm_nonlocal_steady_point(ss, &m, st, P, p, MPM_STEADY_LINEAR);
     ck_assert(fabs(ge - fmax(el, 0.0)) <= TOL * fabs(G));
     ck_assert(fabs(gl - fmax(li, 0.0)) <= TOL * fabs(G));
   }
@@ -184,14 +185,14 @@ static double *column_solve(int nx, int *nrows)
   mpm_err err = {0};
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);
   ck_assert_ptr_nonnull(ss);
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
   const double *g = mpm_nonlocal_steady_nodal(ss);
   double *rows = malloc((ny + 1) * sizeof *rows);
   for (int j = 0; j <= ny; j++) {
-    rows[j] = g[mpm_mesh_node(&m, 0, j)];
+    rows[j] = g[plane_node(&m, 0, j)];
     for (int i = 1; i < nx; i++)                      /* nothing varies along x */
-      ck_assert_double_eq_tol(g[mpm_mesh_node(&m, i, j)], rows[j], TOL);
+      ck_assert_double_eq_tol(g[plane_node(&m, i, j)], rows[j], TOL);
   }
   *nrows = ny + 1;
   mpm_nonlocal_steady_free(ss);
@@ -255,8 +256,8 @@ START_TEST(t_dirichlet_rows)
   for (size_t p = 0; p < P->n; p++)
     in.gloc[p] = 1.0;
   for (int j = 0; j < ny; j++) {
-    in.held[mpm_mesh_node(&m, 0, j)] = 1;
-    in.held[mpm_mesh_node(&m, nx, j)] = 1;
+    in.held[plane_node(&m, 0, j)] = 1;
+    in.held[plane_node(&m, nx, j)] = 1;
   }
   /* the rows by hand, Thomas: a = w dx/6 - 1/dx, d = 4 w dx/6 + 2/dx, rhs w dx */
   const int n = nx - 1;
@@ -275,20 +276,20 @@ START_TEST(t_dirichlet_rows)
     x[i] = (r[i] - a * x[i + 1]) / d[i];
   mpm_err err = {0};
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
   ck_assert_int_eq(mpm_nonlocal_steady_unknowns(ss), n * ny);
   const double *g = mpm_nonlocal_steady_nodal(ss);
   for (int j = 0; j < ny; j++) {
-    ck_assert(g[mpm_mesh_node(&m, 0, j)] == 0.0 && g[mpm_mesh_node(&m, nx, j)] == 0.0);
+    ck_assert(g[plane_node(&m, 0, j)] == 0.0 && g[plane_node(&m, nx, j)] == 0.0);
     for (int i = 1; i < nx; i++)
-      ck_assert_msg(fabs(g[mpm_mesh_node(&m, i, j)] - x[i - 1]) <= TOL,
-                    "node (%d, %d): %.17g, Thomas %.17g", i, j, g[mpm_mesh_node(&m, i, j)],
+      ck_assert_msg(fabs(g[plane_node(&m, i, j)] - x[i - 1]) <= TOL,
+                    "node (%d, %d): %.17g, Thomas %.17g", i, j, g[plane_node(&m, i, j)],
                     x[i - 1]);
   }
   /* zero flux everywhere: the constant g_loc is the solution */
   memset(in.held, 0, (size_t)m.nnodes);
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
   for (int i = 0; i < m.nnodes; i++)
     ck_assert_msg(fabs(g[i] - 1.0) <= TOL, "free: node %d: %.17g", i, g[i]);
@@ -322,7 +323,7 @@ START_TEST(t_reuse_counts)
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);
   for (int k = 0; k < 3; k++) {
     in.gloc[0] = 1.0 + 0.1 * k;                       /* new values, same pattern */
-    ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, Q->n, Q->vol, in.w, in.gloc, in.dense,
+    ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, Q->n, Q->vol, in.w, in.gloc, in.dense,
                                                in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
   }
   mpm_linalg_stats s = mpm_nonlocal_steady_stats(ss);
@@ -332,7 +333,7 @@ START_TEST(t_reuse_counts)
   ck_assert_int_eq(mpm_nonlocal_steady_unknowns(ss), 4 * 5);  /* nodes x = 0 .. 0.3 */
   Q->x[0] = 0.35;                                     /* into an empty unit: new nodes */
   ck_assert_int_eq(mpm_shape_stencil_compute(st, &mpm_shape_delta, &m, Q, 0.0, &err), MPM_OK);
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, Q->n, Q->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, Q->n, Q->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
   s = mpm_nonlocal_steady_stats(ss);
   ck_assert_int_eq(s.analyses, 2);
@@ -340,7 +341,7 @@ START_TEST(t_reuse_counts)
   ck_assert_int_eq(mpm_nonlocal_steady_unknowns(ss), 4 * 5 + 2);
   for (size_t p = 0; p < Q->n; p++)                   /* nothing dense: g = 0, no solve */
     in.dense[p] = 0;
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, Q->n, Q->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, Q->n, Q->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_CONSISTENT, &err), MPM_OK);
   ck_assert_int_eq(mpm_nonlocal_steady_unknowns(ss), 0);
   ck_assert_int_eq(mpm_nonlocal_steady_stats(ss).solves, 4);
@@ -364,17 +365,17 @@ START_TEST(t_hourglass)
     in.gloc[p] = 0.7;
   mpm_err err = {0};
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&m, &err);
-  int rc = mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense, in.held,
+  int rc = mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense, in.held,
                                      MPM_STEADY_CONSISTENT, &err);
   ck_assert_int_eq(rc, MPM_ESOLVE);
   ck_assert_msg(strstr(err.msg, "steady fluidity on 16 nodes"), "message: %s", err.msg);
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_LUMPED, &err), MPM_OK);
   const double *g = mpm_nonlocal_steady_nodal(ss);
   for (int i = 0; i < m.nnodes; i++)
     ck_assert(fabs(g[i] - 0.7) <= TOL);
   in.w[3] = NAN;                                      /* a bad point is named */
-  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, P->n, P->vol, in.w, in.gloc, in.dense,
+  ck_assert_int_eq(mpm_nonlocal_steady_solve(ss, st, &m, P->n, P->vol, in.w, in.gloc, in.dense,
                                              in.held, MPM_STEADY_LUMPED, &err), MPM_EINVAL);
   ck_assert_msg(strstr(err.msg, "point 3"), "message: %s", err.msg);
   mpm_nonlocal_steady_free(ss);
@@ -397,11 +398,12 @@ START_TEST(t_held_nodes)
   mpm_nonlocal_held_nodes(ws, &m, held);
   for (int j = 0; j <= m.ny; j++)
     for (int i = 0; i <= m.nx; i++)
-      ck_assert_int_eq(held[mpm_mesh_node(&m, i, j)], j == 0);  /* the no-slip floor */
-  mpm_nonlocal_open_faces(ws, 2, 2, 4);               /* outlet: faces 2, 3: nodes 2 .. 4 */
+      ck_assert_int_eq(held[plane_node(&m, i, j)], j == 0);  /* the no-slip floor */
+  const int lo[3] = {2, 0, 0}, hi[3] = {4, 0, 0};
+  mpm_nonlocal_open_faces(ws, 2, lo, hi, NULL, &err);  /* outlet: faces 2, 3: nodes 2 .. 4 */
   mpm_nonlocal_held_nodes(ws, &m, held);
   for (int i = 0; i <= m.nx; i++)
-    ck_assert_int_eq(held[mpm_mesh_node(&m, i, 0)], i < 2 || i > 4);
+    ck_assert_int_eq(held[plane_node(&m, i, 0)], i < 2 || i > 4);
   mpm_nonlocal_walls_neumann(ws);                     /* material.g_wall = "neumann" */
   mpm_nonlocal_held_nodes(ws, &m, held);
   for (int i = 0; i < m.nnodes; i++)
@@ -452,7 +454,7 @@ START_TEST(t_field_local)
                   p, P->g[p], want);
   }
   /* the (sub)step field of the dynamic solvers is not the steady solver's */
-  ck_assert_int_eq(mpm_nonlocal_field(ws, &mpm_material_ngf, &par, P, NULL, 1e-4, &err),
+  ck_assert_int_eq(mpm_nonlocal_field(ws, &mpm_material_ngf, &par, P, NULL, 1e-4, 0, &err),
                    MPM_EINVAL);
   mpm_nonlocal_free(ws);
   mpm_shape_stencil_free(st);

@@ -38,9 +38,17 @@
 typedef struct stored_field {
   const char *name;
   int isint;
-  int dim;
+  int kind;        /* which stores have it (MPM_POINT_EVERY, _3D, _DEFGRAD) */
   size_t offset;
 } stored_field;
+
+/* 1 if a store of dimension dim, with the deformation gradients or not, has
+ * field f (mpm_points_has). */
+static int stored_in(const stored_field *f, int dim, int defgrad)
+{
+  return f->kind == MPM_POINT_EVERY || (f->kind == MPM_POINT_3D && dim == 3) ||
+         (f->kind == MPM_POINT_DEFGRAD && defgrad);
+}
 
 #define REAL_(f, nm, d, u, D) {nm, 0, D, offsetof(mpm_points, f)},
 #define INT_(f, nm, d, u, D) {nm, 1, D, offsetof(mpm_points, f)},
@@ -98,7 +106,7 @@ static herr_t write_state(hid_t file, const mpm_run_state *st, const char *input
   hid_t g = rc < 0 ? H5I_INVALID_HID
                    : H5Gcreate2(file, "points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (size_t k = 0; g >= 0 && rc >= 0 && k < NSTORED; k++)
-    if (stored[k].dim <= P->dim)
+    if (stored_in(&stored[k], P->dim, P->defgrad))
       rc = mpm_io_h5_write_array(g, stored[k].name, stored[k].isint ? H5T_STD_I32LE : H5T_IEEE_F64LE,
                                stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, P->n,
                                field_array(P, &stored[k]), NULL, NULL);
@@ -260,16 +268,19 @@ static int read_points(hid_t file, mpm_run_state *st, const char *path, mpm_err 
     mpm_io_h5_close(g);
     return mpm_err_set(err, MPM_EIO, "'%s': attribute 'dimension' is not 2 or 3", path);
   }
+  /* the deformation gradients: stored when the run's model carries them */
+  const int defgrad = H5Lexists(g, "fxx", H5P_DEFAULT) > 0;
   for (size_t k = 0; k < NSTORED; k++)       /* counts first: no allocation from a bad one */
-    if (stored[k].dim <= dim && mpm_io_h5_array_length(g, stored[k].name) != n) {
+    if (stored_in(&stored[k], dim, defgrad) && mpm_io_h5_array_length(g, stored[k].name) != n) {
       mpm_io_h5_close(g);
       return mpm_err_set(err, MPM_EIO, "'%s': field '%s' does not hold npoints = %ld values",
                          path, stored[k].name, n);
     }
   st->pts = mpm_points_alloc_dim((size_t)n, dim);
-  int rc = st->pts ? MPM_OK : mpm_err_set(err, MPM_ENOMEM, "'%s': no memory for %ld points", path, n);
+  int rc = st->pts && mpm_points_set_defgrad(st->pts, defgrad) == MPM_OK
+               ? MPM_OK : mpm_err_set(err, MPM_ENOMEM, "'%s': no memory for %ld points", path, n);
   for (size_t k = 0; rc == MPM_OK && k < NSTORED; k++) {
-    if (stored[k].dim > dim)
+    if (!stored_in(&stored[k], dim, defgrad))
       continue;
     hid_t d = H5Dopen2(g, stored[k].name, H5P_DEFAULT);
     if (d < 0 || (n > 0 && H5Dread(d, stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,

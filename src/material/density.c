@@ -156,6 +156,8 @@ void mpm_material_density_compute(mpm_material_density *ws, const mpm_mesh *m, i
     return;
   }
   unit_sums(ws, m, P, unit);
+  for (int a = 0; a < 3; a++)                         /* the mesh's periodic axes */
+    ws->periodic[a] = m->periodic[a];
   if (rule == MPM_DENSITY_HYBRID)
     mark_edges(ws);
   const double iarea = 1.0 / ws->volume;

@@ -17,8 +17,9 @@ MPM_MATERIAL_KERNEL mpm_mpoint elastic_step(const mpm_material_params *par, mpm_
 }
 
 static void elastic_update_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                           mpm_mpoint *pt)
+                                 mpm_mpoint *pt, mpm_mdeform *def)
 {
+  (void)def;   /* no deformation gradients */
   *pt = elastic_step(par, *L, dt, *pt);
 }
 
@@ -26,7 +27,7 @@ static void elastic_update_point(const mpm_material_params *par, const mpm_mat3 
 static void elastic_update(const mpm_material_params *par, double dt, int nsub,
                            const mpm_material_batch *b)
 {
-  mpm_material_loop(par, dt, nsub, b, elastic_step, 0);
+  mpm_material_loop(par, dt, nsub, b, elastic_step);
 }
 
 const mpm_material_type mpm_material_elastic = {

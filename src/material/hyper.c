@@ -310,8 +310,9 @@ mpm_mat3 mpm_material_hyper_F_of_stress(const mpm_material_params *par, mpm_sym3
   return F;
 }
 
-mpm_mpoint mpm_material_hyper_elastic_step(const mpm_material_params *par, const mpm_mat3 *L,
-                                           double dt, mpm_mpoint pt)
+mpm_material_hyper_point mpm_material_hyper_elastic_step(const mpm_material_params *par,
+                                                         const mpm_mat3 *L, double dt,
+                                                         mpm_material_hyper_point pt)
 {
   pt.F = hyper_advance(L, dt, &pt.F);
   pt.sigma = mpm_material_hyper_stress(par, &pt.F, &pt.Fp);
@@ -321,8 +322,9 @@ mpm_mpoint mpm_material_hyper_elastic_step(const mpm_material_params *par, const
   return pt;
 }
 
-mpm_mpoint mpm_material_hyper_step(const mpm_material_params *par, const mpm_mat3 *L,
-                                   double dt, mpm_mpoint pt)
+mpm_material_hyper_point mpm_material_hyper_step(const mpm_material_params *par,
+                                                 const mpm_mat3 *L, double dt,
+                                                 mpm_material_hyper_point pt)
 {
   const mpm_sym3 D = mpm_mat3_sym(L);
   const double p_n = mpm_sym3_pressure(pt.sigma);
@@ -374,23 +376,58 @@ static int ngf_hyper_check(const mpm_material_params *par, mpm_err *err)
   return mpm_material_ngf.check(par, err);
 }
 
-/* The step as a kernel of mpm_material_loop, and the model's updates. */
-static mpm_mpoint hyper_kernel(const mpm_material_params *par, mpm_mat3 L, double dt,
-                               mpm_mpoint pt)
+/* The model's updates: the step of each point as it is (its eigen-
+ * decompositions iterate; no loop over points vectorises them), point by
+ * point over a batch. */
+static void ngf_hyper_update_point(const mpm_material_params *par, const mpm_mat3 *L,
+                                   double dt, mpm_mpoint *pt, mpm_mdeform *def)
 {
-  return mpm_material_hyper_step(par, &L, dt, pt);
+  mpm_material_hyper_point h = {.F = def->F, .Fp = def->Fp, .sigma = pt->sigma, .rho = pt->rho,
+                                .g = pt->g, .lap = pt->lap, .isp = pt->isp, .gdp = pt->gdp,
+                                .state = pt->state};
+  h = mpm_material_hyper_step(par, L, dt, h);
+  *pt = (mpm_mpoint){.sigma = h.sigma, .rho = h.rho, .g = h.g, .lap = h.lap, .isp = h.isp,
+                     .gdp = h.gdp, .state = h.state};
+  *def = (mpm_mdeform){.F = h.F, .Fp = h.Fp};
 }
 
 static void ngf_hyper_update(const mpm_material_params *par, double dt, int nsub,
                              const mpm_material_batch *b)
 {
-  mpm_material_loop(par, dt, nsub, b, hyper_kernel, 1);
-}
-
-static void ngf_hyper_update_point(const mpm_material_params *par, const mpm_mat3 *L,
-                                   double dt, mpm_mpoint *pt)
-{
-  *pt = mpm_material_hyper_step(par, L, dt, *pt);
+  const int D = b->dim, ns = D == 3 ? 6 : 4;
+  for (size_t q = 0; q < b->n; q++) {
+    mpm_mat3 L = {{{0.0}}};
+    for (int i = 0; i < D; i++)
+      for (int j = 0; j < D; j++)
+        L.m[i][j] = b->L[D * i + j][q];
+    double s[6] = {0.0};
+    for (int k = 0; k < ns; k++)
+      s[k] = b->sig[k][q];
+    mpm_material_hyper_point h = {.sigma = {s[0], s[1], s[2], s[3], s[4], s[5]}, .rho = b->rho[q],
+                                  .g = b->g[q], .lap = b->lap ? b->lap[q] : 0.0,
+                                  .isp = b->isp ? b->isp[q] : 0.0, .gdp = b->gdp[q],
+                                  .state = b->state[q]};
+    for (int e = 0; e < 9; e++) {
+      h.F.m[e / 3][e % 3] = b->F[e][q];
+      h.Fp.m[e / 3][e % 3] = b->Fp[e][q];
+    }
+    for (int k = 0; k < nsub; k++) {
+      if (D == 2)                 /* plane strain: the stress out of the plane is zero */
+        h.sigma.yz = h.sigma.zx = 0.0;
+      h = mpm_material_hyper_step(par, &L, dt, h);
+    }
+    const double out[6] = {h.sigma.xx, h.sigma.yy, h.sigma.zz, h.sigma.xy, h.sigma.yz,
+                           h.sigma.zx};
+    for (int k = 0; k < ns; k++)
+      b->sig[k][q] = out[k];
+    b->g[q] = h.g;
+    b->gdp[q] = h.gdp;
+    b->state[q] = h.state;
+    for (int e = 0; e < 9; e++) {
+      b->F[e][q] = h.F.m[e / 3][e % 3];
+      b->Fp[e][q] = h.Fp.m[e / 3][e % 3];
+    }
+  }
 }
 
 const mpm_material_type mpm_material_ngf_hyper = {

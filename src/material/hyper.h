@@ -4,15 +4,29 @@
  * built on (hyper.c).
  *
  * The model "ngf_hyper" of mpm_material_table (mpm_material_ngf_hyper): a
- * point carries its total and plastic deformation gradients F and Fp
- * (mpm_mpoint.F, .Fp; the table's defgrad = 1, so the point store holds
- * them). It reuses the local NGF solve of section 5 (mpm_material_ngf_gstar,
- * mpm_material_ngf_fluidity) and the parameters of mpm_material_params. */
+ * point carries its total and plastic deformation gradients F and Fp (the
+ * table's defgrad = 1: the point store and the batch hold them, the point
+ * update takes them as an mpm_mdeform). It reuses the local NGF solve of
+ * section 5 (mpm_material_ngf_gstar, mpm_material_ngf_fluidity) and the
+ * parameters of mpm_material_params. */
 #ifndef MPM_MATERIAL_HYPER_H
 #define MPM_MATERIAL_HYPER_H
 
 #include "core/tensor3.h"
 #include "material/material.h"
+
+/* Constitutive state of one point of the model. */
+typedef struct mpm_material_hyper_point {
+  mpm_mat3 F;      /* total deformation gradient, in: F_n, out: F_{n+1} */
+  mpm_mat3 Fp;     /* plastic deformation gradient, in: Fp_n, out: Fp_{n+1} */
+  mpm_sym3 sigma;  /* Cauchy stress [Pa], in: sigma_n, out: sigma_{n+1} */
+  double rho;      /* density rho_{n+1} [kg/m^3] (input) */
+  double g;        /* fluidity [1/s], in: g_n, out: g_{n+1} */
+  double lap;      /* Laplacian of g at the point [1/(m^2 s)] (input) */
+  double isp;      /* p^-1/2 of the g^2 term [Pa^-1/2] (input; 0: the point's own) */
+  double gdp;      /* equivalent plastic shear rate [1/s] (output) */
+  int state;       /* enum mpm_point_state (output) */
+} mpm_material_hyper_point;
 
 /* a = v diag(lam) v^T: eigenvalues lam (unordered) and orthonormal
  * eigenvectors, the columns of v, by cyclic Jacobi rotations. */
@@ -43,13 +57,15 @@ mpm_mat3 mpm_material_hyper_F_of_stress(const mpm_material_params *par, mpm_sym3
 /* One step dt of the NGF point (its F and Fp, sigma, g) with the velocity
  * gradient L (L_ij = d v_i / d x_j) and pt.lap, pt.isp, pt.rho given:
  * MODEL.md section 7, the choices in hyper.c. */
-mpm_mpoint mpm_material_hyper_step(const mpm_material_params *par, const mpm_mat3 *L,
-                                   double dt, mpm_mpoint pt);
+mpm_material_hyper_point mpm_material_hyper_step(const mpm_material_params *par,
+                                                 const mpm_mat3 *L, double dt,
+                                                 mpm_material_hyper_point pt);
 
 /* The same step purely elastic: F_{n+1} = (I + dt L) F_n,
  * sigma = mpm_material_hyper_stress(F_{n+1}, Fp_n); Fp unchanged, g = gdot_p = 0,
  * no state decision (tension carries stress). */
-mpm_mpoint mpm_material_hyper_elastic_step(const mpm_material_params *par, const mpm_mat3 *L,
-                                           double dt, mpm_mpoint pt);
+mpm_material_hyper_point mpm_material_hyper_elastic_step(const mpm_material_params *par,
+                                                         const mpm_mat3 *L, double dt,
+                                                         mpm_material_hyper_point pt);
 
 #endif

@@ -65,14 +65,20 @@ typedef struct mpm_mpoint {
                       mpm_nonlocal_point_isp); 0: the point's own p_tr^-1/2 */
   double gdp;      /* equivalent plastic shear rate [1/s] (output) */
   int state;       /* enum mpm_point_state (output) */
-  mpm_mat3 F, Fp;  /* total and plastic deformation gradients, in: at t_n, out:
-                      at t_{n+1}; read and written only by a model that carries
-                      them (mpm_material_type.defgrad), ignored by the others */
 } mpm_mpoint;
 
-/* One constitutive update: sigma_n -> sigma_{n+1} of pt over dt with L fixed. */
+/* The deformation gradients of a point of a model that carries them
+ * (mpm_material_type.defgrad): in at t_n, out at t_{n+1}. */
+typedef struct mpm_mdeform {
+  mpm_mat3 F;      /* total deformation gradient */
+  mpm_mat3 Fp;     /* plastic deformation gradient */
+} mpm_mdeform;
+
+/* One constitutive update: sigma_n -> sigma_{n+1} of pt over dt with L fixed;
+ * def: the point's deformation gradients for a model that carries them,
+ * else not read (may be NULL). */
 typedef void (*mpm_material_update_fn)(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                                       mpm_mpoint *pt);
+                                       mpm_mpoint *pt, mpm_mdeform *def);
 
 /* n points of a run of dimension dim, as structure-of-arrays views: entry
  * k of each array is point k. In the plane (dim 2) the out-of-plane velocity
@@ -128,15 +134,14 @@ typedef mpm_mpoint (*mpm_material_kernel_fn)(const mpm_material_params *par, mpm
                                              double dt, mpm_mpoint pt);
 
 /* One pass of the kernel k over the points of b in D dimensions (D a
- * constant where this is inlined; nonlocal: lap and isp read; defgrad: F
- * and Fp gathered and scattered). The arrays are restrict locals and the
- * point a value (no address taken), so the compiler keeps it in registers
- * and updates several points at once; the plane's absent entries are the
- * constant 0, so the plane pass is the plane-strain update as written. */
+ * constant where this is inlined; nonlocal: lap and isp read). The arrays
+ * are restrict locals and the point a value (no address taken), so the
+ * compiler keeps it in registers and updates several points at once; the
+ * plane's absent entries are the constant 0, so the plane pass is the
+ * plane-strain update as written. */
 MPM_MATERIAL_KERNEL void mpm_material_pass(const mpm_material_params *par, double dt,
                                            const mpm_material_batch *b,
-                                           mpm_material_kernel_fn k, int D, int nonlocal,
-                                           int defgrad)
+                                           mpm_material_kernel_fn k, int D, int nonlocal)
 {
   const size_t n = b->n;
   const double *restrict l00 = b->L[0], *restrict l01 = b->L[1];
@@ -161,10 +166,6 @@ MPM_MATERIAL_KERNEL void mpm_material_pass(const mpm_material_params *par, doubl
       .g = g[q], .lap = nonlocal ? lap[q] : 0.0, .isp = nonlocal ? isp[q] : 0.0,
       .gdp = gdp[q], .state = state[q],
     };
-    for (int e = 0; defgrad && e < 9; e++) {
-      pt.F.m[e / 3][e % 3] = b->F[e][q];
-      pt.Fp.m[e / 3][e % 3] = b->Fp[e][q];
-    }
     pt = k(&pl, L, dt, pt);
     sxx[q] = pt.sigma.xx;
     syy[q] = pt.sigma.yy;
@@ -177,10 +178,6 @@ MPM_MATERIAL_KERNEL void mpm_material_pass(const mpm_material_params *par, doubl
     g[q] = pt.g;
     gdp[q] = pt.gdp;
     state[q] = pt.state;
-    for (int e = 0; defgrad && e < 9; e++) {
-      b->F[e][q] = pt.F.m[e / 3][e % 3];
-      b->Fp[e][q] = pt.Fp.m[e / 3][e % 3];
-    }
   }
 }
 
@@ -190,21 +187,21 @@ MPM_MATERIAL_KERNEL void mpm_material_pass(const mpm_material_params *par, doubl
  * independent, so their substeps run as passes over all of them). A model's
  * update calls it with its own kernel, which is inlined into the loop once
  * per dimension (the kernels are written without library calls and branch
- * on values only, so the loop vectorises); defgrad as mpm_material_pass. */
+ * on values only, so the loop vectorises). */
 MPM_MATERIAL_KERNEL void mpm_material_loop(const mpm_material_params *par, double dt,
                                            int nsub, const mpm_material_batch *b,
-                                           mpm_material_kernel_fn k, int defgrad)
+                                           mpm_material_kernel_fn k)
 {
   const int nl = b->lap && b->isp;
   for (int s = 0; s < nsub; s++) {
     if (b->dim == 3 && nl)
-      mpm_material_pass(par, dt, b, k, 3, 1, defgrad);
+      mpm_material_pass(par, dt, b, k, 3, 1);
     else if (b->dim == 3)
-      mpm_material_pass(par, dt, b, k, 3, 0, defgrad);
+      mpm_material_pass(par, dt, b, k, 3, 0);
     else if (nl)
-      mpm_material_pass(par, dt, b, k, 2, 1, defgrad);
+      mpm_material_pass(par, dt, b, k, 2, 1);
     else
-      mpm_material_pass(par, dt, b, k, 2, 0, defgrad);
+      mpm_material_pass(par, dt, b, k, 2, 0);
   }
 }
 
@@ -222,8 +219,9 @@ typedef struct mpm_material_type {
   /* The same kernel for one point (the constitutive driver, the tests). */
   mpm_material_update_fn update_point;
   /* 1 for a model whose points carry their deformation gradients F and Fp
-   * (mpm_mpoint.F, .Fp; the point store's MPM_POINT_DEFGRAD fields, filled
-   * with F = Fe of the initial stress, Fp = I): the hyperelastic NGF. */
+   * (mpm_mdeform; the batch's F and Fp, the point store's MPM_POINT_DEFGRAD
+   * fields, filled with F = Fe of the initial stress, Fp = I): the
+   * hyperelastic NGF. */
   int defgrad;
   /* 1 for nonlocal models: before each (sub)step the caller fills pt->lap from
    * the element fluidity of the points the model calls dense (nonlocal.h,

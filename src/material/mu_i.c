@@ -121,8 +121,9 @@ MPM_MATERIAL_KERNEL mpm_mpoint mu_i_step(const mpm_material_params *par, mpm_mat
 }
 
 static void mu_i_update_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                        mpm_mpoint *pt)
+                              mpm_mpoint *pt, mpm_mdeform *def)
 {
+  (void)def;   /* no deformation gradients */
   *pt = mu_i_step(par, *L, dt, *pt);
 }
 
@@ -155,7 +156,7 @@ static int mu_i_check(const mpm_material_params *par, mpm_err *err)
 static void mu_i_update(const mpm_material_params *par, double dt, int nsub,
                         const mpm_material_batch *b)
 {
-  mpm_material_loop(par, dt, nsub, b, mu_i_step, 0);
+  mpm_material_loop(par, dt, nsub, b, mu_i_step);
 }
 
 const mpm_material_type mpm_material_mu_i = {

@@ -230,8 +230,9 @@ MPM_MATERIAL_KERNEL mpm_mpoint ngf_step(const mpm_material_params *par, mpm_mat3
 }
 
 static void ngf_update_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                       mpm_mpoint *pt)
+                             mpm_mpoint *pt, mpm_mdeform *def)
 {
+  (void)def;   /* no deformation gradients */
   *pt = ngf_step(par, *L, dt, *pt);
 }
 
@@ -268,8 +269,9 @@ MPM_MATERIAL_KERNEL mpm_mpoint ngf_steady_step(const mpm_material_params *par, m
 }
 
 static void ngf_update_steady_point(const mpm_material_params *par, const mpm_mat3 *L, double dt,
-                              mpm_mpoint *pt)
+                                    mpm_mpoint *pt, mpm_mdeform *def)
 {
+  (void)def;   /* no deformation gradients */
   *pt = ngf_steady_step(par, *L, dt, *pt);
 }
 
@@ -277,7 +279,7 @@ static void ngf_update_steady_point(const mpm_material_params *par, const mpm_ma
 static void ngf_update_steady(const mpm_material_params *par, double dt, int nsub,
                               const mpm_material_batch *b)
 {
-  mpm_material_loop(par, dt, nsub, b, ngf_steady_step, 0);
+  mpm_material_loop(par, dt, nsub, b, ngf_steady_step);
 }
 
 static int ngf_check(const mpm_material_params *par, mpm_err *err)
@@ -329,7 +331,7 @@ int mpm_material_ngf_check_diffusion(const mpm_material_params *par, double dt, 
 static void ngf_update(const mpm_material_params *par, double dt, int nsub,
                        const mpm_material_batch *b)
 {
-  mpm_material_loop(par, dt, nsub, b, ngf_step, 0);
+  mpm_material_loop(par, dt, nsub, b, ngf_step);
 }
 
 const mpm_material_type mpm_material_ngf = {

@@ -194,13 +194,16 @@ int mpm_nonlocal_reserve(mpm_nonlocal *ws, size_t cap, mpm_err *err)
  * pairs must match the mesh. */
 static int set_grid(mpm_nonlocal *ws, const mpm_mesh *m, const int face[], mpm_err *err)
 {
-  static const char *const names[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+  static const char *const names[2][6] = {{"left edge", "right edge", "bottom edge",
+                                            "top edge", "", ""},
+                                           {"face -x", "face +x", "face -y", "face +y",
+                                            "face -z", "face +z"}};
   int ghost[6];
   for (int k = 0; k < 2 * m->dim; k++) {
     ghost[k] = mpm_nonlocal_ghost_of_bc(face[k]);
     if (ghost[k] < 0)
-      return mpm_err_set(err, MPM_EINVAL, "nonlocal: face %s has unknown kind %d", names[k],
-                         face[k]);
+      return mpm_err_set(err, MPM_EINVAL, "nonlocal: %s has unknown kind %d",
+                         names[m->dim == 3][k], face[k]);
   }
   for (int a = 0; a < m->dim; a++)
     if ((ghost[2 * a] == MPM_GHOST_PERIODIC) != (m->periodic[a] != 0) ||

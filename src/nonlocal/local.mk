@@ -8,21 +8,21 @@ check_PROGRAMS += tests/test_nonlocal
 TESTS += tests/test_nonlocal
 tests_test_nonlocal_SOURCES = tests/test_nonlocal.c
 tests_test_nonlocal_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_nonlocal_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_material.la libmpm_mesh.la \
+tests_test_nonlocal_LDADD = libmpm_nonlocal.la libmpm_shape.la libmpm_linalg.la libmpm_material.la libmpm_mesh.la \
 	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
 
 check_PROGRAMS += tests/test_implicit
 TESTS += tests/test_implicit
 tests_test_implicit_SOURCES = tests/test_implicit.c
 tests_test_implicit_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_implicit_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_mesh.la libmpm_core.la \
+tests_test_implicit_LDADD = libmpm_nonlocal.la libmpm_shape.la libmpm_linalg.la libmpm_mesh.la libmpm_core.la \
 	$(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
 
 check_PROGRAMS += tests/test_field
 TESTS += tests/test_field
 tests_test_field_SOURCES = tests/test_field.c
 tests_test_field_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
-tests_test_field_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_material.la libmpm_mesh.la \
+tests_test_field_LDADD = libmpm_nonlocal.la libmpm_shape.la libmpm_linalg.la libmpm_material.la libmpm_mesh.la \
 	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
 
 check_PROGRAMS += tests/test_steady

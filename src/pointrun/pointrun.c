@@ -71,10 +71,9 @@ int mpm_pointrun_update(const mpm_material_type *mt, const mpm_material_params *
   if (!s)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory for %zu steps", nsteps);
   mpm_mpoint pt = {.sigma = init->sigma, .rho = init->rho};
-  if (mt->defgrad) {                          /* the elastic state of the initial stress */
-    pt.F = mpm_material_hyper_F_of_stress(par, init->sigma);
-    pt.Fp = (mpm_mat3){{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
-  }
+  mpm_mdeform def = {.Fp = {{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}}};
+  if (mt->defgrad)                            /* the elastic state of the initial stress */
+    def.F = mpm_material_hyper_F_of_stress(par, init->sigma);
   int st0 = mpm_pointrun_init_state(par, init);
   mpm_mat3 L0 = mpm_pointrun_history_eval(h, mpm_pointrun_history_t_begin(h));
   mpm_sym3 D = mpm_mat3_sym(&L0);
@@ -85,7 +84,7 @@ int mpm_pointrun_update(const mpm_material_type *mt, const mpm_material_params *
     double a = row_time(h, dt, k, nsteps), b = row_time(h, dt, k + 1, nsteps);
     mpm_mat3 L = sample_L(h, a, b, sample);
     pt.rho *= exp(-(b - a) * mpm_mat3_trace(&L));            /* rho_{k+1} */
-    mt->update_point(par, &L, b - a, &pt);
+    mt->update_point(par, &L, b - a, &pt, &def);
     s->t[k + 1] = b;
     mpm_pointrun_series_record(s, k + 1, &(mpm_point_rec){pt.sigma, pt.rho, pt.gdp, pt.state,
                                                           mpm_mat3_sym(&L)});

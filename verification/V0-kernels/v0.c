@@ -57,16 +57,18 @@ static double invariant_error(const mpm_shape_type *sh, const mpm_mesh *m, uint6
     double y = m->y0 + m->dy * (1.0 + (m->ny - 2) * urand(seed));
     int node[MPM_STENCIL_W];
     double S[MPM_STENCIL_W], gx[MPM_STENCIL_W], gy[MPM_STENCIL_W];
-    int n = sh->eval(m, x, y, r, node, S, gx, gy);
+    double *const dS[3] = {gx, gy, NULL};
+    const double xp[3] = {x, y, 0.0};
+    int n = sh->eval(m, xp, r, node, S, dS);
     if (n <= 0)
       return INFINITY;
     double s = 0, sgx = 0, sgy = 0, sx = 0, sy = 0, xx = 0, xy = 0, yx = 0, yy = 0;
     for (int k = 0; k < n; k++) {
       int i = node[k] % m->snx, j = node[k] / m->snx;
-      double xi, yi;
-      mpm_mesh_node_pos(m, i, j, &xi, &yi);
-      xi -= x;                 /* relative to x_p: equal by sum gradS = 0, */
-      yi -= y;                 /* and free of the cancellation of large x_i */
+      double xn[3];
+      mpm_mesh_node_pos(m, i, j, 0, xn);
+      const double xi = xn[0] - x;  /* relative to x_p: equal by sum gradS = 0, */
+      const double yi = xn[1] - y;  /* and free of the cancellation of large x_i */
       s += S[k];
       sgx += gx[k];
       sgy += gy[k];

@@ -189,7 +189,7 @@ static double nodal_error(const cloud *c, const double *g, const ref *r)
 {
   double num = 0.0, den = 0.0;
   for (int i = 0; i <= c->m.nx; i++) {
-    double e = ref_at(r, i * c->m.dx), v = g[mpm_mesh_node(&c->m, i, 0)];
+    double e = ref_at(r, i * c->m.dx), v = g[mpm_mesh_node(&c->m, i, 0, 0)];
     num += (v - e) * (v - e);
     den += e * e;
   }
@@ -337,7 +337,7 @@ static double dense_diff(const cloud *c, const double *gm, const double *gd)
   for (int j = 0; j < c->m.ny; j++)
     for (int i = 0; i <= c->m.nx; i++) {
       const double d = gd[i + (c->m.nx + 1) * j];
-      e = fmax(e, fabs(gm[mpm_mesh_node(&c->m, i, j)] - d));
+      e = fmax(e, fabs(gm[mpm_mesh_node(&c->m, i, j, 0)] - d));
       m = fmax(m, fabs(d));
     }
   return e / m;
@@ -361,7 +361,8 @@ static void indefinite(tally *t, const cloud *c, int mass)
   }
   mpm_err err = {0};
   mpm_nonlocal_steady *ss = mpm_nonlocal_steady_alloc(&c->m, &err);
-  int rc = ss ? mpm_nonlocal_steady_solve(ss, c->st, n, c->P->vol, w, gl, dense, held, mass, &err)
+  int rc = ss ? mpm_nonlocal_steady_solve(ss, c->st, &c->m, n, c->P->vol, w, gl, dense, held,
+                                          mass, &err)
               : -1;
   double *gd = malloc((size_t)(c->m.nx + 1) * c->m.ny * sizeof *gd);
   char label[128];

@@ -104,12 +104,23 @@ static int relax(column *c, const mpm_material_params *par)
 {
   mpm_nonlocal *ws = NULL;
   mpm_err err = {0};
-  if (mpm_nonlocal_alloc(&ws, &c->m, c->edge, MPM_NONLOCAL_CENTRE, c->n, &err) != MPM_OK ||
-      mpm_nonlocal_locate(ws, &c->m, c->n, c->x, c->y, &err) != MPM_OK) {
-    printf("  %s\n", err.msg);
+  mpm_points *P = mpm_points_alloc(c->n);            /* the points' positions, to locate */
+  for (size_t k = 0; P && k < c->n; k++) {
+    size_t q;
+    if (mpm_points_push(P, &q) != MPM_OK)
+      break;
+    P->x[q] = c->x[k];
+    P->y[q] = c->y[k];
+  }
+  if (!P || P->n != c->n ||
+      mpm_nonlocal_alloc(&ws, &c->m, c->edge, MPM_NONLOCAL_CENTRE, c->n, &err) != MPM_OK ||
+      mpm_nonlocal_locate(ws, &c->m, P, &err) != MPM_OK) {
+    printf("  %s\n", P ? err.msg : "out of memory");
     mpm_nonlocal_free(ws);
+    mpm_points_free(P);
     return -1;
   }
+  mpm_points_free(P);
   for (size_t k = 0; k < c->n; k++)
     ws->dense[k] = 1;
   double h = fmin(c->m.dx, c->m.dy);

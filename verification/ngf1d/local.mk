@@ -12,5 +12,5 @@ verification_ngf1d_ngf1d_check_SOURCES = verification/ngf1d/selftest.c verificat
 verification_ngf1d_ngf1d_check_LDADD = $(GSL_LIBS) -lm
 verification_ngf1d_ngf1d_kernels_SOURCES = verification/ngf1d/kernels.c verification/ngf1d/ngf1d.c \
 	verification/ngf1d/ngf1d.h
-verification_ngf1d_ngf1d_kernels_LDADD = libmpm_nonlocal.la libmpm_material.la libmpm_mesh.la \
+verification_ngf1d_ngf1d_kernels_LDADD = libmpm_nonlocal.la libmpm_shape.la libmpm_material.la libmpm_mesh.la \
 	libmpm_core.la $(GSL_LIBS) -lm
