@@ -24,6 +24,7 @@
 #ifndef MPM_MESH_MESH_H
 #define MPM_MESH_MESH_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "core/config.h"
@@ -93,15 +94,25 @@ void mpm_mesh_axis_wrap_coord(double *x, double o, double len);
 
 /* Unit k in [0, n-1] and local coordinate u in [0, 1] at distance s in
  * [0, n/ih] from the start of an axis of n units of size 1/ih (a point on
- * the upper end belongs to the last unit). */
-static inline void mpm_mesh_axis_unit(double s, double ih, int n, int *k, double *u)
+ * the upper end belongs to the last unit), with last = n - 1 and k as
+ * doubles (integers), for a loop whose tests must all be of doubles to
+ * vectorise. */
+static inline void mpm_mesh_axis_unit_real(double s, double ih, double last, double *k, double *u)
 {
-  double xi = s * ih;           /* position in units */
-  int kk = (int)xi;
-  kk = kk > n - 1 ? n - 1 : kk;
-  double f = xi - kk;
+  const double xi = s * ih;     /* position in units */
+  double kk = trunc(xi);
+  kk = kk > last ? last : kk;
+  const double f = xi - kk;
   *k = kk;
   *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
+}
+
+/* mpm_mesh_axis_unit_real with n units and k an int. */
+static inline void mpm_mesh_axis_unit(double s, double ih, int n, int *k, double *u)
+{
+  double kk;
+  mpm_mesh_axis_unit_real(s, ih, n - 1, &kk, u);
+  *k = (int)kk;
 }
 
 /* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of

@@ -214,6 +214,165 @@ int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
   return 0;
 }
 
+/* The factorised weights along one axis of a batch of points whose two
+ * corners x - h, x + h fall in one unit or in two neighbours, as the
+ * centre does: on a non-periodic axis once clamped onto its faces; on a
+ * periodic one (of 3 units or more, so that no two of the nodes are one)
+ * wrapped as mpm_mesh_axis_wrap wraps them, a corner below the start then
+ * in unit -1 and one beyond the end in unit n. The sums of
+ * mpm_shape_in_separable with corner 0 at slot 0 and corner 1 at slot
+ * d1 = 0 or 1 from the unit k0 of corner 0, written without branches (a
+ * loop that vectorises; its tests all of doubles): every value bit for bit
+ * that function's. ok[i] is cleared for a point the case does not cover. */
+static inline __attribute__((always_inline)) void
+axis_batch(double o, double len, double ih, int n, int per, const double *restrict x,
+           const double *restrict r, int nb, int *restrict ok, int *restrict k0,
+           int *restrict d1, double (*restrict A)[64], double (*restrict B)[64])
+{
+  const double hi = o + len, end = n - 1, nd = n;
+  for (int i = 0; i < nb; i++) {
+    const double h = fabs(r[i]), ib = 0.5 / h;
+    const double c = x[i] - o, s0 = x[i] - h, s1 = x[i] + h;
+    double t0 = s0 - o, t1 = s1 - o, sa = 0.0, sb = 0.0;
+    int in;
+    if (per) {                               /* s mod len, floor(s / len) = -1, 0 or 1 */
+      in = (c >= 0.0) & (c < len) & (t0 > -0.5 * len) & (t1 < 1.5 * len) & (nd >= 3.0);
+      const double w0 = t0 + len;
+      const int below = (t0 < 0.0) & (w0 < len);   /* -tiny + len rounds to len: 0 */
+      sa = below ? -nd : 0.0;
+      t0 = t0 < 0.0 ? (below ? w0 : 0.0) : t0;
+      sb = t1 >= len ? nd : 0.0;
+      t1 = t1 >= len ? t1 - len : t1;
+    } else {
+      in = (x[i] >= o) & (x[i] <= hi);
+      t0 = (s0 < o ? o : (s0 > hi ? hi : s0)) - o;
+      t1 = (s1 < o ? o : (s1 > hi ? hi : s1)) - o;
+      in &= (t0 == t0) & (t1 == t1);
+    }
+    double ka, kb, la, lb;                   /* units as doubles */
+    mpm_mesh_axis_unit_real(in ? t0 : 0.0, ih, end, &ka, &la);
+    mpm_mesh_axis_unit_real(in ? t1 : 0.0, ih, end, &kb, &lb);
+    ka += sa;
+    kb += sb;
+    const double dk = kb - ka;
+    in &= (dk >= 0.0) & (dk <= 1.0);
+    const double a0 = 0.5 * (1.0 - la), a1 = 0.5 * la, c0 = 0.5 * (1.0 - lb), c1 = 0.5 * lb;
+    const double b0 = -ib * (1.0 - la), b1 = -ib * la, e0 = ib * (1.0 - lb), e1 = ib * lb;
+    const int two = dk != 0.0;               /* corner 1 in the next unit */
+    A[0][i] = (0.0 + a0) + (two ? 0.0 : c0);
+    A[1][i] = (0.0 + a1) + (two ? c0 : c1);
+    A[2][i] = 0.0 + (two ? c1 : 0.0);
+    B[0][i] = (0.0 + b0) + (two ? 0.0 : e0);
+    B[1][i] = (0.0 + b1) + (two ? e0 : e1);
+    B[2][i] = 0.0 + (two ? e1 : 0.0);
+    k0[i] = (int)ka;
+    d1[i] = (int)dk;
+    ok[i] &= in;
+  }
+}
+
+/* mpm_shape_in_separable_range in D = m->dim dimensions (a constant where
+ * it is inlined). */
+static inline __attribute__((always_inline)) long
+separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long hi,
+                mpm_shape_stencil *st, int *fits)
+{
+  enum { BATCH = 64 };
+  const mpm_mesh mc = *m;  /* a copy: no store through st can change it */
+  long first = hi;
+  for (long b = lo; b < hi; b += BATCH) {
+    const int nb = hi - b < BATCH ? (int)(hi - b) : BATCH;
+    int ok[BATCH], k0[3][BATCH], d1[3][BATCH], row[BATCH];
+    double A[3][3][BATCH], B[3][3][BATCH];
+    /* an extent along the axes (mpm_shape_in_axes_extent's test) */
+    for (int i = 0; i < nb; i++) {
+      double v = 1.0, w = 0.0;
+      int along = 1;
+      for (int k = 0; k < D; k++) {
+        const int k1 = (k + 1) % D;
+        const double hk = fabs(pts->ext[k][k][b + i]), hn = fabs(pts->ext[k1][k1][b + i]);
+        along &= hk != 0.0;
+        v *= hk;
+        w += D == 3 ? hk * hn : 0.0;
+        for (int e = 0; e < D; e++)
+          along &= e == k || pts->ext[k][e][b + i] == 0.0;
+      }
+      ok[i] = along & isfinite(v) & isfinite(w);
+    }
+    for (int d = 0; d < D; d++) {
+      const double *x = pts->pos[d] + b, *r = pts->ext[d][d] + b;
+      if (mc.periodic[d])
+        axis_batch(mc.o[d], mc.len[d], mc.ih[d], mc.n[d], 1, x, r, nb, ok, k0[d], d1[d], A[d],
+                   B[d]);
+      else
+        axis_batch(mc.o[d], mc.len[d], mc.ih[d], mc.n[d], 0, x, r, nb, ok, k0[d], d1[d], A[d],
+                   B[d]);
+    }
+    {                                        /* the centres' units along the last axis */
+      const double *x = pts->pos[D - 1] + b, o = mc.o[D - 1], ih = mc.ih[D - 1];
+      const int n = mc.n[D - 1];
+      for (int i = 0; i < nb; i++) {
+        double v;
+        mpm_mesh_axis_unit(ok[i] ? x[i] - o : 0.0, ih, n, &row[i], &v);
+      }
+    }
+    for (int i = 0; i < nb; i++) {
+      const long p = b + i;
+      mpm_shape_axes *ax = &st->axes[p];
+      if (ok[i]) {
+        int cnt = 1;
+        for (int d = 0; d < 3; d++) {
+          if (d >= D) {                      /* the plane's z: one factor 1 */
+            ax->n[d] = 1;
+            ax->idx[d][0] = 0;
+            ax->A[d][0] = 1.0;
+            ax->B[d][0] = 0.0;
+            continue;
+          }
+          ax->n[d] = 2 + d1[d][i];
+          for (int k = 0; k < 3; k++) {
+            ax->idx[d][k] = mpm_mesh_axis_node(k0[d][i] + k, mc.n[d], mc.periodic[d]);
+            ax->A[d][k] = A[d][k][i];
+            ax->B[d][k] = B[d][k][i];
+          }
+          cnt *= ax->n[d];
+        }
+        st->count[p] = cnt;
+        st->row[p] = row[i];
+        continue;
+      }
+      /* the general case, point by point */
+      double rr[9], h[3];
+      mpm_shape_point_extent(pts, D, (size_t)p, rr);
+      const double x[3] = {pts->x[p], pts->y[p], D == 3 ? pts->z[p] : 0.0};
+      int c[3], cnt = -1;
+      double l[3];
+      if (!mpm_mesh_locate(&mc, x, c, l)) {
+        if (!mpm_shape_in_axes_extent(D, rr, h)) {
+          *fits = 0;
+          return hi;
+        }
+        const int rc = mpm_shape_in_separable(&mc, x, c, h, ax);
+        if (rc == -2) {
+          *fits = 0;
+          return hi;
+        }
+        cnt = rc ? -1 : ax->n[0] * ax->n[1] * ax->n[2];
+      }
+      if (mpm_shape_stencil_point(&mc, st, p, x[D - 1], cnt) < 0 && p < first)
+        first = p;
+    }
+  }
+  return first;
+}
+
+long mpm_shape_in_separable_range(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
+                                  mpm_shape_stencil *st, int *fits)
+{
+  return m->dim == 3 ? separable_range(m, 3, pts, lo, hi, st, fits)
+                     : separable_range(m, 2, pts, lo, hi, st, fits);
+}
+
 int mpm_shape_in_separable_list(const mpm_mesh *m, const mpm_shape_axes *ax, int *node,
                                 double *S, double *const dS[3])
 {

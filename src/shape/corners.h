@@ -181,6 +181,16 @@ int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const doub
 int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
                            const double h[3], mpm_shape_axes *ax);
 
+/* The factorised weights (mpm_shape_in_separable) of points [lo, hi) into
+ * st's axes, count and row (mpm_shape_stencil_point), in batches: first
+ * each axis of a batch of points in a loop that vectorises, for the points
+ * whose corners along it lie in one unit or two neighbours without a wrap
+ * (nearly all: the same values bit for bit), then the others point by
+ * point. Returns the first point outside the mesh, or hi; *fits 0 (and the
+ * rest undone) when a point's extent does not factorise. */
+long mpm_shape_in_separable_range(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
+                                  mpm_shape_stencil *st, int *fits);
+
 /* The weights of the factorised rule as a node list (nodes along the axes
  * from the last, the products of mpm_shape_axes_weight); returns the count. */
 int mpm_shape_in_separable_list(const mpm_mesh *m, const mpm_shape_axes *ax, int *node,
@@ -203,7 +213,8 @@ static inline int mpm_shape_in_axes_extent(int D, const double *r, double h[3])
     v *= h[d];
     s += D == 3 ? h[d] * h[(d + 1) % D] : 0.0;
   }
-  h[2] = D == 3 ? h[2] : 0.0;
+  if (D != 3)
+    h[2] = 0.0;
   return isfinite(v) && isfinite(s);
 }
 

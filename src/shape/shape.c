@@ -144,39 +144,6 @@ static long eval_range(const mpm_shape_type *type, const mpm_mesh *m, const mpm_
   return first;
 }
 
-/* The factorised weights of points [lo, hi): returns the first point
- * outside the mesh, or hi; *fits 0 when a point's extent does not factorise
- * (not along the axes, or wider than the factorised form holds). */
-static long axes_range(const mpm_mesh *m, const mpm_points *pts, long lo, long hi,
-                       mpm_shape_stencil *st, int *fits)
-{
-  const int D = m->dim;
-  long first = hi;
-  for (long p = lo; p < hi; p++) {
-    double r[9], h[3];
-    mpm_shape_point_extent(pts, D, (size_t)p, r);
-    const double x[3] = {pts->x[p], pts->y[p], D == 3 ? pts->z[p] : 0.0};
-    int c[3], cnt = -1;
-    double l[3];
-    if (!mpm_mesh_locate(m, x, c, l)) {
-      if (!mpm_shape_in_axes_extent(D, r, h)) {
-        *fits = 0;
-        return hi;
-      }
-      mpm_shape_axes *ax = &st->axes[p];
-      const int rc = mpm_shape_in_separable(m, x, c, h, ax);
-      if (rc == -2) {
-        *fits = 0;
-        return hi;
-      }
-      cnt = rc ? -1 : ax->n[0] * ax->n[1] * ax->n[2];
-    }
-    if (mpm_shape_stencil_point(m, st, p, x[D - 1], cnt) < 0 && p < first)
-      first = p;
-  }
-  return first;
-}
-
 /* Evaluate every point, in chunks of consecutive points (independent, so
  * the chunks run in parallel); returns the index of the first one outside,
  * or n; with sep, the factorised form, *fits 0 if a point needs the list. */
@@ -194,7 +161,7 @@ static long stencil_fill(mpm_shape_stencil *st, const mpm_shape_type *type, cons
     const long lo = k * CHUNK, hi = lo + CHUNK < n ? lo + CHUNK : n;
     long f;
     if (sep)
-      f = axes_range(m, pts, lo, hi, st, &ok);
+      f = mpm_shape_in_separable_range(m, pts, lo, hi, st, &ok);
     else
       f = type->fill && m->dim == 2 ? type->fill(m, pts, lo, hi, st)
                                     : eval_range(type, m, pts, lo, hi, st);

@@ -6,6 +6,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The small kernels of kernels.inc are inlined into their loops whatever
+ * their size, so that each loop is compiled for its dimension, its weights
+ * and its options. */
+#if defined(__GNUC__)
+#define KINLINE static inline __attribute__((always_inline))
+#else
+#define KINLINE static inline
+#endif
+
 /* Where a point's weights come from (kernels.inc). */
 enum { W_LOCATED = 0, W_ELEMENT, W_LIST, W_SEPARABLE };
 

@@ -97,8 +97,8 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
                  + (extent ? parts * (sizeof(int) + sizeof(double)) : 0);
   if (bbar)
     per_point += sizeof(int);                                  /* the unit of each point */
-  double per_node = (1 + 2 * dim + 4) * sizeof(double)       /* m_i, the record, ... */
-                    + sizeof(int) + 2 + 2 * sizeof(double);   /* ... and the bc */
+  double per_node = (1 + mpm_sim_node_lanes(dim) + 4) * sizeof(double)  /* m_i, the record, */
+                    + sizeof(int) + 2 + 2 * sizeof(double);  /* ... and the bc */
   if (cfg->time.transfer == MPM_TRANSFER_APIC)
     per_node += dim * sizeof(double);                          /* the nodes' positions */
   double per_unit = 0.0;

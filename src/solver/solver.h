@@ -51,9 +51,9 @@ typedef struct mpm_sim {
 
   /* nodal workspace [mesh.nnodes] */
   double *nm;                     /* m_i */
-  double *nq;                     /* records of 2 dim lanes (mpm_sim_node): after
-                                   * point-to-grid ((mv)_1..D, f_1..D), after the
-                                   * grid update (v_1..D, a_1..D) */
+  double *nq;                     /* records (mpm_sim_node): after point-to-grid
+                                   * ((mv)_1..D, f_1..D), after the grid update
+                                   * (v_1..D, a_1..D); in 3D then m_i and a pad */
 
   /* constitutive substepping and the nonlocal fluidity (MODEL.md section 5) */
   int n_sub;                      /* constitutive substeps per step, L fixed */
@@ -101,11 +101,18 @@ typedef struct mpm_sim {
   long check_next;                /* the next checkpoint at check_next * checkpoint_dt */
 } mpm_sim;
 
-/* The nodal record of node i: 2 dim doubles (the plane's on 32-byte
- * boundaries). */
+/* Lanes of a nodal record in dimension dim: the 2 dim of mpm_sim.nq's
+ * comment, and in 3D the mass (filled by point-to-grid) and a pad: one or
+ * two whole 4-double vectors. */
+static inline int mpm_sim_node_lanes(int dim)
+{
+  return dim == 3 ? 8 : 4;
+}
+
+/* The nodal record of node i (on a 32-byte boundary). */
 static inline double *mpm_sim_node(const mpm_sim *s, int i)
 {
-  return s->nq + (size_t)(2 * s->dim) * (size_t)i;
+  return s->nq + (size_t)mpm_sim_node_lanes(s->dim) * (size_t)i;
 }
 
 /* The point store is reordered by unit row (along the mesh's last axis) at

@@ -43,9 +43,8 @@ static int nodal_alloc(mpm_sim *s)
   const size_t n = s->mesh.nnodes > 0 ? (size_t)s->mesh.nnodes : 1;
   if (!(s->nm = calloc(n, sizeof *s->nm)))
     return MPM_ENOMEM;
-  /* records of 2 dim doubles on 32-byte boundaries (the plane's: one vector
-   * each) */
-  const size_t bytes = (n * (size_t)(2 * s->dim) * sizeof *s->nq + 31) / 32 * 32;
+  /* records of whole 4-double vectors on 32-byte boundaries */
+  const size_t bytes = n * (size_t)mpm_sim_node_lanes(s->dim) * sizeof *s->nq;
   if (!(s->nq = aligned_alloc(32, bytes)))
     return MPM_ENOMEM;
   memset(s->nq, 0, bytes);
@@ -325,11 +324,12 @@ static long update_range(mpm_sim *s, const mpm_material_type *mat, int steady, s
     mat->update_steady(&s->par, h, n, &bt);
   else
     mat->update(&s->par, h, n, &bt);
-  long bad = -1;
+  long bad = -1;                      /* a sum is non-finite iff a term is */
+  const double *s0 = P->sig[0], *s1 = P->sig[1], *s2 = P->sig[2], *s3 = P->sig[3];
   for (size_t p = a; p < b; p++) {
-    double t = P->sig[0][p];
-    for (int k = 1; k < ns; k++)
-      t += P->sig[k][p];
+    double t = s0[p] + s1[p] + s2[p] + s3[p];
+    if (ns == 6)
+      t += P->sig[4][p] + P->sig[5][p];
     if (!isfinite(t))
       bad = (long)p;
   }

@@ -314,10 +314,10 @@ EL_INLINE void unit_corners(const mpm_sim *s, const unit_grid *g, int dim, size_
                          dim == 3 ? at[2] + (c >> 2 & 1) : 0);
 }
 
-/* The nodal record of node i in a run of dimension D: its 2D lanes. */
+/* The nodal record of node i in a run of dimension dim (mpm_sim_node). */
 EL_INLINE double *node_record(const mpm_sim *s, int dim, int i)
 {
-  return s->nq + (size_t)(2 * dim) * (size_t)i;
+  return s->nq + (size_t)mpm_sim_node_lanes(dim) * (size_t)i;
 }
 
 /* |int_e dN_c/dx_d dV| over a unit, the same for every corner (its sign
