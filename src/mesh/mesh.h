@@ -107,12 +107,16 @@ static inline void mpm_mesh_axis_unit_real(double s, double ih, double last, dou
   *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
 }
 
-/* mpm_mesh_axis_unit_real with n units and k an int. */
+/* The same with n units and k an int (its operations on ints: the plane's
+ * vectorised loops run faster so, and give the same values). */
 static inline void mpm_mesh_axis_unit(double s, double ih, int n, int *k, double *u)
 {
-  double kk;
-  mpm_mesh_axis_unit_real(s, ih, n - 1, &kk, u);
-  *k = (int)kk;
+  const double xi = s * ih;     /* position in units */
+  int kk = (int)xi;
+  kk = kk > n - 1 ? n - 1 : kk;
+  const double f = xi - kk;
+  *k = kk;
+  *u = f > 1.0 ? 1.0 : f;       /* round-off at the upper end */
 }
 
 /* Unit k in [0, n-1] and local coordinate u in [0, 1] of x along one axis of

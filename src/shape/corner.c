@@ -18,6 +18,9 @@
 /* Block side (nodes along each axis): slot a + BLOCK b (+ BLOCK^2 c). */
 enum { BLOCK = 4 };
 
+/* Points a batch of the factorised rule locates at once. */
+enum { BATCH = 64 };
+
 /* The general rule in D dimensions (D = m->dim, a constant where it is
  * inlined). */
 static inline __attribute__((always_inline)) int
@@ -157,6 +160,16 @@ int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const doub
   return mc.dim == 3 ? general(&mc, 3, x, r, node, S, dS) : general(&mc, 2, x, r, node, S, dS);
 }
 
+/* The slots [*k0, *k1] of an axis's factors A, B less the end ones whose A
+ * and B are both 0 (never all: sum A = 1). */
+static inline void axis_trim(const double *A, const double *B, int *k0, int *k1)
+{
+  while (*k0 < *k1 && A[*k0] == 0.0 && B[*k0] == 0.0)
+    (*k0)++;
+  while (*k1 > *k0 && A[*k1] == 0.0 && B[*k1] == 0.0)
+    (*k1)--;
+}
+
 int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
                            const double h[3], mpm_shape_axes *ax)
 {
@@ -175,8 +188,10 @@ int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
     if (mpm_shape_in_corners_axis(2, s, m->o[d], m->len[d], m->ih[d], m->n[d], m->periodic[d],
                                   ck, cl))
       return -1;
-    for (int q = 0; q < 2; q++)
+    for (int q = 0; q < 2; q++) {
       dk[q] = mpm_mesh_axis_offset(ck[q] - c[d], m->n[d], m->periodic[d]);
+      cl[q] = mpm_shape_in_snap(cl[q]);
+    }
     const int lo = dk[0] < dk[1] ? dk[0] : dk[1];
     const int bs = (dk[0] < dk[1] ? dk[1] : dk[0]) - lo + 2;
     if (bs > W)
@@ -193,8 +208,10 @@ int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
         B[at + a] += sg * phi[a];
       }
     }
+    int k0 = 0, k1 = bs - 1;                   /* the end nodes of weight 0 left out */
+    axis_trim(A, B, &k0, &k1);
     int cnt = 0;                               /* stored nodes; on a periodic axis of */
-    for (int k = 0; k < bs; k++) {             /* few units one can come twice: merged */
+    for (int k = k0; k <= k1; k++) {           /* few units one can come twice: merged */
       const int id = mpm_mesh_axis_node(c[d] + lo + k, m->n[d], m->periodic[d]);
       int q = 0;
       while (q < cnt && ax->idx[d][q] != id)
@@ -215,19 +232,20 @@ int mpm_shape_in_separable(const mpm_mesh *m, const double x[3], const int c[3],
 }
 
 /* The factorised weights along one axis of a batch of points whose two
- * corners x - h, x + h fall in one unit or in two neighbours, as the
- * centre does: on a non-periodic axis once clamped onto its faces; on a
- * periodic one (of 3 units or more, so that no two of the nodes are one)
- * wrapped as mpm_mesh_axis_wrap wraps them, a corner below the start then
- * in unit -1 and one beyond the end in unit n. The sums of
- * mpm_shape_in_separable with corner 0 at slot 0 and corner 1 at slot
- * d1 = 0 or 1 from the unit k0 of corner 0, written without branches (a
- * loop that vectorises; its tests all of doubles): every value bit for bit
- * that function's. ok[i] is cleared for a point the case does not cover. */
+ * corners x - h, x + h fall in units k0 and k0 + d1, d1 = 0, 1 or 2 (2
+ * only by round-off, for a corner on a node), as the centre does: on a
+ * non-periodic axis once clamped onto its faces; on a periodic one (of at
+ * least d1 + 2 units, so that no two of the nodes are one) wrapped as
+ * mpm_mesh_axis_wrap wraps them, a corner below the start then in unit -1
+ * and one beyond the end in unit n. The sums of mpm_shape_in_separable
+ * with corner 0 at slot 0 and corner 1 at slot d1, written without
+ * branches (a loop that vectorises; its tests all of doubles): every value
+ * bit for bit that function's. ok[i] is cleared for a point the case does
+ * not cover. */
 static inline __attribute__((always_inline)) void
 axis_batch(double o, double len, double ih, int n, int per, const double *restrict x,
            const double *restrict r, int nb, int *restrict ok, int *restrict k0,
-           int *restrict d1, double (*restrict A)[64], double (*restrict B)[64])
+           int *restrict cnt, double (*restrict A)[BATCH], double (*restrict B)[BATCH])
 {
   const double hi = o + len, end = n - 1, nd = n;
   for (int i = 0; i < nb; i++) {
@@ -236,7 +254,7 @@ axis_batch(double o, double len, double ih, int n, int per, const double *restri
     double t0 = s0 - o, t1 = s1 - o, sa = 0.0, sb = 0.0;
     int in;
     if (per) {                               /* s mod len, floor(s / len) = -1, 0 or 1 */
-      in = (c >= 0.0) & (c < len) & (t0 > -0.5 * len) & (t1 < 1.5 * len) & (nd >= 3.0);
+      in = (c >= 0.0) & (c < len) & (t0 > -0.5 * len) & (t1 < 1.5 * len);
       const double w0 = t0 + len;
       const int below = (t0 < 0.0) & (w0 < len);   /* -tiny + len rounds to len: 0 */
       sa = below ? -nd : 0.0;
@@ -252,21 +270,31 @@ axis_batch(double o, double len, double ih, int n, int per, const double *restri
     double ka, kb, la, lb;                   /* units as doubles */
     mpm_mesh_axis_unit_real(in ? t0 : 0.0, ih, end, &ka, &la);
     mpm_mesh_axis_unit_real(in ? t1 : 0.0, ih, end, &kb, &lb);
+    la = mpm_shape_in_snap(la);
+    lb = mpm_shape_in_snap(lb);
     ka += sa;
     kb += sb;
     const double dk = kb - ka;
-    in &= (dk >= 0.0) & (dk <= 1.0);
+    in &= (dk >= 0.0) & (dk <= 2.0);
+    if (per)
+      in &= dk + 2.0 <= nd;                  /* no node twice */
     const double a0 = 0.5 * (1.0 - la), a1 = 0.5 * la, c0 = 0.5 * (1.0 - lb), c1 = 0.5 * lb;
     const double b0 = -ib * (1.0 - la), b1 = -ib * la, e0 = ib * (1.0 - lb), e1 = ib * lb;
-    const int two = dk != 0.0;               /* corner 1 in the next unit */
-    A[0][i] = (0.0 + a0) + (two ? 0.0 : c0);
-    A[1][i] = (0.0 + a1) + (two ? c0 : c1);
-    A[2][i] = 0.0 + (two ? c1 : 0.0);
-    B[0][i] = (0.0 + b0) + (two ? 0.0 : e0);
-    B[1][i] = (0.0 + b1) + (two ? e0 : e1);
-    B[2][i] = 0.0 + (two ? e1 : 0.0);
-    k0[i] = (int)ka;
-    d1[i] = (int)dk;
+    const int at0 = dk == 0.0, at1 = dk == 1.0, at2 = dk == 2.0;  /* corner 1's slot */
+    const double a[4] = {(0.0 + a0) + (at0 ? c0 : 0.0), (0.0 + a1) + (at0 ? c1 : at1 ? c0 : 0.0),
+                         0.0 + (at1 ? c1 : at2 ? c0 : 0.0), 0.0 + (at2 ? c1 : 0.0)};
+    const double b[4] = {(0.0 + b0) + (at0 ? e0 : 0.0), (0.0 + b1) + (at0 ? e1 : at1 ? e0 : 0.0),
+                         0.0 + (at1 ? e1 : at2 ? e0 : 0.0), 0.0 + (at2 ? e1 : 0.0)};
+    /* the end slots of weight 0 left out (axis_trim): slot 0 (corner 0 at
+     * l = 1) and slot dk + 1 (corner 1 at l = 0), never more */
+    const double al = at0 ? a[1] : at1 ? a[2] : a[3], bl = at0 ? b[1] : at1 ? b[2] : b[3];
+    const int lead = (a[0] == 0.0) & (b[0] == 0.0), trail = (al == 0.0) & (bl == 0.0);
+    for (int k = 0; k < 4; k++) {
+      A[k][i] = lead ? (k < 3 ? a[k + 1] : 0.0) : a[k];
+      B[k][i] = lead ? (k < 3 ? b[k + 1] : 0.0) : b[k];
+    }
+    k0[i] = (int)(ka + (lead ? 1.0 : 0.0));
+    cnt[i] = (int)(dk + (2.0 - (lead ? 1.0 : 0.0) - (trail ? 1.0 : 0.0)));
     ok[i] &= in;
   }
 }
@@ -277,13 +305,12 @@ static inline __attribute__((always_inline)) long
 separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long hi,
                 mpm_shape_stencil *st, int *fits)
 {
-  enum { BATCH = 64 };
   const mpm_mesh mc = *m;  /* a copy: no store through st can change it */
   long first = hi;
   for (long b = lo; b < hi; b += BATCH) {
     const int nb = hi - b < BATCH ? (int)(hi - b) : BATCH;
-    int ok[BATCH], k0[3][BATCH], d1[3][BATCH], row[BATCH];
-    double A[3][3][BATCH], B[3][3][BATCH];
+    int ok[BATCH], k0[3][BATCH], cnt[3][BATCH], row[BATCH];
+    double A[3][MPM_SHAPE_AXIS_NODES][BATCH], B[3][MPM_SHAPE_AXIS_NODES][BATCH];
     /* an extent along the axes (mpm_shape_in_axes_extent's test) */
     for (int i = 0; i < nb; i++) {
       double v = 1.0, w = 0.0;
@@ -302,10 +329,10 @@ separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long h
     for (int d = 0; d < D; d++) {
       const double *x = pts->pos[d] + b, *r = pts->ext[d][d] + b;
       if (mc.periodic[d])
-        axis_batch(mc.o[d], mc.len[d], mc.ih[d], mc.n[d], 1, x, r, nb, ok, k0[d], d1[d], A[d],
+        axis_batch(mc.o[d], mc.len[d], mc.ih[d], mc.n[d], 1, x, r, nb, ok, k0[d], cnt[d], A[d],
                    B[d]);
       else
-        axis_batch(mc.o[d], mc.len[d], mc.ih[d], mc.n[d], 0, x, r, nb, ok, k0[d], d1[d], A[d],
+        axis_batch(mc.o[d], mc.len[d], mc.ih[d], mc.n[d], 0, x, r, nb, ok, k0[d], cnt[d], A[d],
                    B[d]);
     }
     {                                        /* the centres' units along the last axis */
@@ -320,7 +347,7 @@ separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long h
       const long p = b + i;
       mpm_shape_axes *ax = &st->axes[p];
       if (ok[i]) {
-        int cnt = 1;
+        int nodes = 1;
         for (int d = 0; d < 3; d++) {
           if (d >= D) {                      /* the plane's z: one factor 1 */
             ax->n[d] = 1;
@@ -329,15 +356,15 @@ separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long h
             ax->B[d][0] = 0.0;
             continue;
           }
-          ax->n[d] = 2 + d1[d][i];
-          for (int k = 0; k < 3; k++) {
+          ax->n[d] = cnt[d][i];
+          for (int k = 0; k < MPM_SHAPE_AXIS_NODES; k++) {
             ax->idx[d][k] = mpm_mesh_axis_node(k0[d][i] + k, mc.n[d], mc.periodic[d]);
             ax->A[d][k] = A[d][k][i];
             ax->B[d][k] = B[d][k][i];
           }
-          cnt *= ax->n[d];
+          nodes *= ax->n[d];
         }
-        st->count[p] = cnt;
+        st->count[p] = nodes;
         st->row[p] = row[i];
         continue;
       }
@@ -345,7 +372,7 @@ separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long h
       double rr[9], h[3];
       mpm_shape_point_extent(pts, D, (size_t)p, rr);
       const double x[3] = {pts->x[p], pts->y[p], D == 3 ? pts->z[p] : 0.0};
-      int c[3], cnt = -1;
+      int c[3], count = -1;
       double l[3];
       if (!mpm_mesh_locate(&mc, x, c, l)) {
         if (!mpm_shape_in_axes_extent(D, rr, h)) {
@@ -357,9 +384,9 @@ separable_range(const mpm_mesh *m, int D, const mpm_points *pts, long lo, long h
           *fits = 0;
           return hi;
         }
-        cnt = rc ? -1 : ax->n[0] * ax->n[1] * ax->n[2];
+        count = rc ? -1 : ax->n[0] * ax->n[1] * ax->n[2];
       }
-      if (mpm_shape_stencil_point(&mc, st, p, x[D - 1], cnt) < 0 && p < first)
+      if (mpm_shape_stencil_point(&mc, st, p, x[D - 1], count) < 0 && p < first)
         first = p;
     }
   }

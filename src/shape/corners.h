@@ -165,6 +165,19 @@ static inline void mpm_shape_in_list_add(int id, int nv, const double *v, int *n
 int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const double *r,
                                 int *node, double *S, double *const dS[3]);
 
+/* The factorised rule puts a corner within MPM_SHAPE_SNAP units of a node
+ * on it: a local coordinate that close to 0 or 1 becomes 0 or 1. A point
+ * filled one to a unit has its corners on nodes, up to round-off; without
+ * this its weights along an axis would spread over 3 or 4 nodes, the end
+ * ones of round-off size, instead of the 2 it weighs. The weights move by
+ * at most that much; sum S = 1, sum gradS = 0 and sum (x_i - x_p) gradS = I
+ * hold exactly as before. */
+#define MPM_SHAPE_SNAP 1e-10
+static inline double mpm_shape_in_snap(double l)
+{
+  return l < MPM_SHAPE_SNAP ? 0.0 : (l > 1.0 - MPM_SHAPE_SNAP ? 1.0 : l);
+}
+
 /* The factorised rule of an extent along the axes, r_k = h_k e_k (every
  * uGIMP extent as filled): along axis d the two corner coordinates
  * x_d -+ h_d (clamped and wrapped as in the general rule) give the hat
@@ -172,7 +185,10 @@ int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const doub
  * phi_n(+))/2, B_n = (phi_n(+) - phi_n(-))/(2 h_d)
  *   S = prod_d A_d,  dS/dx_d = B_d prod_{e != d} A_e,
  * the general rule's sums regrouped (w_c = R^-T s_c / 2^D = (s_c / h) / 2^D)
- * on the same nodes (those a short periodic axis aliases merged per axis).
+ * on the same nodes (those a short periodic axis aliases merged per axis),
+ * the corners put on a node they lie within MPM_SHAPE_SNAP of
+ * (mpm_shape_in_snap), and the nodes at either end of an axis whose A and B
+ * are both 0 left out.
  * For point x in unit c with half-widths h[d] > 0: per axis the storage
  * index of each node along it (ax->idx), its factors A and B, and their
  * number. Returns 0, -1 outside (a corner not finite), or -2 when a corner
