@@ -602,15 +602,13 @@ START_TEST(t_box_ugimp_periodic)
 }
 END_TEST
 
-/* Non-finite points and extents are reported as outside (-1), not used; a
- * corner geometry that overflows too; a flat extent (det R = 0) takes the
- * delta weights. */
-/* An extent along the axes takes the factorised rule (ugimp3_box): the
- * same extent with r1 and r2 swapped in storage (no longer "along the
- * axes": the general corner loop) must give the same nodes in the same
- * order and the same weights to round-off, for boxes up to 0.9 units wide
- * (wide ones too), either orientation, clamped at faces and wrapped on
- * periodic axes of few units; and the invariants hold. */
+/* An extent along the axes takes the factorised rule
+ * (mpm_shape_in_separable): the same extent with r1 and r2 swapped in
+ * storage (off-diagonal in storage: the general corner loop) must give the
+ * same nodes in the same order and the same weights to round-off, for
+ * boxes up to 0.9 units wide (wide ones too), either orientation, clamped
+ * at faces and wrapped on periodic axes of few units; and the invariants
+ * hold. */
 START_TEST(t_box_ugimp_box_factorised)
 {
   uint64_t st = 77;
@@ -651,6 +649,9 @@ START_TEST(t_box_ugimp_box_factorised)
 }
 END_TEST
 
+/* Non-finite points and extents are reported as outside (-1), not used; a
+ * corner geometry that overflows too; a flat extent (det R = 0) takes the
+ * delta weights. */
 START_TEST(t_box_ugimp_nonfinite)
 {
   for (int per = 0; per < 8; per += 7) {
