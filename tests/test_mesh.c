@@ -3,7 +3,11 @@
  * Checked from the definitions: validation messages, name tables, storage
  * numbering and periodic aliasing, wrapping, unit lookup on boundaries, the
  * diagonal rules, and the element basis: T3 reproduces every linear field and
- * Q4 every bilinear field, values and gradients.
+ * Q4 every bilinear field, values and gradients. The same for a mesh of
+ * boxes (dim = 3): validation of the third axis, storage numbering with
+ * every combination of periodic axes and the hexahedron corner order,
+ * location on faces and across periods, and the trilinear basis (linear
+ * fields reproduced, hand values).
  *
  * Tolerances: the fields below are O(1) on an O(1) domain and each basis sum
  * has at most 4 terms, so round-off is a few 1e-16 for values and a few
@@ -417,6 +421,257 @@ START_TEST(t_basis_boundary_and_outside)
 }
 END_TEST
 
+/* ------------------------------------------------------------ boxes */
+
+/* A set-up mesh of boxes (dim = 3) with distinct unit sizes and an offset
+ * origin; periodic axes from the bits of per (x: 1, y: 2, z: 4). */
+static mpm_mesh make_box(int nx, int ny, int nz, int per)
+{
+  mpm_mesh m;
+  memset(&m, 0, sizeof m);
+  m.dim = 3;
+  m.nx = nx;
+  m.ny = ny;
+  m.nz = nz;
+  m.x0 = -0.4;
+  m.y0 = 0.25;
+  m.z0 = 0.1;
+  m.dx = 0.13;
+  m.dy = 0.11;
+  m.dz = 0.12;
+  m.topology = MPM_TOPO_Q4;
+  m.periodic_x = per & 1;
+  m.periodic_y = per >> 1 & 1;
+  m.periodic_z = per >> 2 & 1;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_mesh_setup(&m, &err) == MPM_OK, "%s", err.msg);
+  return m;
+}
+
+/* Logical indices of storage node id of a mesh of boxes. */
+static void box_node_ijk(const mpm_mesh *m, int id, int ijk[3])
+{
+  ijk[0] = id % m->snx;
+  ijk[1] = id / m->snx % m->sny;
+  ijk[2] = id / (m->snx * m->sny);
+}
+
+/* Position of storage node id shifted by whole periods to lie nearest xp. */
+static void box_node_near(const mpm_mesh *m, int id, const double xp[3], double x[3])
+{
+  int ijk[3];
+  box_node_ijk(m, id, ijk);
+  mpm_mesh_node_pos(m, ijk[0], ijk[1], ijk[2], x);
+  for (int d = 0; d < 3; d++)
+    if (m->periodic[d])
+      x[d] += m->len[d] * round((xp[d] - x[d]) / m->len[d]);
+}
+
+/* Expect mpm_mesh_setup of a mesh of boxes to fail with MPM_EINPUT naming key. */
+static void expect_box_reject(mpm_mesh m, const char *key)
+{
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_mesh_setup(&m, &err), MPM_EINPUT);
+  ck_assert_msg(strstr(err.msg, key) != NULL, "'%s' does not name %s", err.msg, key);
+}
+
+/* The derived fields of boxes (stored nodes n + 1 per axis, n on a periodic
+ * one), and the refusals that concern the third axis: no units, a unit
+ * size or origin that is not finite and positive, a periodic axis of one
+ * unit (a box would be its own neighbour across a face), a bad periodic
+ * flag, more nodes than an int counts; T3 is plane only. */
+START_TEST(t_box_setup)
+{
+  mpm_mesh m = make_box(4, 5, 3, 0);
+  ck_assert_int_eq(m.snx, 5);
+  ck_assert_int_eq(m.sny, 6);
+  ck_assert_int_eq(m.snz, 4);
+  ck_assert_int_eq(m.nnodes, 5 * 6 * 4);
+  ck_assert_uint_eq(m.nunits, 4 * 5 * 3);
+  ck_assert_double_eq_tol(m.lz, 3 * 0.12, TOL);
+  ck_assert_double_eq_tol(m.idz, 1.0 / 0.12, TOL);
+  mpm_mesh p = make_box(4, 5, 3, 5);               /* x and z periodic */
+  ck_assert_int_eq(p.snx, 4);
+  ck_assert_int_eq(p.sny, 6);
+  ck_assert_int_eq(p.snz, 3);
+  ck_assert_int_eq(p.nnodes, 4 * 6 * 3);
+  mpm_mesh b = m;
+  b.nz = 0;
+  expect_box_reject(b, "mesh.nz");
+  b = m;
+  b.dz = 0.0;
+  expect_box_reject(b, "mesh.dz");
+  b = m;
+  b.z0 = NAN;
+  expect_box_reject(b, "mesh.z0");
+  b = m;
+  b.nz = 1;
+  b.periodic_z = 1;
+  expect_box_reject(b, "mesh.nz");
+  b = m;
+  b.periodic_y = 2;
+  expect_box_reject(b, "mesh.periodic_y");
+  b = m;
+  b.nx = b.ny = b.nz = 2000;                       /* 2001^3 nodes > INT_MAX */
+  expect_box_reject(b, "mesh.nz");
+  b = m;
+  b.nx = b.ny = 60000;                             /* 60001^2 x 4 nodes > INT_MAX */
+  expect_box_reject(b, "nodes");
+  b = m;
+  b.topology = MPM_TOPO_T3;
+  expect_box_reject(b, "mesh.topology");
+  b = m;
+  b.dim = 4;
+  expect_box_reject(b, "dimension");
+}
+END_TEST
+
+/* Storage ids of boxes: every logical node maps into [0, nnodes), all are
+ * used, aliased nodes (i = nx and i = 0 on a periodic x, ...) share one id,
+ * and the unit corners are the hexahedron order of mpm_mesh_node. */
+START_TEST(t_box_nodes)
+{
+  for (int per = 0; per < 8; per++) {
+    mpm_mesh m = make_box(3, 4, 2, per);
+    int *seen = calloc((size_t)m.nnodes, sizeof *seen);
+    for (int k = 0; k <= m.nz; k++)
+      for (int j = 0; j <= m.ny; j++)
+        for (int i = 0; i <= m.nx; i++) {
+          const int id = mpm_mesh_node(&m, i, j, k);
+          ck_assert_int_ge(id, 0);
+          ck_assert_int_lt(id, m.nnodes);
+          seen[id]++;
+          if (i == m.nx)
+            ck_assert_int_eq(id == mpm_mesh_node(&m, 0, j, k), m.periodic_x);
+          if (j == m.ny)
+            ck_assert_int_eq(id == mpm_mesh_node(&m, i, 0, k), m.periodic_y);
+          if (k == m.nz)
+            ck_assert_int_eq(id == mpm_mesh_node(&m, i, j, 0), m.periodic_z);
+        }
+    const int alias = (m.periodic_x ? 2 : 1) * (m.periodic_y ? 2 : 1) * (m.periodic_z ? 2 : 1);
+    for (int id = 0; id < m.nnodes; id++) {
+      int ijk[3];
+      box_node_ijk(&m, id, ijk);
+      const int onx = m.periodic_x && ijk[0] == 0, ony = m.periodic_y && ijk[1] == 0;
+      const int onz = m.periodic_z && ijk[2] == 0;
+      ck_assert_int_eq(seen[id], (onx ? 2 : 1) * (ony ? 2 : 1) * (onz ? 2 : 1));
+      ck_assert_int_le(seen[id], alias);
+    }
+    free(seen);
+    /* one period further is the same node */
+    ck_assert_int_eq(mpm_mesh_node(&m, -1, 2, 1) == mpm_mesh_node(&m, m.nx - 1, 2, 1),
+                     m.periodic_x);
+    const int di[8] = {0, 1, 1, 0, 0, 1, 1, 0}, dj[8] = {0, 0, 1, 1, 0, 0, 1, 1};
+    const int dk[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+    int c[3];
+    for (c[2] = 0; c[2] < m.nz; c[2]++)
+      for (c[1] = 0; c[1] < m.ny; c[1]++)
+        for (c[0] = 0; c[0] < m.nx; c[0]++) {
+          int id[8];
+          mpm_mesh_unit_corners(&m, c, id);
+          for (int a = 0; a < 8; a++) {
+            ck_assert_int_eq(id[a], mpm_mesh_node(&m, c[0] + di[a], c[1] + dj[a], c[2] + dk[a]));
+            for (int b = 0; b < a; b++)
+              ck_assert_int_ne(id[a], id[b]);
+          }
+        }
+  }
+}
+END_TEST
+
+/* Location in boxes: inside, on the upper faces (the last unit, local 1),
+ * across a period, outside a non-periodic face, not finite. */
+START_TEST(t_box_locate)
+{
+  mpm_mesh m = make_box(4, 5, 3, 4);               /* z periodic */
+  int u[3];
+  double l[3];
+  const double x[3] = {m.x0 + 2.25 * m.dx, m.y0 + 0.5 * m.dy, m.z0 + 1.75 * m.dz};
+  ck_assert_int_eq(mpm_mesh_locate(&m, x, u, l), 0);
+  ck_assert_int_eq(u[0], 2);
+  ck_assert_int_eq(u[1], 0);
+  ck_assert_int_eq(u[2], 1);
+  ck_assert_double_eq_tol(l[0], 0.25, TOL);
+  ck_assert_double_eq_tol(l[1], 0.5, TOL);
+  ck_assert_double_eq_tol(l[2], 0.75, TOL);
+  const double top[3] = {m.x0 + m.lx, m.y0 + m.ly, m.z0 + 0.5 * m.dz};
+  ck_assert_int_eq(mpm_mesh_locate(&m, top, u, l), 0);
+  ck_assert_int_eq(u[0], m.nx - 1);
+  ck_assert_int_eq(u[1], m.ny - 1);
+  ck_assert_double_eq(l[0], 1.0);
+  ck_assert_double_eq(l[1], 1.0);
+  const double below[3] = {m.x0 + 0.5 * m.dx, m.y0 + 0.5 * m.dy, m.z0 - 0.25 * m.dz};
+  ck_assert_int_eq(mpm_mesh_locate(&m, below, u, l), 0);  /* wraps round z */
+  ck_assert_int_eq(u[2], m.nz - 1);
+  ck_assert_double_eq_tol(l[2], 0.75, 1e-9);
+  const double out[3][3] = {{m.x0 - 1e-9, m.y0 + 0.1, m.z0 + 0.1},
+                            {m.x0 + 0.1, m.y0 + m.ly + 1e-9, m.z0 + 0.1},
+                            {NAN, m.y0 + 0.1, m.z0 + 0.1}};
+  for (int q = 0; q < 3; q++)
+    ck_assert_int_eq(mpm_mesh_locate(&m, out[q], u, l), -1);
+  const double zin[3] = {m.x0 + 0.1, m.y0 + 0.1, INFINITY};
+  ck_assert_int_eq(mpm_mesh_locate(&m, zin, u, l), -1);
+}
+END_TEST
+
+/* The trilinear basis reproduces constants and linear fields (values and
+ * gradients; round-off: 8 terms of size 1 or 1/dx ~ 10 /m, far below 1e-12)
+ * and has the hand values N_a = f g h, dN_a/dx = (df/du) g h / dx, ...;
+ * the values alone (mpm_mesh_shape_corners) are the same numbers. */
+START_TEST(t_box_basis)
+{
+  uint64_t s = 7;
+  mpm_mesh m = make_box(4, 5, 3, 3);
+  for (int t = 0; t < 200; t++) {
+    double xp[3];
+    for (int d = 0; d < 3; d++)
+      xp[d] = m.periodic[d] ? m.o[d] - m.h[d] + (m.len[d] + 2 * m.h[d]) * rnd(&s)
+                            : m.o[d] + m.len[d] * rnd(&s);
+    int node[8];
+    double N[8], gx[8], gy[8], gz[8];
+    double *const dN[3] = {gx, gy, gz};
+    ck_assert_int_eq(mpm_mesh_basis(&m, xp, node, N, dN), 8);
+    double s0 = 0, g[3] = {0, 0, 0}, mx[3] = {0, 0, 0}, I[3][3] = {{0}};
+    for (int a = 0; a < 8; a++) {
+      double xi[3];
+      box_node_near(&m, node[a], xp, xi);
+      const double ga[3] = {gx[a], gy[a], gz[a]};
+      s0 += N[a];
+      for (int d = 0; d < 3; d++) {
+        g[d] += ga[d];
+        mx[d] += N[a] * xi[d];
+        for (int e = 0; e < 3; e++)
+          I[d][e] += xi[d] * ga[e];
+      }
+    }
+    ck_assert_double_eq_tol(s0, 1.0, TOL);
+    for (int d = 0; d < 3; d++) {
+      ck_assert_double_eq_tol(g[d], 0.0, TOL);
+      ck_assert_double_eq_tol(mx[d], xp[d], TOL);
+      for (int e = 0; e < 3; e++)
+        ck_assert_double_eq_tol(I[d][e], d == e ? 1.0 : 0.0, TOL);
+    }
+  }
+  double N[8], gx[8], gy[8], gz[8];
+  double *const dN[3] = {gx, gy, gz};
+  const double l[3] = {0.2, 0.3, 0.6};
+  mpm_mesh_basis_multilinear(3, l, m.ih, N, dN);
+  ck_assert_double_eq_tol(N[0], 0.8 * 0.7 * 0.4, TOL);
+  ck_assert_double_eq_tol(N[6], 0.2 * 0.3 * 0.6, TOL);
+  ck_assert_double_eq_tol(N[3], 0.8 * 0.3 * 0.4, TOL);
+  ck_assert_double_eq_tol(N[5], 0.2 * 0.7 * 0.6, TOL);
+  ck_assert_double_eq_tol(gx[0], -0.7 * 0.4 / m.dx, TOL);
+  ck_assert_double_eq_tol(gy[0], -0.8 * 0.4 / m.dy, TOL);
+  ck_assert_double_eq_tol(gz[0], -0.8 * 0.7 / m.dz, TOL);
+  ck_assert_double_eq_tol(gz[6], 0.2 * 0.3 / m.dz, TOL);
+  double Nv[8];
+  const int c[3] = {1, 2, 0};
+  ck_assert_uint_eq(mpm_mesh_shape_corners(&m, c, l, Nv), 0xffu);
+  for (int a = 0; a < 8; a++)
+    ck_assert(Nv[a] == N[a] || fabs(Nv[a] - N[a]) < 1e-16);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("mesh");
@@ -432,6 +687,10 @@ int main(void)
   tcase_add_test(tc, t_t3_triangle_choice);
   tcase_add_test(tc, t_basis_reproduction);
   tcase_add_test(tc, t_basis_boundary_and_outside);
+  tcase_add_test(tc, t_box_setup);
+  tcase_add_test(tc, t_box_nodes);
+  tcase_add_test(tc, t_box_locate);
+  tcase_add_test(tc, t_box_basis);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

@@ -15,11 +15,24 @@
  * implicit diffusion. The element and hybrid densities of the state
  * decision sum their unit masses in point order on one thread; so do the
  * per-unit dilatations (the element rule on q4, the unit rule on
- * triangles), whose per-point and per-unit loops run in parallel. */
+ * triangles), whose per-point and per-unit loops run in parallel.
+ * On boxes (mesh.nz > 0) the same: a column collapsing onto a rough floor
+ * against walls, periodic in z, is bitwise the same on one and on two
+ * threads (bands of unit layers along z), with every shape, under FLIP and
+ * under APIC with the per-unit rules.
+ * Every comparison first makes sure the threads were there: a parallel
+ * region right before the run counts the threads that ran it (dynamic
+ * adjustment off), and a comparison needs two or more. When the runtime
+ * gives one thread only (OMP_THREAD_LIMIT=1, or no OpenMP), the program
+ * says so and is skipped (exit 77), having compared nothing. */
+#define _POSIX_C_SOURCE 200809L /* fork, waitpid */
 #include <check.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -79,15 +92,68 @@ static void column_config(mpm_config *c, const char *topology, int ngf, int dens
   strcpy(f->name, "column");
 }
 
-/* The point fields after nsteps steps on nthreads threads, as one array. */
-static double *run_fields(const char *topology, int ngf, int density, int delta, int nthreads,
-                          int nsteps, size_t *len)
+/* Ask for n threads (dynamic adjustment off, so that a parallel region
+ * gets them if the runtime can give them) and return how many ran a
+ * parallel region: each member of the team marks its own slot. */
+static int use_threads(int n)
 {
+  int team = 1;
 #ifdef _OPENMP
-  omp_set_num_threads(nthreads);
+  enum { MAXT = 256 };
+  unsigned char ran[MAXT] = {0};
+  omp_set_dynamic(0);
+  omp_set_num_threads(n);
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num();
+    if (t < MAXT)
+      ran[t] = 1;
+  }
+  team = 0;
+  for (int t = 0; t < MAXT; t++)
+    team += ran[t];
 #else
-  (void)nthreads;
+  (void)n;
 #endif
+  return team;
+}
+
+/* use_threads(n) in a child process, for the decision before the tests:
+ * Check forks every test from this process, and the OpenMP runtime's
+ * threads do not survive a fork, so this process must not start them.
+ * -1 if the child could not run. */
+static int threads_apart(int n)
+{
+  const pid_t pid = fork();
+  if (pid < 0)
+    return -1;
+  if (pid == 0)
+    _exit(use_threads(n) & 0xff);
+  int st = 0;
+  if (waitpid(pid, &st, 0) != pid || !WIFEXITED(st))
+    return -1;
+  return WEXITSTATUS(st);
+}
+
+/* Two runs compared bitwise: a on one thread, b on `team` threads (those
+ * that ran the parallel region before b's run, asked for `asked`). */
+static void expect_same(const double *a, const double *b, size_t n, int asked, int team,
+                        const char *what)
+{
+  ck_assert_msg(team >= 2, "%s: asked for %d threads, %d ran: nothing to compare", what, asked,
+                team);
+  if (team != asked)
+    printf("%s: asked for %d threads, %d ran; compared 1 with %d\n", what, asked, team, team);
+  ck_assert_msg(memcmp(a, b, n * sizeof *a) == 0, "%s: fields differ between 1 and %d threads",
+                what, team);
+}
+
+/* The point fields after nsteps steps on nthreads threads, as one array;
+ * *team: the threads that ran a parallel region just before. */
+static double *run_fields(const char *topology, int ngf, int density, int delta, int nthreads,
+                          int nsteps, size_t *len, int *team)
+{
+  *team = use_threads(nthreads);
   mpm_config c;
   column_config(&c, topology, ngf, density, delta);
   mpm_sim *s = NULL;
@@ -121,16 +187,16 @@ static double *run_fields(const char *topology, int ngf, int density, int delta,
 static void same_on_1_2_and_3_threads(const char *topology, int ngf, int density, int delta)
 {
   size_t na, nb, nc;
+  int ta, tb, tc;
   /* 400 steps, about 0.07 s: the column is failing; the store is reordered 25 times */
-  double *a = run_fields(topology, ngf, density, delta, 1, 400, &na);
-  double *b = run_fields(topology, ngf, density, delta, 3, 400, &nb);
-  double *c = run_fields(topology, ngf, density, delta, 2, 400, &nc);
+  double *a = run_fields(topology, ngf, density, delta, 1, 400, &na, &ta);
+  double *b = run_fields(topology, ngf, density, delta, 3, 400, &nb, &tb);
+  double *c = run_fields(topology, ngf, density, delta, 2, 400, &nc, &tc);
+  ck_assert_int_eq(ta, 1);
   ck_assert_uint_eq(na, nb);
   ck_assert_uint_eq(na, nc);
-  ck_assert_msg(memcmp(a, b, na * sizeof *a) == 0, "%s: fields differ between 1 and 3 threads",
-                topology);
-  ck_assert_msg(memcmp(a, c, na * sizeof *a) == 0, "%s: fields differ between 1 and 2 threads",
-                topology);
+  expect_same(a, b, na, 3, tb, topology);
+  expect_same(a, c, na, 2, tc, topology);
   free(a);
   free(b);
   free(c);
@@ -162,8 +228,9 @@ START_TEST(t_density_thread_count)
   same_on_1_2_and_3_threads("q4", 0, MPM_DENSITY_HYBRID, 0);
   same_on_1_2_and_3_threads("q4", 0, MPM_DENSITY_UNIT, 0);
   size_t na, nb;
-  double *a = run_fields("q4", 0, MPM_DENSITY_POINT, 0, 1, 400, &na);
-  double *b = run_fields("q4", 0, MPM_DENSITY_HYBRID, 0, 1, 400, &nb);
+  int ta, tb;
+  double *a = run_fields("q4", 0, MPM_DENSITY_POINT, 0, 1, 400, &na, &ta);
+  double *b = run_fields("q4", 0, MPM_DENSITY_HYBRID, 0, 1, 400, &nb, &tb);
   ck_assert_uint_eq(na, nb);
   ck_assert_msg(memcmp(a, b, na * sizeof *a) != 0, "hybrid density leaves the run unchanged");
   free(a);
@@ -171,11 +238,79 @@ START_TEST(t_density_thread_count)
 }
 END_TEST
 
+/* ---- boxes ------------------------------------------------------------------ */
+
+static const char *const shapes[] = {"delta", "ugimp", "cpdi"};
+
+/* The fields of the 3D column (sim_config_column, 4 units along z: 960
+ * points, above the parallel thresholds) after 100 steps on nthreads
+ * threads, for loop index i: shape i % 3, FLIP (i < 3) or APIC with the
+ * defaults' per-unit rules (the element dilatation, the unit density). */
+static double *run_box(int i, int nthreads, size_t *len, int *team)
+{
+  *team = use_threads(nthreads);
+  mpm_config c;
+  sim_config_column(&c, shapes[i % 3], 4, "mu_i");
+  if (i >= 3) {
+    c.time.transfer = MPM_TRANSFER_APIC;
+    c.mesh.dilatation = MPM_DILATATION_ELEMENT;
+    c.material.state_density = MPM_DENSITY_UNIT;
+  }
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_sim_create(&s, &c, &err) == MPM_OK, "%s", err.msg);
+  ck_assert_int_eq(s->dim, 3);
+  for (int k = 0; k < 100; k++)
+    ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "step %d: %s", k, err.msg);
+  const mpm_points *P = s->pts;
+  double vmax = 0.0;
+  for (size_t p = 0; p < P->n; p++)
+    vmax = fmax(vmax, hypot(hypot(P->vx[p], P->vy[p]), P->vz[p]));
+  ck_assert_msg(vmax > 0.01, "max speed %g m/s: the column should be collapsing", vmax);
+  const double *f[] = {P->x, P->y, P->z, P->vx, P->vy, P->vz,
+                       P->sxx, P->syy, P->szz, P->sxy, P->syz, P->szx};
+  const size_t nf = sizeof f / sizeof f[0], n = P->n;
+  double *out = malloc(nf * n * sizeof *out);
+  ck_assert_ptr_nonnull(out);
+  for (size_t k = 0; k < nf; k++)
+    memcpy(out + k * n, f[k], n * sizeof *out);
+  *len = nf * n;
+  mpm_sim_free(s);
+  return out;
+}
+
+START_TEST(t_box_thread_count)
+{
+  size_t na, nb;
+  int ta, tb;
+  double *a = run_box(_i, 1, &na, &ta);
+  double *b = run_box(_i, 2, &nb, &tb);
+  ck_assert_int_eq(ta, 1);
+  ck_assert_uint_eq(na, nb);
+  char what[64];
+  snprintf(what, sizeof what, "boxes, %s, %s", shapes[_i % 3], _i < 3 ? "FLIP" : "APIC");
+  expect_same(a, b, na, 2, tb, what);
+  free(a);
+  free(b);
+}
+END_TEST
+
 int main(void)
 {
-#ifndef _OPENMP
-  return 77;  /* built without OpenMP: one thread only, nothing to compare */
+  const int team = threads_apart(2);
+  if (team < 2) {
+    const char *limit = getenv("OMP_THREAD_LIMIT");
+#ifdef _OPENMP
+    printf("test_threads: a parallel region asked for 2 threads ran on %d (OMP_THREAD_LIMIT %s%s):"
+           " no run was compared across thread counts; skipped\n", team,
+           limit ? "= " : "unset", limit ? limit : "");
+#else
+    (void)limit;
+    printf("test_threads: built without OpenMP, one thread only: no run was compared across "
+           "thread counts; skipped\n");
 #endif
+    return 77;
+  }
   Suite *su = suite_create("threads");
   TCase *tc = tcase_create("threads");
   tcase_add_test(tc, t_q4_thread_count);
@@ -185,6 +320,7 @@ int main(void)
   tcase_add_test(tc, t_ngf_extent_thread_count);
   tcase_add_test(tc, t_ngf_centre_thread_count);
   tcase_add_test(tc, t_density_thread_count);
+  tcase_add_loop_test(tc, t_box_thread_count, 0, 6);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

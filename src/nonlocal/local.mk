@@ -31,3 +31,10 @@ tests_test_steady_SOURCES = tests/test_steady.c
 tests_test_steady_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_steady_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_shape.la libmpm_material.la \
 	libmpm_mesh.la libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
+
+check_PROGRAMS += tests/test_grid
+TESTS += tests/test_grid
+tests_test_grid_SOURCES = tests/test_grid.c
+tests_test_grid_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_grid_LDADD = libmpm_nonlocal.la libmpm_shape.la libmpm_linalg.la libmpm_mesh.la \
+	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm

@@ -23,3 +23,8 @@ tests_test_silo_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_silo_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
 	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_linalg.la \
 	libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm
+check_PROGRAMS += tests/test_solver_box
+TESTS += tests/test_solver_box
+tests_test_solver_box_SOURCES = tests/test_solver_box.c tests/sim_config.h
+tests_test_solver_box_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_solver_box_LDADD = $(tests_test_solver_LDADD)
