@@ -167,12 +167,13 @@ int mpm_shape_in_corner_general(const mpm_mesh *m, const double x[3], const doub
 
 /* The factorised rule puts a corner within MPM_SHAPE_SNAP units of a node
  * on it: a local coordinate that close to 0 or 1 becomes 0 or 1. A point
- * filled one to a unit has its corners on nodes, up to round-off; without
- * this its weights along an axis would spread over 3 or 4 nodes, the end
- * ones of round-off size, instead of the 2 it weighs. The weights move by
- * at most that much; sum S = 1, sum gradS = 0 and sum (x_i - x_p) gradS = I
- * hold exactly as before. */
-#define MPM_SHAPE_SNAP 1e-10
+ * filled one or two to a unit has its corners on nodes, up to round-off
+ * (a few ulps of its position in units: below 1e-12 on meshes of up to a
+ * few thousand units); without this its weights along an axis would spread
+ * over 3 or 4 nodes, the end ones of round-off size, instead of the 2 or 3
+ * it weighs. The weights move by at most that much; sum S = 1,
+ * sum gradS = 0 and sum (x_i - x_p) gradS = I hold exactly as before. */
+#define MPM_SHAPE_SNAP 1e-12
 static inline double mpm_shape_in_snap(double l)
 {
   return l < MPM_SHAPE_SNAP ? 0.0 : (l > 1.0 - MPM_SHAPE_SNAP ? 1.0 : l);
