@@ -389,10 +389,10 @@ START_TEST(t_cylinder_converges)
   mpm_mesh m;
   box_mesh_of(&m);                      /* [1, 3] x [-2, -1.25] x [0.5, 2.5] */
   const double c[3] = {2.0, -1.6, 1.5};
-  /* no sub-cell centre lies exactly on an end, where the fill's test
-   * |x - (lo + hi)/2| <= (hi - lo)/2 and the span lo <= x <= hi can round
-   * apart (z in [0.55, 2.45] has centres on both ends at n = 4) */
-  const double R[3] = {0.3, 0.35, 0.3}, L[3] = {1.7, 0.7, 1.86};
+  /* z in [0.55, 2.45] has sub-cell centres on both ends at n = 4: the
+   * ends are part of the cylinder, and the fill takes them (a test of
+   * |x - (lo + hi)/2| <= (hi - lo)/2 would round one end layer away) */
+  const double R[3] = {0.3, 0.35, 0.3}, L[3] = {1.7, 0.7, 1.9};
   for (int a = 0; a < 3; a++) {
     double prev_bound = INFINITY;
     for (int n = 1; n <= 16; n *= 2) {

@@ -81,7 +81,7 @@ int mpm_scenario_inside(const mpm_fill_config *f, int dim, const double x[3])
     double centre[3] = {f->cx, f->cy, f->cz};
     centre[a] = 0.5 * (lo + hi);
     const double eb = x[b] - centre[b], ec = x[c] - centre[c];
-    return fabs(x[a] - centre[a]) <= 0.5 * (hi - lo) &&
+    return x[a] >= lo && x[a] <= hi &&                /* its ends included, exactly */
            eb * eb + ec * ec <= f->radius * f->radius;
   }
   case MPM_FILL_POLYGON:

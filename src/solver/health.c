@@ -5,7 +5,7 @@
  *
  * Two tests: after every step the point speeds (cheap: a non-finite
  * velocity or one that carries a point more than a mesh unit per step,
- * |v| dt > min(dx, dy), where MPM no longer holds: the stencil, and so the
+ * |v| dt > min(dx, dy) (and dz on boxes), where MPM no longer holds: the stencil, and so the
  * mapping, assume a point stays near its unit); on any failure, and when a
  * speed trips, every field of every point: the extents (convected under
  * CPDI1, where a blown-up extent is the origin), the stresses (the usual
@@ -107,9 +107,10 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
   likely_cause(s, cause, sizeof cause);
   return mpm_err_set(err, MPM_ENONFINITE,
                      "point %d: speed %.3g m/s at %s m, t = %.6g s: a runaway, more "
-                     "than a mesh unit per step (min(dx, dy) / dt = %.3g m/s; P-wave and fill "
+                     "than a mesh unit per step (min(%s) / dt = %.3g m/s; P-wave and fill "
                      "speed of the input %.3g m/s); likely cause: %s", P->id[fast], vmax,
-                     position(P, fast, at, sizeof at), t, lim, h / mpm_sim_stable_dt(&s->cfg), cause);
+                     position(P, fast, at, sizeof at), t, s->dim == 3 ? "dx, dy, dz" : "dx, dy",
+                     lim, h / mpm_sim_stable_dt(&s->cfg), cause);
 }
 
 int mpm_sim_too_fast(const mpm_sim *s, size_t a, size_t b)

@@ -51,7 +51,7 @@ static int nodal_alloc(mpm_sim *s)
   return MPM_OK;
 }
 
-/* dt = cfl min(dx, dy) / (c_p + |v|max) at the densest, fastest fill. */
+/* dt = cfl min(dx, dy (, dz)) / (c_p + |v|max) at the densest, fastest fill. */
 static double stable_dt(const mpm_config *cfg, const mpm_material_params *par, double cfl)
 {
   double rho = 0.0, vmax = 0.0;
