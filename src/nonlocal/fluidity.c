@@ -423,7 +423,9 @@ double mpm_nonlocal_mean_isqrt(double p0, double a, double c)
  *   F(x + c) - F(x - c) = c (10 x^4 + 20 x^2 c^2 + 2 c^4) / ((x + c)^5/2 + (x - c)^5/2),
  * and the one in b directly where b > 1e-3 q; where b <= 1e-3 q, the
  * expansion of the central differences, Phi(q) = 2 q^1/2 - (b^2 + c^2) /
- * (12 q^3/2) (the next term (b, c)^4 / q^7/2). */
+ * (12 q^3/2) (the next term (b, c)^4 / q^7/2), and with b = c = 0 (the
+ * segment) 2 q^1/2 itself, also at q = 0, the end a free surface's limiter
+ * puts the range at. */
 static double f5_diff(double x, double c)      /* (F(x + c) - F(x - c)) / c */
 {
   const double xm = x - c > 0.0 ? x - c : 0.0, xp = x + c > 0.0 ? x + c : 0.0;
@@ -434,6 +436,9 @@ static double f5_diff(double x, double c)      /* (F(x + c) - F(x - c)) / c */
 
 static double phi3(double q, double b, double c)
 {
+  q = q > 0.0 ? q : 0.0;                        /* an ulp below 0 from the limiter: 0 */
+  if (b == 0.0)                                 /* c <= b: the segment's 2 q^1/2, q = 0 too */
+    return 2.0 * sqrt(q);
   if (b <= 1e-3 * q)
     return 2.0 * sqrt(q) - (b * b + c * c) / (12.0 * q * sqrt(q));
   return 2.0 * (f5_diff(q + b, c) - f5_diff(q - b, c)) / (15.0 * b);
