@@ -11,6 +11,7 @@
 #include "nonlocal/steady.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "core/names.h"
@@ -224,6 +225,14 @@ int mpm_nonlocal_steady_solve(mpm_nonlocal_steady *ss, const mpm_shape_stencil *
     rc = mpm_linalg_spd_factor(ss->spd, err);
   if (rc == MPM_OK)
     rc = mpm_linalg_spd_solve(ss->spd, ss->b, ss->x, err);
+  if (rc == MPM_ESOLVE && err && !lumped) {         /* a likely cause, said */
+    char below[MPM_ERR_MSG];
+    snprintf(below, sizeof below, "%s", err->msg);
+    return mpm_err_set(err, rc, "steady fluidity on %d nodes: %s; a nodal mode the points do "
+                       "not see, as the checkerboard mode for one point a unit side on the "
+                       "units' centre planes (material.g_mass = \"lumped\", or fill.ppu >= 2)",
+                       nrow, below);
+  }
   if (rc != MPM_OK)
     return mpm_err_prefix(err, rc, "steady fluidity on %d nodes", nrow);
   for (int i = 0; i < ss->nnodes; i++)
