@@ -1,6 +1,6 @@
 /* kernels.c: the kernels of the step for the plane and for 3D, from one
- * source (kernels.inc) compiled with the dimension a constant, and their
- * const tables (solver_internal.h). */
+ * source (kernels.inc, with separable.inc) compiled with the dimension a
+ * constant, and their const tables (solver_internal.h). */
 #include "solver/solver_internal.h"
 
 #include <stdlib.h>

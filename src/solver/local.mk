@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_solver.la
 libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h \
-	src/solver/solver_internal.h src/solver/remove.c src/solver/kernels.c src/solver/kernels.inc \
+	src/solver/solver_internal.h src/solver/remove.c src/solver/kernels.c src/solver/kernels.inc src/solver/separable.inc \
 	src/solver/units.c src/solver/health.c src/solver/plan.c src/solver/state.c
 
 check_PROGRAMS += tests/test_solver
