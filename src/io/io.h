@@ -77,10 +77,6 @@ typedef struct mpm_io_origin {
 int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                        const char *input_text, const mpm_mesh *m, mpm_err *err);
 
-/* The same without a mesh, for stores of dimension dim (2 or 3). */
-int mpm_io_output_open_dim(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
-                           const char *input_text, int dim, mpm_err *err);
-
 /* Open the output of a run in dir to continue it after its first nframes
  * frames: later frames (written after the checkpoint it continues from) are
  * removed from run.h5, diagnostics.csv is cut after its nframes rows and

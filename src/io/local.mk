@@ -1,5 +1,7 @@
 noinst_LTLIBRARIES += libmpm_io.la
-libmpm_io_la_SOURCES = src/io/input.c src/io/output.c src/io/extract.c src/io/frame.c \
+# The run output: output.c, with run.xdmf in xdmf.c (output_internal.h).
+OUTPUT_PARTS = src/io/output.c src/io/xdmf.c src/io/output_internal.h
+libmpm_io_la_SOURCES = src/io/input.c $(OUTPUT_PARTS) src/io/extract.c src/io/frame.c \
 	src/io/io.h src/io/h5err.c src/io/h5err.h src/io/checkpoint.c
 libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/text.h
 
@@ -7,7 +9,7 @@ libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/t
 # need the input parser (libconfuse, name tables) that libmpm_io.la carries.
 check_PROGRAMS += tests/test_output
 TESTS += tests/test_output
-tests_test_output_SOURCES = tests/test_output.c tests/tmpdir.h src/io/output.c src/io/extract.c \
+tests_test_output_SOURCES = tests/test_output.c tests/tmpdir.h $(OUTPUT_PARTS) src/io/extract.c \
 	src/io/frame.c src/io/h5err.c src/io/checkpoint.c
 tests_test_output_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LIBS) \
@@ -36,7 +38,7 @@ EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh tests/
 # writes the 3D run that cli-extract3.sh and paraview3.sh read (--write3).
 check_PROGRAMS += tests/test_output3
 TESTS += tests/test_output3 tests/cli-extract3.sh tests/paraview3.sh
-tests_test_output3_SOURCES = tests/test_output3.c tests/tmpdir.h src/io/output.c src/io/extract.c \
+tests_test_output3_SOURCES = tests/test_output3.c tests/tmpdir.h $(OUTPUT_PARTS) src/io/extract.c \
 	src/io/frame.c src/io/h5err.c src/io/checkpoint.c
 tests_test_output3_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_output3_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LIBS) \

@@ -10,13 +10,14 @@
  *                    /xdmf/xyz_NNNNNN  for a 3D frame instead: n x 3, x y z;
  *                    /xdmf/vertex_NNNNNN  0..n-1, the Polyvertex connectivity,
  *                                shared by consecutive frames with n points.
- *   run.xdmf         XDMF 3 temporal collection of one Polyvertex grid per frame.
+ *   run.xdmf         XDMF 3 temporal collection of one Polyvertex grid per frame
+ *                    (xdmf.c).
  *
  * A 3D store (pts->dim = 3) is written by the same code: its frames carry
  * the dim-3 fields of MPM_POINT_FIELDS too and an attribute dimension = 3,
- * and their XDMF geometry is XYZ; a run opened with mpm_io_output_open3
- * has the box mesh in /mesh (nz, z0, dz, periodic_z and node_z besides the
- * 2D names). A 2D frame is written exactly as before the 3D fields came.
+ * and their XDMF geometry is XYZ (xdmf.c); a run opened on a mesh of boxes
+ * has it in /mesh (nz, z0, dz, periodic_z and node_z besides the 2D
+ * names). A 2D frame is written exactly as before the 3D fields came.
  *   diagnostics.csv  one mpm_diag row per frame.
  *
  * Every frame is flushed (H5Fflush, fflush) and run.xdmf is kept complete
@@ -43,22 +44,7 @@
 #include "diag/flow.h"
 #include "io/h5err.h"
 #include "io/io.h"
-
-/* One output field: name in run.h5, unit, where it comes from. */
-enum field_kind { FIELD_REAL, FIELD_INT, FIELD_DERIVED };
-
-/* A derived field's n values from the stored fields. */
-typedef void derive_fn(const mpm_points *pts, double *v);
-
-typedef struct field_spec {
-  const char *name;
-  const char *unit;
-  const char *description;
-  int kind;      /* enum field_kind */
-  int dim;       /* written to frames of this dimension and up */
-  size_t offset; /* offsetof(mpm_points, array) for FIELD_REAL / FIELD_INT */
-  derive_fn *derive; /* for FIELD_DERIVED */
-} field_spec;
+#include "io/output_internal.h"
 
 /* The DERIVED fields of MPM_POINT_FIELDS, derive_<key>. */
 static void derive_p(const mpm_points *pts, double *v)
@@ -71,14 +57,14 @@ static void derive_p(const mpm_points *pts, double *v)
 #define FIELD_REAL_(f, nm, d, u, D) {nm, u, d, FIELD_REAL, D, offsetof(mpm_points, f), NULL},
 #define FIELD_INT_(f, nm, d, u, D) {nm, u, d, FIELD_INT, D, offsetof(mpm_points, f), NULL},
 #define FIELD_DERIVED_(f, nm, d, u, D) {nm, u, d, FIELD_DERIVED, D, 0, derive_##f},
-static const field_spec output_fields[] = {
+const field_spec mpm_io_out_fields[] = {
   MPM_POINT_FIELDS(FIELD_REAL_, FIELD_INT_, FIELD_DERIVED_)
 };
 #undef FIELD_REAL_
 #undef FIELD_INT_
 #undef FIELD_DERIVED_
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
-#define NFIELDS COUNT(output_fields)
+const size_t mpm_io_out_nfields = COUNT(mpm_io_out_fields);
 
 /* The fields whose unit or description in MPM_POINT_FIELDS is that of plane
  * strain (per unit thickness, z out of plane), as a 3D frame writes them. */
@@ -100,29 +86,6 @@ static void field_text(const field_spec *f, int dim, const char **unit, const ch
     }
 }
 
-
-static const char xdmf_head[] =
-    "<?xml version=\"1.0\" ?>\n"
-    "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
-    "  <Domain>\n"
-    "    <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-static const char xdmf_tail[] = "    </Grid>\n  </Domain>\n</Xdmf>\n";
-
-struct mpm_io_output {
-  char *h5_path, *csv_path, *xdmf_path;
-  hid_t file;       /* run.h5 */
-  hid_t frames;     /* /frames */
-  hid_t xdmf_group; /* /xdmf */
-  FILE *csv;
-  FILE *xdmf;
-  long xdmf_tail_pos; /* offset of the closing tags in run.xdmf */
-  int nframes;
-  int dim;           /* of the run's point stores: 2, or 3 (mpm_io_output_open3) */
-  size_t vertex_n;   /* length of the newest /xdmf/vertex_NNNNNN */
-  int vertex_frame;  /* its frame number, -1 before the first */
-  double *work;      /* per-point scratch for derived fields */
-  size_t work_cap;
-};
 
 /* ---- directory and paths --------------------------------------------------- */
 
@@ -204,27 +167,13 @@ static mpm_io_output *output_alloc(const char *dir)
   return out;
 }
 
-static int open_text(FILE **f, const char *path, const char *text, mpm_err *err)
+int mpm_io_out_open_text(FILE **f, const char *path, const char *text, mpm_err *err)
 {
   *f = fopen(path, "w");
   if (!*f)
     return mpm_err_set(err, MPM_EIO, "cannot create '%s': %s", path, strerror(errno));
   if (fputs(text, *f) < 0 || fflush(*f) != 0)
     return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
-  return MPM_OK;
-}
-
-/* run.xdmf starts as an empty temporal collection; frames are inserted
- * before the closing tags, which are rewritten after each frame. */
-static int open_xdmf(mpm_io_output *out, mpm_err *err)
-{
-  int rc = open_text(&out->xdmf, out->xdmf_path, xdmf_head, err);
-  if (rc != MPM_OK)
-    return rc;
-  out->xdmf_tail_pos = ftell(out->xdmf);
-  if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, out->xdmf) < 0 || fflush(out->xdmf) != 0)
-    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
-                       strerror(errno));
   return MPM_OK;
 }
 
@@ -369,9 +318,9 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   out = output_alloc(dir);
   if (!out)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
-  rc = open_text(&out->csv, out->csv_path, mpm_diag_csv_header(dim), err);
+  rc = mpm_io_out_open_text(&out->csv, out->csv_path, mpm_diag_csv_header(dim), err);
   if (rc == MPM_OK)
-    rc = open_xdmf(out, err);
+    rc = mpm_io_out_xdmf_open(out, err);
   if (rc == MPM_OK) {
     out->file = create_h5(out->h5_path);
     if (out->file < 0)
@@ -414,14 +363,6 @@ int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin
   return open_any(out, dir, origin, input_text, m, m && m->dim == 3 ? 3 : 2, err);
 }
 
-int mpm_io_output_open_dim(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
-                           const char *input_text, int dim, mpm_err *err)
-{
-  if (dim != 2 && dim != 3)
-    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: dimension %d", dim);
-  return open_any(out, dir, origin, input_text, NULL, dim, err);
-}
-
 int mpm_io_output_occupied(const char *dir, const char **what)
 {
   const char *const names[] = {"run.h5", "checkpoint.h5"};
@@ -440,8 +381,6 @@ int mpm_io_output_occupied(const char *dir, const char **what)
 }
 
 /* ---- reopening a run to append to it ---------------------------------------- */
-
-static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err);
 
 /* Frames from `first` on (with their XY views and connectivity) removed:
  * written after the checkpoint a run continues from. */
@@ -514,35 +453,6 @@ static int reopen_csv(mpm_io_output *out, long nframes, mpm_err *err)
   return MPM_OK;
 }
 
-/* run.xdmf written again for frames 0 .. nframes-1 of run.h5. */
-static int rebuild_xdmf(mpm_io_output *out, long nframes, const mpm_io_h5_quiet *q, mpm_err *err)
-{
-  int rc = open_xdmf(out, err);
-  for (long k = 0; rc == MPM_OK && k < nframes; k++) {
-    char name[32];
-    unsigned long long n = 0;
-    double t = 0.0;
-    int dim = -1;
-    snprintf(name, sizeof name, "%06ld", k);
-    hid_t g = H5Gopen2(out->frames, name, H5P_DEFAULT);
-    if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, &t) < 0 ||
-        mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0 ||
-        (dim = mpm_io_frame_dim(g)) < 0)
-      rc = mpm_io_h5_fail(err, q, "cannot read the frames of", out->h5_path);
-    mpm_io_h5_close(g);
-    snprintf(name, sizeof name, "vertex_%06ld", k);
-    if (rc == MPM_OK && H5Lexists(out->xdmf_group, name, H5P_DEFAULT) > 0) {
-      out->vertex_frame = (int)k;
-      out->vertex_n = (size_t)n;
-    }
-    out->nframes = (int)k;
-    if (rc == MPM_OK)
-      rc = write_xdmf_frame(out, t, (size_t)n, dim, err);
-  }
-  out->nframes = (int)nframes;
-  return rc;
-}
-
 static int output_reopen(mpm_io_output *out, const mpm_io_origin *o, long nframes,
                          const mpm_io_h5_quiet *q, mpm_err *err)
 {
@@ -567,7 +477,7 @@ static int output_reopen(mpm_io_output *out, const mpm_io_origin *o, long nframe
       H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
     return mpm_io_h5_fail(err, q, "cannot update", out->h5_path);
   int rc = reopen_csv(out, nframes, err);
-  return rc == MPM_OK ? rebuild_xdmf(out, nframes, q, err) : rc;
+  return rc == MPM_OK ? mpm_io_out_xdmf_rebuild(out, nframes, q, err) : rc;
 }
 
 int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
@@ -636,8 +546,8 @@ static const void *field_values(mpm_io_output *out, const field_spec *f, const m
 static int write_fields(mpm_io_output *out, hid_t g, const mpm_points *pts,
                         const mpm_io_h5_quiet *q, mpm_err *err)
 {
-  for (size_t k = 0; k < NFIELDS; k++) {
-    const field_spec *f = &output_fields[k];
+  for (size_t k = 0; k < mpm_io_out_nfields; k++) {
+    const field_spec *f = &mpm_io_out_fields[k];
     int isint = f->kind == FIELD_INT;
     const char *unit, *desc;
     if (f->dim > pts->dim)
@@ -651,63 +561,6 @@ static int write_fields(mpm_io_output *out, hid_t g, const mpm_points *pts,
                          out->nframes, out->h5_path, mpm_io_h5_reason(q));
   }
   return MPM_OK;
-}
-
-/* Polyvertex connectivity 0..n-1, written again only when n changes. */
-static int write_vertices(mpm_io_output *out, size_t n, const mpm_io_h5_quiet *q, mpm_err *err)
-{
-  char name[32];
-  int *v;
-  herr_t rc;
-  if (n == 0 || (out->vertex_frame >= 0 && out->vertex_n == n))
-    return MPM_OK;
-  v = malloc(n * sizeof *v);
-  if (!v)
-    return mpm_err_set(err, MPM_ENOMEM, "out of memory writing frame %d", out->nframes);
-  for (size_t i = 0; i < n; i++)
-    v[i] = (int)i;
-  snprintf(name, sizeof name, "vertex_%06d", out->nframes);
-  rc = mpm_io_h5_write_array(out->xdmf_group, name, H5T_STD_I32LE, H5T_NATIVE_INT, n, v, NULL,
-                   "Polyvertex connectivity of run.xdmf");
-  free(v);
-  if (rc < 0)
-    return mpm_io_h5_fail(err, q, "cannot write connectivity to", out->h5_path);
-  out->vertex_n = n;
-  out->vertex_frame = out->nframes;
-  return MPM_OK;
-}
-
-/* /xdmf/xy_NNNNNN: an n x 2 virtual dataset whose columns are the frame's x
- * and y datasets, so readers that want interleaved XY points get them
- * without a second copy of the positions; /xdmf/xyz_NNNNNN, n x 3 with z,
- * for a 3D frame (dim = 3). */
-static herr_t write_xy_view(hid_t xg, int frame, size_t n, int dim)
-{
-  hsize_t vdims[2] = {(hsize_t)n, (hsize_t)dim}, sdims[1] = {(hsize_t)n};
-  hsize_t start[2] = {0, 0}, count[2] = {(hsize_t)n, 1};
-  hid_t vspace = H5Screate_simple(2, vdims, NULL);
-  hid_t sspace = H5Screate_simple(1, sdims, NULL);
-  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-  hid_t dset = H5I_INVALID_HID;
-  herr_t rc = (vspace < 0 || sspace < 0 || dcpl < 0) ? -1 : 0;
-  char src[48], name[32];
-  for (int c = 0; c < dim && rc >= 0; c++) {
-    start[1] = (hsize_t)c;
-    snprintf(src, sizeof src, "/frames/%06d/%s", frame, c == 0 ? "x" : c == 1 ? "y" : "z");
-    rc = H5Sselect_hyperslab(vspace, H5S_SELECT_SET, start, NULL, count, NULL);
-    if (rc >= 0)
-      rc = H5Pset_virtual(dcpl, vspace, ".", src, sspace);
-  }
-  snprintf(name, sizeof name, dim == 3 ? "xyz_%06d" : "xy_%06d", frame);
-  if (rc >= 0)
-    dset = H5Dcreate2(xg, name, H5T_IEEE_F64LE, vspace, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-  if (rc >= 0 && dset < 0)
-    rc = -1;
-  mpm_io_h5_close(dset);
-  mpm_io_h5_close(dcpl);
-  mpm_io_h5_close(sspace);
-  mpm_io_h5_close(vspace);
-  return rc;
 }
 
 static int write_frame_h5(mpm_io_output *out, const mpm_points *pts, double t,
@@ -731,9 +584,9 @@ static int write_frame_h5(mpm_io_output *out, const mpm_points *pts, double t,
     rc = write_fields(out, g, pts, q, err);
   mpm_io_h5_close(g);
   if (rc == MPM_OK)
-    rc = write_vertices(out, pts->n, q, err);
+    rc = mpm_io_out_vertices(out, pts->n, q, err);
   if (rc == MPM_OK && pts->n > 0 &&
-      write_xy_view(out->xdmf_group, out->nframes, pts->n, pts->dim) < 0)
+      mpm_io_out_xy_view(out->xdmf_group, out->nframes, pts->n, pts->dim) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot write XY view to", out->h5_path);
   if (rc == MPM_OK && H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot flush", out->h5_path);
@@ -747,70 +600,6 @@ static int write_csv_row(mpm_io_output *out, const mpm_diag *d, mpm_err *err)
     return mpm_err_set(err, MPM_EINVAL, "diagnostics row of frame %d too long", out->nframes);
   if (fputs(row, out->csv) < 0 || fflush(out->csv) != 0)
     return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->csv_path, strerror(errno));
-  return MPM_OK;
-}
-
-/* One <DataItem> referring to dataset path (relative to run.h5) of n values. */
-static void xdmf_item(FILE *f, const char *path, size_t n, int isint, const char *indent)
-{
-  fprintf(f,
-          "%s<DataItem Dimensions=\"%zu\" NumberType=\"%s\" Precision=\"%d\" "
-          "Format=\"HDF\">run.h5:%s</DataItem>\n",
-          indent, n, isint ? "Int" : "Float", isint ? 4 : 8, path);
-}
-
-/* Geometry "XY" from one n x 2 array, the frame's virtual XY view: ParaView
- * (5.11) opens it with all three of its XDMF readers (XDMF, Xdmf3 S/T) and
- * sets z = 0. Geometries assembled from the separate x and y datasets do not
- * work there: "X_Y" and a JOIN function crash the Xdmf3 readers and "X_Y_Z"
- * loses the points; only the legacy XDMF reader understands them. A 3D
- * frame (dim = 3) has geometry "XYZ" from its n x 3 view likewise. */
-static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n, int dim)
-{
-  char path[64];
-  fprintf(f, "      <Grid Name=\"frame_%06d\" GridType=\"Uniform\">\n", out->nframes);
-  fprintf(f, "        <Time Value=\"%.17g\"/>\n", t);
-  fprintf(f,
-          "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%zu\" "
-          "NodesPerElement=\"1\">\n",
-          n);
-  snprintf(path, sizeof path, "/xdmf/vertex_%06d", out->vertex_frame);
-  xdmf_item(f, path, n, 1, "          ");
-  fprintf(f, "        </Topology>\n        <Geometry GeometryType=\"%s\">\n",
-          dim == 3 ? "XYZ" : "XY");
-  fprintf(f,
-          "          <DataItem Dimensions=\"%zu %d\" NumberType=\"Float\" Precision=\"8\" "
-          "Format=\"HDF\">run.h5:/xdmf/%s_%06d</DataItem>\n",
-          n, dim, dim == 3 ? "xyz" : "xy", out->nframes);
-  fprintf(f, "        </Geometry>\n");
-  for (size_t k = 0; k < NFIELDS; k++) {
-    const field_spec *s = &output_fields[k];
-    if (s->dim > dim)
-      continue;
-    fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",
-            s->name);
-    snprintf(path, sizeof path, "/frames/%06d/%s", out->nframes, s->name);
-    xdmf_item(f, path, n, s->kind == FIELD_INT, "          ");
-    fprintf(f, "        </Attribute>\n");
-  }
-  fprintf(f, "      </Grid>\n");
-}
-
-/* Insert the frame's grid before the closing tags. A frame without points
- * gets no grid: readers reject empty datasets. */
-static int write_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err)
-{
-  FILE *f = out->xdmf;
-  if (n == 0)
-    return MPM_OK;
-  if (fseek(f, out->xdmf_tail_pos, SEEK_SET) != 0)
-    return mpm_err_set(err, MPM_EIO, "cannot seek in '%s': %s", out->xdmf_path,
-                       strerror(errno));
-  xdmf_grid(f, out, t, n, dim);
-  out->xdmf_tail_pos = ftell(f);
-  if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, f) < 0 || fflush(f) != 0 || ferror(f))
-    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
-                       strerror(errno));
   return MPM_OK;
 }
 
@@ -832,7 +621,7 @@ int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_dia
   if (rc == MPM_OK)
     rc = write_csv_row(out, d, err);
   if (rc == MPM_OK)
-    rc = write_xdmf_frame(out, d->t, pts->n, pts->dim, err);
+    rc = mpm_io_out_xdmf_frame(out, d->t, pts->n, pts->dim, err);
   if (rc == MPM_OK)
     out->nframes++;
   return rc;

@@ -1,0 +1,74 @@
+/* output_internal.h: what the run-output files of io/ share (output.c,
+ * xdmf.c): the output object, the table of point fields a frame holds, and
+ * the pieces of run.xdmf. Not part of the library's interface (names
+ * mpm_io_out_*). */
+#ifndef MPM_IO_OUTPUT_INTERNAL_H
+#define MPM_IO_OUTPUT_INTERNAL_H
+
+#include <hdf5.h>
+#include <stdio.h>
+
+#include "core/error.h"
+#include "core/points.h"
+#include "io/h5err.h"
+#include "io/io.h"
+
+/* One output field: name in run.h5, unit, where it comes from. */
+enum field_kind { FIELD_REAL, FIELD_INT, FIELD_DERIVED };
+
+/* A derived field's n values from the stored fields. */
+typedef void derive_fn(const mpm_points *pts, double *v);
+
+typedef struct field_spec {
+  const char *name;
+  const char *unit;
+  const char *description;
+  int kind;      /* enum field_kind */
+  int dim;       /* written to frames of this dimension and up */
+  size_t offset; /* offsetof(mpm_points, array) for FIELD_REAL / FIELD_INT */
+  derive_fn *derive; /* for FIELD_DERIVED */
+} field_spec;
+
+/* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets
+ * in each frame group, which is the default column order of mpm_io_extract
+ * (output.c). */
+extern const field_spec mpm_io_out_fields[];
+extern const size_t mpm_io_out_nfields;
+
+struct mpm_io_output {
+  char *h5_path, *csv_path, *xdmf_path;
+  hid_t file;       /* run.h5 */
+  hid_t frames;     /* /frames */
+  hid_t xdmf_group; /* /xdmf */
+  FILE *csv;
+  FILE *xdmf;
+  long xdmf_tail_pos; /* offset of the closing tags in run.xdmf */
+  int nframes;
+  int dim;           /* of the run's point stores: 2, or 3 (a mesh of boxes) */
+  size_t vertex_n;   /* length of the newest /xdmf/vertex_NNNNNN */
+  int vertex_frame;  /* its frame number, -1 before the first */
+  double *work;      /* per-point scratch for derived fields */
+  size_t work_cap;
+};
+
+/* Create path and write text to it (flushed). */
+int mpm_io_out_open_text(FILE **f, const char *path, const char *text, mpm_err *err);
+
+/* run.xdmf as an empty temporal collection (out->xdmf, its tail offset). */
+int mpm_io_out_xdmf_open(mpm_io_output *out, mpm_err *err);
+
+/* run.xdmf written again for frames 0 .. nframes-1 of run.h5. */
+int mpm_io_out_xdmf_rebuild(mpm_io_output *out, long nframes, const mpm_io_h5_quiet *q,
+                            mpm_err *err);
+
+/* The grid of frame out->nframes (time t, n points, dimension dim) put
+ * before run.xdmf's closing tags; none for n = 0. */
+int mpm_io_out_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err);
+
+/* /xdmf/vertex_NNNNNN for a frame of n points, unless the newest has n. */
+int mpm_io_out_vertices(mpm_io_output *out, size_t n, const mpm_io_h5_quiet *q, mpm_err *err);
+
+/* /xdmf/xy_NNNNNN (xyz_NNNNNN for dim 3) of frame `frame` in group xg. */
+herr_t mpm_io_out_xy_view(hid_t xg, int frame, size_t n, int dim);
+
+#endif
