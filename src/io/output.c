@@ -57,14 +57,14 @@ static void derive_p(const mpm_points *pts, double *v)
 #define FIELD_REAL_(f, nm, d, u, D) {nm, u, d, FIELD_REAL, D, offsetof(mpm_points, f), NULL},
 #define FIELD_INT_(f, nm, d, u, D) {nm, u, d, FIELD_INT, D, offsetof(mpm_points, f), NULL},
 #define FIELD_DERIVED_(f, nm, d, u, D) {nm, u, d, FIELD_DERIVED, D, 0, derive_##f},
-const field_spec mpm_io_out_fields[] = {
+static const field_spec output_fields[] = {
   MPM_POINT_FIELDS(FIELD_REAL_, FIELD_INT_, FIELD_DERIVED_)
 };
 #undef FIELD_REAL_
 #undef FIELD_INT_
 #undef FIELD_DERIVED_
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
-const size_t mpm_io_out_nfields = COUNT(mpm_io_out_fields);
+#define NFIELDS COUNT(output_fields)
 
 /* The fields whose unit or description in MPM_POINT_FIELDS is that of plane
  * strain (per unit thickness, z out of plane), as a 3D frame writes them. */
@@ -157,6 +157,8 @@ static mpm_io_output *output_alloc(const char *dir)
   out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
   out->vertex_frame = -1;
   out->dim = 2;
+  out->fields = output_fields;
+  out->nfields = NFIELDS;
   out->h5_path = mpm_io_path_join(dir, "run.h5");
   out->csv_path = mpm_io_path_join(dir, "diagnostics.csv");
   out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
@@ -167,15 +169,6 @@ static mpm_io_output *output_alloc(const char *dir)
   return out;
 }
 
-int mpm_io_out_open_text(FILE **f, const char *path, const char *text, mpm_err *err)
-{
-  *f = fopen(path, "w");
-  if (!*f)
-    return mpm_err_set(err, MPM_EIO, "cannot create '%s': %s", path, strerror(errno));
-  if (fputs(text, *f) < 0 || fflush(*f) != 0)
-    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
-  return MPM_OK;
-}
 
 static hid_t create_h5(const char *path)
 {
@@ -546,8 +539,8 @@ static const void *field_values(mpm_io_output *out, const field_spec *f, const m
 static int write_fields(mpm_io_output *out, hid_t g, const mpm_points *pts,
                         const mpm_io_h5_quiet *q, mpm_err *err)
 {
-  for (size_t k = 0; k < mpm_io_out_nfields; k++) {
-    const field_spec *f = &mpm_io_out_fields[k];
+  for (size_t k = 0; k < NFIELDS; k++) {
+    const field_spec *f = &output_fields[k];
     int isint = f->kind == FIELD_INT;
     const char *unit, *desc;
     if (f->dim > pts->dim)

@@ -5,8 +5,10 @@
 #ifndef MPM_IO_OUTPUT_INTERNAL_H
 #define MPM_IO_OUTPUT_INTERNAL_H
 
+#include <errno.h>
 #include <hdf5.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "core/error.h"
 #include "core/points.h"
@@ -29,12 +31,6 @@ typedef struct field_spec {
   derive_fn *derive; /* for FIELD_DERIVED */
 } field_spec;
 
-/* Every field of MPM_POINT_FIELDS, in its order: the order of the datasets
- * in each frame group, which is the default column order of mpm_io_extract
- * (output.c). */
-extern const field_spec mpm_io_out_fields[];
-extern const size_t mpm_io_out_nfields;
-
 struct mpm_io_output {
   char *h5_path, *csv_path, *xdmf_path;
   hid_t file;       /* run.h5 */
@@ -47,12 +43,23 @@ struct mpm_io_output {
   int dim;           /* of the run's point stores: 2, or 3 (a mesh of boxes) */
   size_t vertex_n;   /* length of the newest /xdmf/vertex_NNNNNN */
   int vertex_frame;  /* its frame number, -1 before the first */
+  const field_spec *fields;  /* MPM_POINT_FIELDS in order: the frames' datasets */
+  size_t nfields;
   double *work;      /* per-point scratch for derived fields */
   size_t work_cap;
 };
 
 /* Create path and write text to it (flushed). */
-int mpm_io_out_open_text(FILE **f, const char *path, const char *text, mpm_err *err);
+static inline int mpm_io_out_open_text(FILE **f, const char *path, const char *text,
+                                       mpm_err *err)
+{
+  *f = fopen(path, "w");
+  if (!*f)
+    return mpm_err_set(err, MPM_EIO, "cannot create '%s': %s", path, strerror(errno));
+  if (fputs(text, *f) < 0 || fflush(*f) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
+  return MPM_OK;
+}
 
 /* run.xdmf as an empty temporal collection (out->xdmf, its tail offset). */
 int mpm_io_out_xdmf_open(mpm_io_output *out, mpm_err *err);

@@ -158,8 +158,8 @@ static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n, int
           "Format=\"HDF\">run.h5:/xdmf/%s_%06d</DataItem>\n",
           n, dim, dim == 3 ? "xyz" : "xy", out->nframes);
   fprintf(f, "        </Geometry>\n");
-  for (size_t k = 0; k < mpm_io_out_nfields; k++) {
-    const field_spec *s = &mpm_io_out_fields[k];
+  for (size_t k = 0; k < out->nfields; k++) {
+    const field_spec *s = &out->fields[k];
     if (s->dim > dim)
       continue;
     fprintf(f, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n",

@@ -3,7 +3,18 @@
  *   sigma_{n+1} = sigma_n + dt (C:D + W sigma_n - sigma_n W). */
 #include "material/material.h"
 
+#include <math.h>
+
 #include "core/points.h"
+
+int mpm_material_check_elastic(const mpm_material_params *par, mpm_err *err)
+{
+  if (!(par->E > 0.0 && isfinite(par->E)))
+    return mpm_err_set(err, MPM_EINPUT, "key 'material.E' = %g: must be > 0 Pa", par->E);
+  if (!(par->nu > -1.0 && par->nu < 0.5))
+    return mpm_err_set(err, MPM_EINPUT, "key 'material.nu' = %g: allowed range (-1, 0.5)", par->nu);
+  return MPM_OK;
+}
 
 /* One update of the point pt, by value: the kernel of update and update_point. */
 MPM_MATERIAL_KERNEL mpm_mpoint elastic_step(const mpm_material_params *par, mpm_mat3 L, double dt,

@@ -69,12 +69,3 @@ double mpm_material_wave_speed(const mpm_material_params *par, double rho)
   return sqrt((par->K + 4.0 * par->G / 3.0) / rho);     /* c_p */
 }
 
-int mpm_material_check_elastic(const mpm_material_params *par, mpm_err *err)
-{
-  if (!(par->E > 0.0 && isfinite(par->E)))
-    return mpm_err_set(err, MPM_EINPUT, "key 'material.E' = %g: must be > 0 Pa", par->E);
-  if (!(par->nu > -1.0 && par->nu < 0.5))
-    return mpm_err_set(err, MPM_EINPUT, "key 'material.nu' = %g: allowed range (-1, 0.5)", par->nu);
-  return MPM_OK;
-}
-

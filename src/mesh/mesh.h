@@ -168,12 +168,6 @@ static inline int mpm_mesh_axis_node(int k, int n, int periodic)
   return k < 0 ? k + n : k >= n ? k - n : k;
 }
 
-/* Index step of the storage id along axis a: 1, snx, snx sny. */
-static inline int mpm_mesh_node_stride(const mpm_mesh *m, int a)
-{
-  return a == 0 ? 1 : a == 1 ? m->snx : m->snx * m->sny;
-}
-
 /* ---- points ------------------------------------------------------------------ */
 
 /* Unit c and local coordinates l in [0, 1] of x along the mesh's axes
@@ -429,11 +423,5 @@ void mpm_mesh_bands_free(mpm_mesh_bands *b);  /* accepts NULL */
  * an axis, periodic or not) for writes to rows row - lo .. row + hi. */
 int mpm_mesh_bands_sort(mpm_mesh_bands *b, int ny, int periodic, int lo, int hi, size_t n,
                         const int *row, mpm_err *err);
-
-/* The last axis of mesh m, along which its points are banded. */
-static inline int mpm_mesh_band_axis(const mpm_mesh *m)
-{
-  return m->dim - 1;
-}
 
 #endif

@@ -118,20 +118,6 @@ static inline void mpm_shape_in_span_axis(double h, double ih, int n, int cap, i
   *reach = 0.5 * s < n ? (int)(0.5 * s) + 1 : n;
 }
 
-/* Index of the lowest set bit of u != 0 (the block slots of the used nodes,
- * in slot order). */
-static inline int mpm_shape_in_lowest_bit(unsigned u)
-{
-#if defined(__GNUC__)
-  return __builtin_ctz(u);
-#else
-  int k = 0;
-  while (!(u >> k & 1u))
-    k++;
-  return k;
-#endif
-}
-
 /* Add the nv values v to the sums col[0..nv-1] of storage node id in the
  * list of *cnt nodes of one point (appended, its sums from 0, the first
  * time): nodes stay in the order they are first met. */

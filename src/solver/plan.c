@@ -1,5 +1,6 @@
-/* plan.c: the size of a run from its resolved input, before anything is
- * built: points (counted exactly, scenario/), nodes, steps, substeps, frames,
+/* plan.c: a run's time step and substeps from its resolved input (the
+ * stable step of the densest, fastest fill), and its size, before anything
+ * is built: points (counted exactly, scenario/), nodes, steps, substeps, frames,
  * and estimates of the memory the run holds at its peak and of the bytes it
  * writes. The byte counts follow the allocations of step.c, the shape,
  * nonlocal and density workspaces and io/output.c; the constants not
@@ -15,6 +16,46 @@
 #include <string.h>
 
 #include "scenario/scenario.h"
+
+/* dt = cfl min(dx, dy (, dz)) / (c_p + |v|max) at the densest, fastest fill. */
+static double stable_dt(const mpm_config *cfg, const mpm_material_params *par, double cfl)
+{
+  double rho = 0.0, vmax = 0.0;
+  for (int f = 0; f < cfg->nfill; f++) {
+    const mpm_fill_config *fc = &cfg->fill[f];
+    if (fc->density > rho) rho = fc->density;
+    double v = hypot(hypot(fc->vx, fc->vy), fc->vz);
+    if (v > vmax) vmax = v;
+  }
+  double h = fmin(cfg->mesh.dx, cfg->mesh.dy);
+  if (cfg->mesh.nz > 0)
+    h = fmin(h, cfg->mesh.dz);
+  return cfl * h / (mpm_material_wave_speed(par, rho) + vmax);
+}
+
+double mpm_sim_stable_dt(const mpm_config *cfg)
+{
+  mpm_material_params par;
+  mpm_material_params_from_config(&par, cfg);
+  return stable_dt(cfg, &par, 1.0);
+}
+
+double mpm_sim_substeps(const mpm_config *cfg, double dt)
+{
+  if (!(cfg->material.dt_sub > 0.0))
+    return cfg->material.n_sub > 0 ? cfg->material.n_sub : 1;
+  double n = ceil(dt / cfg->material.dt_sub * (1.0 - 1e-12));  /* dt/n_sub <= dt_sub */
+  return n < 1.0 ? 1.0 : n;
+}
+
+void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
+{
+  mpm_material_params par;
+  mpm_material_params_from_config(&par, cfg);
+  *dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(cfg, &par, cfg->time.cfl);
+  double n = mpm_sim_substeps(cfg, *dt);
+  *n_sub = n > 1e6 ? 1000000 : (int)n;          /* more is refused before a run is built */
+}
 
 /* Bytes per point of a point store of dimension dim, with the deformation
  * gradients or not: every stored field it has. */

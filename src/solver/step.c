@@ -51,46 +51,6 @@ static int nodal_alloc(mpm_sim *s)
   return MPM_OK;
 }
 
-/* dt = cfl min(dx, dy (, dz)) / (c_p + |v|max) at the densest, fastest fill. */
-static double stable_dt(const mpm_config *cfg, const mpm_material_params *par, double cfl)
-{
-  double rho = 0.0, vmax = 0.0;
-  for (int f = 0; f < cfg->nfill; f++) {
-    const mpm_fill_config *fc = &cfg->fill[f];
-    if (fc->density > rho) rho = fc->density;
-    double v = hypot(hypot(fc->vx, fc->vy), fc->vz);
-    if (v > vmax) vmax = v;
-  }
-  double h = fmin(cfg->mesh.dx, cfg->mesh.dy);
-  if (cfg->mesh.nz > 0)
-    h = fmin(h, cfg->mesh.dz);
-  return cfl * h / (mpm_material_wave_speed(par, rho) + vmax);
-}
-
-double mpm_sim_stable_dt(const mpm_config *cfg)
-{
-  mpm_material_params par;
-  mpm_material_params_from_config(&par, cfg);
-  return stable_dt(cfg, &par, 1.0);
-}
-
-double mpm_sim_substeps(const mpm_config *cfg, double dt)
-{
-  if (!(cfg->material.dt_sub > 0.0))
-    return cfg->material.n_sub > 0 ? cfg->material.n_sub : 1;
-  double n = ceil(dt / cfg->material.dt_sub * (1.0 - 1e-12));  /* dt/n_sub <= dt_sub */
-  return n < 1.0 ? 1.0 : n;
-}
-
-void mpm_sim_time_plan(const mpm_config *cfg, double *dt, int *n_sub)
-{
-  mpm_material_params par;
-  mpm_material_params_from_config(&par, cfg);
-  *dt = cfg->time.dt > 0.0 ? cfg->time.dt : stable_dt(cfg, &par, cfg->time.cfl);
-  double n = mpm_sim_substeps(cfg, *dt);
-  *n_sub = n > 1e6 ? 1000000 : (int)n;          /* more is refused before a run is built */
-}
-
 /* Per-point L storage for the phases that move every point before any
  * update (nonlocal models, the per-unit rules); once per run. */
 static int L_alloc(mpm_sim *s, mpm_err *err)
