@@ -466,7 +466,7 @@ static const bad_set bad_sets[] = {
   {"fill.b.ppu=3", "--set 'fill.b.ppu=3': no fill titled 'b' (allowed: a)"},
   {"fill.a.speed=3", "--set 'fill.a.speed=3': unknown key 'fill.a.speed' (allowed keys in 'fill': "
                      "shape, xmin, ymin, xmax, ymax, cx, cy, radius, x, y, ppu, density, vx, vy, "
-                     "zmin, zmax, vz, lithostatic, k0, pressure)"},
+                     "zmin, zmax, axis, cz, vz, lithostatic, k0, pressure)"},
   {"fill.ppu=0", "--set 'fill.ppu=0': key 'fill.ppu': value 0 out of range (allowed: 1 ... 8)"},
   {"fill.a.radius=1", "--set 'fill.a.radius=1': key 'fill.a.radius': not used by shape "
                       "\"rectangle\" (allowed keys for \"rectangle\": xmin, ymin, xmax, ymax)"},
