@@ -466,7 +466,7 @@ static const bad_set bad_sets[] = {
   {"fill.b.ppu=3", "--set 'fill.b.ppu=3': no fill titled 'b' (allowed: a)"},
   {"fill.a.speed=3", "--set 'fill.a.speed=3': unknown key 'fill.a.speed' (allowed keys in 'fill': "
                      "shape, xmin, ymin, xmax, ymax, cx, cy, radius, x, y, ppu, density, vx, vy, "
-                     "zmin, zmax, vz, lithostatic, k0, pressure)"},
+                     "zmin, zmax, axis, cz, vz, lithostatic, k0, pressure)"},
   {"fill.ppu=0", "--set 'fill.ppu=0': key 'fill.ppu': value 0 out of range (allowed: 1 ... 8)"},
   {"fill.a.radius=1", "--set 'fill.a.radius=1': key 'fill.a.radius': not used by shape "
                       "\"rectangle\" (allowed keys for \"rectangle\": xmin, ymin, xmax, ymax)"},
@@ -539,9 +539,9 @@ END_TEST
 START_TEST(t_round_trip_files)
 {
   const char *files[] = {GOOD "minimal.conf", GOOD "full.conf", GOOD "syntax.conf",
-                         TEST_SRCDIR "/inputs/V1-elastic-column.conf"};
+                         GOOD "cylinders.conf", TEST_SRCDIR "/inputs/V1-elastic-column.conf"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
-    if (i < 3 || access(files[i], R_OK) == 0)
+    if (i < 4 || access(files[i], R_OK) == 0)
       round_trip(files[i], NULL, 0);
 }
 END_TEST
@@ -563,6 +563,95 @@ START_TEST(t_round_trip_values)
   load_ok(GOOD "full.conf", sets, (int)(sizeof sets / sizeof sets[0]), &c);
   ck_assert_str_eq(c.output.dir, "it's a \"dir\" with ${HOME} and \\ in it");
   ck_assert(signbit(c.gravity.gx));
+}
+END_TEST
+
+/* The text of section "fill TITLE" in a resolved input (caller frees). */
+static char *fill_text(const char *text, const char *title)
+{
+  char head[64];
+  snprintf(head, sizeof head, "fill %s {\n", title);
+  const char *s = strstr(text, head);
+  ck_assert_msg(s != NULL, "no fill '%s' in:\n%s", title, text);
+  const char *e = strstr(s, "\n}\n");
+  ck_assert_ptr_nonnull(e);
+  return strndup(s, (size_t)(e - s + 1));
+}
+
+/* 3D cylinders (cylinders.conf): a disc without fill.axis lies along z, as
+ * before the key existed; along x its circle is (cy, cz) and it spans xmin
+ * ... xmax, along y (cx, cz) and ymin ... ymax. The keys a cylinder does not
+ * use keep their defaults and are left out of the resolved input. */
+START_TEST(t_cylinders)
+{
+  mpm_config c;
+  load_ok(GOOD "cylinders.conf", NULL, 0, &c);
+  ck_assert_int_eq(c.mesh.nz, 6);
+  ck_assert_int_eq(c.nfill, 3);
+  const mpm_fill_config *z = &c.fill[0], *x = &c.fill[1], *y = &c.fill[2];
+  ck_assert_str_eq(z->name, "post");
+  ck_assert_int_eq(z->shape, MPM_FILL_DISC);
+  ck_assert_int_eq(z->axis, 2);
+  ck_assert_double_eq(z->cx, 0.15);
+  ck_assert_double_eq(z->cy, 0.15);
+  ck_assert_double_eq(z->radius, 0.1);
+  ck_assert_double_eq(z->zmin, 0.05);
+  ck_assert_double_eq(z->zmax, 0.55);
+  ck_assert_double_eq(z->cz, 0);
+  ck_assert_str_eq(x->name, "log");
+  ck_assert_int_eq(x->shape, MPM_FILL_DISC);
+  ck_assert_int_eq(x->axis, 0);
+  ck_assert_double_eq(x->xmin, 0.3);
+  ck_assert_double_eq(x->xmax, 0.75);
+  ck_assert_double_eq(x->cy, 0.15);
+  ck_assert_double_eq(x->cz, 0.2);
+  ck_assert_double_eq(x->radius, 0.12);
+  ck_assert_double_eq(x->cx, 0);
+  ck_assert_double_eq(x->zmin, 0);
+  ck_assert_double_eq(x->zmax, 0);
+  ck_assert_str_eq(y->name, "pillar");
+  ck_assert_int_eq(y->axis, 1);
+  ck_assert_double_eq(y->ymin, 0.3);
+  ck_assert_double_eq(y->ymax, 0.55);
+  ck_assert_double_eq(y->cx, 0.5);
+  ck_assert_double_eq(y->cz, 0.4);
+  ck_assert_double_eq(y->radius, 0.15);
+  ck_assert_double_eq(y->cy, 0);
+  ck_assert_int_eq(y->ppu, 3);
+
+  char *text = written(&c);
+  const char *const has[3][3] = {{"  axis = \"z\"\n", "  zmin = 0.05\n", "  cx = 0.15\n"},
+                                 {"  axis = \"x\"\n", "  cz = 0.2\n", "  xmax = 0.75\n"},
+                                 {"  axis = \"y\"\n", "  cz = 0.4\n", "  ymin = 0.3\n"}};
+  const char *const lacks[3][4] = {{"\n  cz =", "\n  xmin =", "\n  ymin =", "\n  x ="},
+                                   {"\n  cx =", "\n  zmin =", "\n  zmax =", "\n  ymin ="},
+                                   {"\n  cy =", "\n  zmin =", "\n  xmin =", "\n  xmax ="}};
+  for (int i = 0; i < 3; i++) {
+    char *f = fill_text(text, c.fill[i].name);
+    for (int k = 0; k < 3; k++)
+      ck_assert_msg(strstr(f, has[i][k]), "fill %s without '%s':\n%s", c.fill[i].name,
+                    has[i][k], f);
+    for (int k = 0; k < 4; k++)
+      ck_assert_msg(!strstr(f, lacks[i][k]), "fill %s with '%s':\n%s", c.fill[i].name,
+                    lacks[i][k], f);
+    free(f);
+  }
+  free(text);
+
+  /* a plane disc has no axis: none written */
+  load_ok(GOOD "full.conf", NULL, 0, &c);
+  text = written(&c);
+  ck_assert_ptr_null(strstr(text, "axis ="));
+  ck_assert_ptr_null(strstr(text, "cz ="));
+  free(text);
+
+  /* turned along y with --set, the log's x span is refused where it was set */
+  expect_error("mesh {\n  nx = 4\n  ny = 4\n  nz = 4\n  dx = 0.1\n  dy = 0.1\n  dz = 0.1\n}\n"
+               "time {\n  t_end = 1\n}\n"
+               "fill log {\n  shape = disc\n  axis = x\n  xmin = 0\n  xmax = 0.4\n"
+               "  cy = 0.2\n  cz = 0.2\n  radius = 0.1\n}\n", "fill.log.axis=y",
+               CASE ":15: key 'fill.log.xmin': not used by shape \"disc\" with axis \"y\" "
+               "(allowed keys for \"disc\" with axis \"y\": ymin, ymax, cx, radius, axis, cz)");
 }
 END_TEST
 
@@ -856,7 +945,7 @@ static int written_key(const char *text, const char *key, char *out, size_t cap)
  * gravity given as an angle). A default written as another key's name
  * ("material.rho_c") is that key's resolved value. */
 static void check_doc_default(const doc_row *r, const char *text, const char *polar_text,
-                              const char *text3)
+                              const char *text3, const char *text_cyl)
 {
   char value[128], other[128];
   if (!strncmp(r->def, "required", 8))
@@ -866,10 +955,13 @@ static void check_doc_default(const doc_row *r, const char *text, const char *po
     ck_assert(!written_key(text, r->key, value, sizeof value) && !strcmp(r->def, "0"));
     return;
   }
-  /* the keys of 3D runs are written only in a 3D input's resolved text */
+  /* the keys of 3D runs are written only in a 3D input's resolved text, a
+   * cylinder's axis only for a cylinder (the first of text_cyl has the
+   * default) */
   ck_assert_msg(written_key(text, r->key, value, sizeof value) ||
                 written_key(polar_text, r->key, value, sizeof value) ||
-                written_key(text3, r->key, value, sizeof value), "%s not written", r->key);
+                written_key(text3, r->key, value, sizeof value) ||
+                written_key(text_cyl, r->key, value, sizeof value), "%s not written", r->key);
   const char *want = r->def;
   if (isalpha((unsigned char)want[0]) && strchr(want, '.') &&
       written_key(text, want, other, sizeof other))
@@ -901,6 +993,8 @@ START_TEST(t_reference)
   const char *box[] = {"mesh.nz=2", "mesh.dz=0.25", "fill.pile.zmin=0", "fill.pile.zmax=0.5"};
   load_ok(GOOD "minimal.conf", box, 4, &c);
   char *text3 = written(&c);
+  load_ok(GOOD "cylinders.conf", NULL, 0, &c);
+  char *text_cyl = written(&c);
   char line[1024], listed[4096] = " ";
   doc_row r;
   int rows = 0;
@@ -909,15 +1003,15 @@ START_TEST(t_reference)
       continue;
     rows++;
     check_doc_allowed(&r);
-    check_doc_default(&r, min_text, polar_text, text3);
+    check_doc_default(&r, min_text, polar_text, text3, text_cyl);
     strncat(listed, strchr(r.key, '.') + 1, sizeof listed - strlen(listed) - 2);
     strcat(listed, " ");
   }
   fclose(f);
   ck_assert_int_ge(rows, 40);
   /* every key the writer knows is documented, the 3D ones too */
-  const char *texts[] = {full_text, text3};
-  for (int k = 0; k < 2; k++)
+  const char *texts[] = {full_text, text3, text_cyl};
+  for (int k = 0; k < 3; k++)
     for (const char *p = texts[k]; (p = strstr(p, "\n  ")); p++) {
       char key[64], pat[70];
       sscanf(p + 3, "%63s", key);
@@ -925,6 +1019,7 @@ START_TEST(t_reference)
       ck_assert_msg(strstr(listed, pat), "key '%s' is not in %s", key, DOCS);
     }
   free(text3);
+  free(text_cyl);
   free(min_text);
   free(polar_text);
   free(full_text);
@@ -944,6 +1039,7 @@ static Suite *input_suite(void)
   tcase_add_test(tc, t_overrides);
   tcase_add_test(tc, t_round_trip_files);
   tcase_add_test(tc, t_round_trip_values);
+  tcase_add_test(tc, t_cylinders);
   tcase_add_test(tc, t_write_fails);
   tcase_add_test(tc, t_reference);
   suite_add_tcase(s, tc);

@@ -1,6 +1,7 @@
 /* input_check.c: the relations between keys that no single range can state
  * (mesh size, time, gravity given one way, material parameters in order,
- * periodic edges in pairs, each fill inside the mesh with its shape's keys,
+ * periodic edges in pairs, each fill inside the mesh with its form's keys
+ * (its shape, and in 3D a cylinder's axis),
  * outlet, wall, region), the defaults that follow other keys (t_seed, fill
  * density, stop.t_min, gravity from an angle), and the model's own parameter
  * check. A relation between two keys is reported at the one set last. */
@@ -47,6 +48,20 @@ static where blame(const in_ctx *c, const mpm_config *cfg, int fill, int a, int 
 static int key_index(int sec, const char *name)
 {
   return mpm_io_in_find_key(sec, name);  /* the table is fixed: names used here exist */
+}
+
+/* The mesh along axis a (0 x, 1 y, 2 z): origin, unit size, units. */
+typedef struct mesh_axis {
+  double o, d;
+  int n;
+} mesh_axis;
+
+static mesh_axis axis_of(const mpm_config *cfg, int a)
+{
+  const double d[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
+  const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
+  const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
+  return (mesh_axis){o[a], d[a], n[a]};
 }
 
 static int check_required(in_ctx *c)
@@ -262,39 +277,85 @@ static int check_boundary(in_ctx *c, const mpm_config *cfg)
   return check_periodic_pair(c, cfg, "bottom", "top", cfg->bc.bottom, cfg->bc.top);
 }
 
-/* Keys of another shape must not be set; the shape's own required keys must. */
+/* The fill's form as messages name it: "disc" with axis "x" for a cylinder,
+ * the shape alone otherwise. */
+static text form_name(const mpm_config *cfg, const mpm_fill_config *f)
+{
+  text t = {{0}};
+  mpm_io_in_addf(&t, "\"%s\"", mpm_io_in_name_at(NK_FILL_SHAPE, f->shape));
+  if (mpm_io_in_fill_form(f, cfg->mesh.nz > 0) & SH_CYL)
+    mpm_io_in_addf(&t, " with axis \"%s\"", mpm_io_in_name_at(NK_FILL_AXIS, f->axis));
+  return t;
+}
+
+/* The axis (0 x, 1 y, 2 z) that fill key k spans (xmin ... zmax), or -1. */
+static int span_axis(int k)
+{
+  const char *const span[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
+  for (int a = 0; a < 3; a++)
+    if (k == key_index(S_FILL, span[a][0]) || k == key_index(S_FILL, span[a][1]))
+      return a;
+  return -1;
+}
+
+/* Keys of another form (a plane shape; in 3D also a box, a prism or a
+ * cylinder along another axis) must not be set; the form's own required
+ * keys must. A cylinder's missing span key names the mesh along its axis. */
 static int check_fill_keys(in_ctx *c, const mpm_config *cfg, int i)
 {
   const mpm_fill_config *f = &cfg->fill[i];
-  int mask = 1 << f->shape;
-  const char *shape = mpm_io_in_name_at(NK_FILL_SHAPE, f->shape);
+  const int form = mpm_io_in_fill_form(f, cfg->mesh.nz > 0);
+  const text name = form_name(cfg, f);
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_io_in_keys[k].sec != S_FILL || !mpm_io_in_keys[k].shapes)
+    const key_def *kd = &mpm_io_in_keys[k];
+    if (kd->sec != S_FILL || !kd->shapes)
       continue;
     where w = {.at = c->at[i][k], .sec = S_FILL, .key = k, .fill = i, .title = f->name};
-    if (!(mpm_io_in_keys[k].shapes & mask) && is_set(c, k, i))
-      return mpm_io_in_fail_key(c, &w, "not used by shape \"%s\" (allowed keys for \"%s\": %s)",
-                                shape, shape, mpm_io_in_key_list(S_FILL, mask).s);
-    if ((mpm_io_in_keys[k].shapes & mask) && !is_set(c, k, i))
-      return mpm_io_in_fail_key(c, &w, "required for shape \"%s\", not set (allowed: %s)", shape,
-                                mpm_io_in_allowed_text(&mpm_io_in_keys[k]).s);
+    if (!(kd->shapes & form) && is_set(c, k, i))
+      return mpm_io_in_fail_key(c, &w, "not used by shape %s (allowed keys for %s: %s)", name.s,
+                                name.s, mpm_io_in_key_list(S_FILL, form).s);
+    if (!(kd->shapes & form) || !(kd->flags & KF_REQUIRED) || is_set(c, k, i))
+      continue;
+    const int a = span_axis(k);
+    if ((form & SH_CYL) && a >= 0) {
+      const mesh_axis ax = axis_of(cfg, a);
+      return mpm_io_in_fail_key(c, &w, "required for shape %s, not set (allowed: %s ... %s m)",
+                                name.s, mpm_io_in_approx(ax.o).s,
+                                mpm_io_in_approx(ax.o + ax.n * ax.d).s);
+    }
+    return mpm_io_in_fail_key(c, &w, "required for shape %s, not set (allowed: %s)", name.s,
+                              mpm_io_in_allowed_text(kd).s);
   }
   return MPM_OK;
 }
 
+/* The fill's extent lo ... hi along axis a (0 x, 1 y, 2 z), from keys ka
+ * and kb, inside the mesh. */
 static int check_span(in_ctx *c, const mpm_config *cfg, int i, int ka, int kb, double lo,
-                      double hi, int along_x)
+                      double hi, int a)
 {
-  double m0 = along_x ? cfg->mesh.x0 : cfg->mesh.y0;
-  double d = along_x ? cfg->mesh.dx : cfg->mesh.dy;
-  double m1 = m0 + (along_x ? cfg->mesh.nx : cfg->mesh.ny) * d, tol = GEOM_TOL * d;
+  const mesh_axis ax = axis_of(cfg, a);
+  const double m0 = ax.o, m1 = m0 + ax.n * ax.d, tol = GEOM_TOL * ax.d;
   if (lo >= m0 - tol && hi <= m1 + tol)
     return MPM_OK;
   where w = blame(c, cfg, i, ka, kb);
   return mpm_io_in_fail_key(c, &w,
-                            "the fill spans %s %s ... %s, outside the mesh (allowed: %s ... %s m)",
-                            along_x ? "x" : "y", mpm_io_in_approx(lo).s, mpm_io_in_approx(hi).s,
+                            "the fill spans %c %s ... %s, outside the mesh (allowed: %s ... %s m)",
+                            "xyz"[a], mpm_io_in_approx(lo).s, mpm_io_in_approx(hi).s,
                             mpm_io_in_approx(m0).s, mpm_io_in_approx(m1).s);
+}
+
+/* xmin < xmax (a = 0) or ymin < ymax (a = 1). */
+static int check_order(in_ctx *c, const mpm_config *cfg, int i, int a)
+{
+  const mpm_fill_config *f = &cfg->fill[i];
+  const char *lo_key = a ? "ymin" : "xmin", *hi_key = a ? "ymax" : "xmax";
+  const double lo = a ? f->ymin : f->xmin, hi = a ? f->ymax : f->xmax;
+  if (lo < hi)
+    return MPM_OK;
+  where w = blame(c, cfg, i, key_index(S_FILL, hi_key), key_index(S_FILL, lo_key));
+  return mpm_io_in_fail_key(c, &w, "%s = %s >= %s = %s (allowed: %s < %s)", lo_key,
+                            mpm_io_in_num(lo).s, hi_key, mpm_io_in_num(hi).s, lo_key, hi_key);
 }
 
 static int check_rectangle(in_ctx *c, const mpm_config *cfg, int i)
@@ -302,30 +363,35 @@ static int check_rectangle(in_ctx *c, const mpm_config *cfg, int i)
   const mpm_fill_config *f = &cfg->fill[i];
   int kx0 = key_index(S_FILL, "xmin"), kx1 = key_index(S_FILL, "xmax");
   int ky0 = key_index(S_FILL, "ymin"), ky1 = key_index(S_FILL, "ymax");
-  if (!(f->xmin < f->xmax)) {
-    where w = blame(c, cfg, i, kx1, kx0);
-    return mpm_io_in_fail_key(c, &w, "xmin = %s >= xmax = %s (allowed: xmin < xmax)",
-                              mpm_io_in_num(f->xmin).s, mpm_io_in_num(f->xmax).s);
-  }
-  if (!(f->ymin < f->ymax)) {
-    where w = blame(c, cfg, i, ky1, ky0);
-    return mpm_io_in_fail_key(c, &w, "ymin = %s >= ymax = %s (allowed: ymin < ymax)",
-                              mpm_io_in_num(f->ymin).s, mpm_io_in_num(f->ymax).s);
-  }
-  if (check_span(c, cfg, i, kx1, kx0, f->xmin, f->xmax, 1) != MPM_OK)
+  if (check_order(c, cfg, i, 0) != MPM_OK || check_order(c, cfg, i, 1) != MPM_OK)
     return MPM_EINPUT;
-  return check_span(c, cfg, i, ky1, ky0, f->ymin, f->ymax, 0);
+  if (check_span(c, cfg, i, kx1, kx0, f->xmin, f->xmax, 0) != MPM_OK)
+    return MPM_EINPUT;
+  return check_span(c, cfg, i, ky1, ky0, f->ymin, f->ymax, 1);
 }
 
+/* A disc: its circle inside the mesh, across its axis (z in the plane; in
+ * 3D fill.axis). A cylinder along x or y also spans xmin < xmax or ymin <
+ * ymax inside the mesh; the z range of one along z is every 3D fill's
+ * (check_dimension). */
 static int check_disc(in_ctx *c, const mpm_config *cfg, int i)
 {
   const mpm_fill_config *f = &cfg->fill[i];
-  int kr = key_index(S_FILL, "radius");
-  if (check_span(c, cfg, i, key_index(S_FILL, "cx"), kr, f->cx - f->radius, f->cx + f->radius,
-                 1) != MPM_OK)
+  const int a = cfg->mesh.nz > 0 ? f->axis : 2;
+  const int kr = key_index(S_FILL, "radius");
+  const int kc[3] = {key_index(S_FILL, "cx"), key_index(S_FILL, "cy"), key_index(S_FILL, "cz")};
+  const double centre[3] = {f->cx, f->cy, f->cz};
+  for (int d = 0; d < 3; d++)
+    if (d != a && check_span(c, cfg, i, kc[d], kr, centre[d] - f->radius,
+                             centre[d] + f->radius, d) != MPM_OK)
+      return MPM_EINPUT;
+  if (a == 2)
+    return MPM_OK;
+  if (check_order(c, cfg, i, a) != MPM_OK)
     return MPM_EINPUT;
-  return check_span(c, cfg, i, key_index(S_FILL, "cy"), kr, f->cy - f->radius,
-                    f->cy + f->radius, 0);
+  const int klo = key_index(S_FILL, a ? "ymin" : "xmin");
+  const int khi = key_index(S_FILL, a ? "ymax" : "xmax");
+  return check_span(c, cfg, i, khi, klo, a ? f->ymin : f->xmin, a ? f->ymax : f->xmax, a);
 }
 
 static void bounds(const double *v, int n, double *lo, double *hi)
@@ -358,9 +424,9 @@ static int check_polygon(in_ctx *c, mpm_config *cfg, int i)
     return mpm_io_in_fail_key(
         c, &w, "the polygon encloses no area (allowed: 3 ... %d vertices around a region)",
         MPM_MAX_POLY);
-  if (check_span(c, cfg, i, kx, ky, x0, x1, 1) != MPM_OK)
+  if (check_span(c, cfg, i, kx, ky, x0, x1, 0) != MPM_OK)
     return MPM_EINPUT;
-  return check_span(c, cfg, i, ky, kx, y0, y1, 0);
+  return check_span(c, cfg, i, ky, kx, y0, y1, 1);
 }
 
 static int check_fill(in_ctx *c, mpm_config *cfg, int i)
@@ -443,20 +509,6 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
     return mpm_io_in_fail_at(c, &w, "%s", e.msg);
   return mpm_io_in_fail_key(c, &w, "model \"%s\": %s", mpm_io_in_show(cfg->material.model).s,
                             e.msg);
-}
-
-/* The mesh along axis a (0 x, 1 y, 2 z): origin, unit size, units. */
-typedef struct mesh_axis {
-  double o, d;
-  int n;
-} mesh_axis;
-
-static mesh_axis axis_of(const mpm_config *cfg, int a)
-{
-  const double d[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
-  const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
-  const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
-  return (mesh_axis){o[a], d[a], n[a]};
 }
 
 /* One extent of an outlet, lo ... hi (keys klo, khi), inside the mesh along
@@ -619,8 +671,9 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
   return MPM_OK;
 }
 
-/* A 3D run (mesh.nz > 0): the keys it needs and what is plane by nature
- * (triangles); a plane run: no 3D key set. */
+/* A 3D run (mesh.nz > 0): the keys it needs (the z range of every fill
+ * but a cylinder along x or y) and what is plane by nature (triangles); a
+ * plane run: no 3D key set. */
 static int check_dimension(in_ctx *c, const mpm_config *cfg)
 {
   const int knz = key_index(S_MESH, "nz");
@@ -668,6 +721,8 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
   const int kz0 = key_index(S_FILL, "zmin"), kz1 = key_index(S_FILL, "zmax");
   for (int f = 0; f < cfg->nfill; f++) {
     const mpm_fill_config *fc = &cfg->fill[f];
+    if (!(mpm_io_in_keys[kz0].shapes & mpm_io_in_fill_form(fc, 1)))
+      continue;  /* a cylinder along x or y: its span is its own (check_disc) */
     if (!is_set(c, kz0, f) || !is_set(c, kz1, f)) {
       const int km = is_set(c, kz0, f) ? kz1 : kz0;
       where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .fill = f, .title = fc->name};

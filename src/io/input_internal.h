@@ -68,11 +68,11 @@ enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
   NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE, NK_DILATATION, NK_TRANSFER, NK_DIFFUSION,
   NK_G_WALL, NK_G_SAMPLE, NK_G_MASS, NK_WALL_ACC, NK_OUTLET_SHAPE,
-  NK_OUTLET_ENDS
+  NK_OUTLET_ENDS, NK_FILL_AXIS
 };
 
 enum key_flag {
-  KF_REQUIRED = 1,  /* no default (fill keys: required by the shapes that use it) */
+  KF_REQUIRED = 1,  /* no default (fill keys: required by the forms that use it) */
   KF_LO_OPEN = 2,   /* value > lo rather than >= lo */
   KF_HI_OPEN = 4,   /* value < hi rather than <= hi */
   KF_RHO_C = 8,     /* default: material.rho_c */
@@ -82,10 +82,19 @@ enum key_flag {
                        left out of its resolved input (mesh.nz itself too when 0) */
 };
 
-/* Fill shapes that use a key (0: every shape). */
+/* The forms of fill that use a key (0: every form): in a plane run the
+ * shape (rectangle, disc, polygon); in a 3D run the shape and its extent: a
+ * box, a prism along z, or a cylinder along x, y or z (a disc and its
+ * fill.axis). A form is one bit: mpm_io_in_fill_form. */
 #define SH_RECT (1 << MPM_FILL_RECTANGLE)
 #define SH_DISC (1 << MPM_FILL_DISC)
 #define SH_POLY (1 << MPM_FILL_POLYGON)
+#define SH_BOX (SH_POLY << 1)
+#define SH_PRISM (SH_POLY << 2)
+#define SH_CYL_X (SH_POLY << 3)
+#define SH_CYL_Y (SH_POLY << 4)
+#define SH_CYL_Z (SH_POLY << 5)
+#define SH_CYL (SH_CYL_X | SH_CYL_Y | SH_CYL_Z)
 
 typedef struct key_def {
   const char *name;
@@ -97,7 +106,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 105
+#define NKEYS 107
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];
@@ -106,6 +115,7 @@ const char *mpm_io_in_name_at(int kind, int i);
 int mpm_io_in_name_value(int kind, const char *s);
 int mpm_io_in_find_section(const char *name);
 int mpm_io_in_find_key(int sec, const char *name);
+int mpm_io_in_fill_form(const mpm_fill_config *f, int dim3);
 
 /* --------------------------------------------------------- message pieces */
 

@@ -1,8 +1,9 @@
 /* input_keys.c: the one table of input keys (section, type, default, allowed
- * range, unit, offset into mpm_config or mpm_fill_config) and the names each
- * named key allows. The owning modules (mesh, shape, material, bc, nonlocal)
- * decide which names are valid; the few name tables of the input itself
- * (fill shapes, outlet edges, dilatation rules) live here. */
+ * range, unit, offset into mpm_config or mpm_fill_config, the forms of fill
+ * that use a fill key) and the names each named key allows. The owning
+ * modules (mesh, shape, material, bc, nonlocal) decide which names are valid;
+ * the few name tables of the input itself (fill shapes and cylinder axes,
+ * outlet edges, dilatation rules) live here. */
 #include <stddef.h>
 #include <string.h>
 
@@ -102,21 +103,26 @@ const key_def mpm_io_in_keys[] = {
           "jump"),
 
     NAMED(S_FILL, KT_ENUM, "shape", F_(shape), NK_FILL_SHAPE, "rectangle"),
-    GEOM(KT_REAL, "xmin", F_(xmin), -1e9, 1e9, 0, SH_RECT),
-    GEOM(KT_REAL, "ymin", F_(ymin), -1e9, 1e9, 0, SH_RECT),
-    GEOM(KT_REAL, "xmax", F_(xmax), -1e9, 1e9, 0, SH_RECT),
-    GEOM(KT_REAL, "ymax", F_(ymax), -1e9, 1e9, 0, SH_RECT),
-    GEOM(KT_REAL, "cx", F_(cx), -1e9, 1e9, 0, SH_DISC),
-    GEOM(KT_REAL, "cy", F_(cy), -1e9, 1e9, 0, SH_DISC),
-    GEOM(KT_REAL, "radius", F_(radius), 1e-6, 1e9, 0, SH_DISC),
-    GEOM(KT_LIST, "x", F_(px), -1e9, 1e9, 0, SH_POLY),
-    GEOM(KT_LIST, "y", F_(py), -1e9, 1e9, 0, SH_POLY),
+    /* a cylinder along an axis uses the span keys of that axis and the
+       centre keys of the other two */
+    GEOM(KT_REAL, "xmin", F_(xmin), -1e9, 1e9, 0, SH_RECT | SH_BOX | SH_CYL_X),
+    GEOM(KT_REAL, "ymin", F_(ymin), -1e9, 1e9, 0, SH_RECT | SH_BOX | SH_CYL_Y),
+    GEOM(KT_REAL, "xmax", F_(xmax), -1e9, 1e9, 0, SH_RECT | SH_BOX | SH_CYL_X),
+    GEOM(KT_REAL, "ymax", F_(ymax), -1e9, 1e9, 0, SH_RECT | SH_BOX | SH_CYL_Y),
+    GEOM(KT_REAL, "cx", F_(cx), -1e9, 1e9, 0, SH_DISC | SH_CYL_Y | SH_CYL_Z),
+    GEOM(KT_REAL, "cy", F_(cy), -1e9, 1e9, 0, SH_DISC | SH_CYL_X | SH_CYL_Z),
+    GEOM(KT_REAL, "radius", F_(radius), 1e-6, 1e9, 0, SH_DISC | SH_CYL),
+    GEOM(KT_LIST, "x", F_(px), -1e9, 1e9, 0, SH_POLY | SH_PRISM),
+    GEOM(KT_LIST, "y", F_(py), -1e9, 1e9, 0, SH_POLY | SH_PRISM),
     NUM(S_FILL, KT_INT, "ppu", F_(ppu), 2, 1, 8, 0, "-"),
     NUM(S_FILL, KT_REAL, "density", F_(density), 0, 1, 1e5, KF_RHO_C, "kg/m^3"),
     NUM(S_FILL, KT_REAL, "vx", F_(vx), 0, -1e4, 1e4, 0, "m/s"),
     NUM(S_FILL, KT_REAL, "vy", F_(vy), 0, -1e4, 1e4, 0, "m/s"),
-    NUM(S_FILL, KT_REAL, "zmin", F_(zmin), 0, -1e9, 1e9, KF_3D, "m"),
-    NUM(S_FILL, KT_REAL, "zmax", F_(zmax), 0, -1e9, 1e9, KF_3D, "m"),
+    GEOM(KT_REAL, "zmin", F_(zmin), -1e9, 1e9, KF_3D, SH_BOX | SH_PRISM | SH_CYL_Z),
+    GEOM(KT_REAL, "zmax", F_(zmax), -1e9, 1e9, KF_3D, SH_BOX | SH_PRISM | SH_CYL_Z),
+    {.name = "axis", .sec = S_FILL, .type = KT_ENUM, .off = F_(axis), .kind = NK_FILL_AXIS,
+     .sdef = "z", .flags = KF_3D, .shapes = SH_CYL},
+    GEOM(KT_REAL, "cz", F_(cz), -1e9, 1e9, KF_3D, SH_CYL_X | SH_CYL_Y),
     NUM(S_FILL, KT_REAL, "vz", F_(vz), 0, -1e4, 1e4, KF_3D, "m/s"),
     NUM(S_FILL, KT_BOOL, "lithostatic", F_(lithostatic), 0, 0, 1, 0, "-"),
     NUM(S_FILL, KT_REAL, "k0", F_(k0), 0, 0.01, 10, KF_ZERO_OFF, "-"),
@@ -184,6 +190,8 @@ static const char *const fill_shape_names[] = {
   [MPM_FILL_POLYGON] = "polygon",
 };
 
+static const char *const fill_axis_names[] = {"x", "y", "z"};  /* mpm_fill_config.axis */
+
 static const char *const edge_names[] = {
   [MPM_OUTLET_NONE] = "none", [MPM_OUTLET_LEFT] = "left", [MPM_OUTLET_RIGHT] = "right",
   [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top", [MPM_OUTLET_FRONT] = "front",
@@ -219,6 +227,7 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_TOPOLOGY: return mpm_mesh_topology_name(i);
   case NK_DIAGONAL: return mpm_mesh_diagonal_name(i);
   case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
+  case NK_FILL_AXIS: return NAME_AT(fill_axis_names, i);
   case NK_EDGE: return NAME_AT(edge_names, i);
   case NK_OUTLET_SHAPE: return NAME_AT(outlet_shape_names, i);
   case NK_OUTLET_ENDS: return NAME_AT(outlet_ends_names, i);
@@ -257,6 +266,7 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_MODEL: return mpm_material_lookup(s) ? 0 : -1;
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return NAME_INDEX(fill_shape_names, s);
+  case NK_FILL_AXIS: return NAME_INDEX(fill_axis_names, s);
   case NK_NGF_FORM: return mpm_material_ngf_form_from_name(s);
   case NK_NGF_P_SAMPLE: return mpm_material_ngf_p_sample_from_name(s);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
@@ -289,4 +299,19 @@ int mpm_io_in_find_key(int sec, const char *name)
     if (mpm_io_in_keys[k].sec == sec && strcmp(mpm_io_in_keys[k].name, name) == 0)
       return k;
   return -1;
+}
+
+/* The form of fill f (one SH_ bit) in a plane (dim3 = 0) or a 3D run; 0 for
+ * a shape or an axis out of range. */
+int mpm_io_in_fill_form(const mpm_fill_config *f, int dim3)
+{
+  switch (f->shape) {
+  case MPM_FILL_RECTANGLE: return dim3 ? SH_BOX : SH_RECT;
+  case MPM_FILL_POLYGON: return dim3 ? SH_PRISM : SH_POLY;
+  case MPM_FILL_DISC:
+    if (!dim3)
+      return SH_DISC;
+    return f->axis >= 0 && f->axis <= 2 ? SH_CYL_X << f->axis : 0;
+  default: return 0;
+  }
 }

@@ -80,17 +80,19 @@ static void write_section(FILE *f, const mpm_config *cfg, int s)
   fputs("}\n", f);
 }
 
+/* A fill with the keys of its form only (a cylinder: its axis, the span
+ * along it and the centre across it), and the 3D keys in a 3D run. */
 static void write_fill(FILE *f, const mpm_fill_config *fc, int i, int dim3)
 {
   if (mpm_io_in_valid_title(fc->name))
     fprintf(f, "fill %s {\n", fc->name);
   else
     fprintf(f, "fill fill%d {\n", i + 1);
-  int mask = fc->shape >= 0 && fc->shape <= MPM_FILL_POLYGON ? 1 << fc->shape : 0;
+  const int form = mpm_io_in_fill_form(fc, dim3);
   int nvert = fc->nvert < 0 ? 0 : fc->nvert > MPM_MAX_POLY ? MPM_MAX_POLY : fc->nvert;
   for (int k = 0; k < NKEYS; k++)
     if (mpm_io_in_keys[k].sec == S_FILL &&
-        (!mpm_io_in_keys[k].shapes || (mpm_io_in_keys[k].shapes & mask)) &&
+        (!mpm_io_in_keys[k].shapes || (mpm_io_in_keys[k].shapes & form)) &&
         (dim3 || !(mpm_io_in_keys[k].flags & KF_3D)))
       write_key(f, fc, &mpm_io_in_keys[k], nvert);
   fputs("}\n", f);
