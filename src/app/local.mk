@@ -12,3 +12,8 @@ src_app_granmpm_LDADD = libgranmpm.la $(DEP_LIBS)
 # sweep scripts through scripts/run-once); they need only the program.
 TESTS += tests/cli-survive.sh tests/cli-sweep.sh
 EXTRA_DIST += tests/cli-survive.sh tests/cli-sweep.sh
+
+# No two files of src/ call each other in a circle (scripts/call-cycles on
+# the objects of the build).
+TESTS += tests/cli-calls.sh
+EXTRA_DIST += tests/cli-calls.sh
