@@ -61,9 +61,10 @@ typedef struct mpm_fill_config {
                                   extrudes its plane shape along z [m] */
   double vz;                   /* 3D: initial velocity z [m/s] */
   int axis;                    /* 3D disc: the cylinder's axis, 0 x, 1 y, 2 z (the
-                                  default); along x its circle has the centre
-                                  (cy, cz) and it spans xmin ... xmax, along y
-                                  (cx, cz) and ymin ... ymax */
+                                  input's default; a configuration made in code
+                                  sets it: 0 is x); along x its circle has the
+                                  centre (cy, cz) and it spans xmin ... xmax,
+                                  along y (cx, cz) and ymin ... ymax */
   double cz;                   /* 3D disc along x or y: the centre's z [m] */
   int lithostatic;             /* 1: pre-stress from the weight above */
   double k0;                   /* lithostatic: sigma_xx = sigma_zz = k0 sigma_yy (0: the
