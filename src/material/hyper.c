@@ -76,78 +76,461 @@
 
 #include "core/points.h"
 
-enum { JACOBI_SWEEPS = 32 };   /* a 3x3 needs a few sweeps; the cap only bounds a bad input */
+/* Written to be inlined where it is used: into the loops over a block's
+ * points, which then vectorise, and into the point functions. */
+#if defined(__GNUC__)
+#define HYPER_INLINE static inline __attribute__((always_inline))
+#else
+#define HYPER_INLINE static inline
+#endif
 
-/* The off-diagonal planes (p, q) of a cyclic sweep. */
-static const int jacobi_planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+enum {
+  HYPER_BLOCK = 64,          /* points per block of the batch update (a step's chunk) */
+  JACOBI_VECTOR_SWEEPS = 3,  /* sweeps of the vectorised pass: enough for ~98 % of points */
+  JACOBI_SWEEPS = 32         /* a 3x3 needs a few sweeps; the cap only bounds a bad input */
+};
 
-/* One Jacobi rotation in the plane (p, q) that zeroes a[p][q], accumulated
- * into the columns of v: a <- J^T a J, v <- v J with J_pp = J_qq = c,
- * J_pq = -J_qp = s, t = s/c the smaller root of t^2 + 2 theta t - 1 = 0,
- * theta = (a_qq - a_pp) / (2 a_pq). sqrt(1 + theta^2) is |theta| itself in
- * double above 1e150 (where theta^2 would overflow), so no hypot is needed. */
-static void jacobi_rotate(double a[3][3], mpm_mat3 *v, int p, int q)
+/* ---- cyclic Jacobi on one symmetric 3x3 ------------------------------------
+ * The matrix is held as a[6] in the order of mpm_sym3 (xx yy zz xy yz zx),
+ * the accumulated rotation as v[9] row-major (v[3 k + j] = V_kj, the
+ * columns the eigenvectors). */
+
+/* a_pq is negligible next to a_pp and a_qq when it is below eps/2 of their
+ * geometric mean: it then moves no eigenvalue by more than round-off
+ * relative to itself, so graded and near-zero matrices keep their relative
+ * accuracy. False for a NaN. */
+HYPER_INLINE int jacobi_negligible(double app, double aqq, double apq)
 {
-  const double apq = a[p][q];
-  const double theta = (a[q][q] - a[p][p]) / (2.0 * apq), at = fabs(theta);
-  const double root = at < 1e150 ? sqrt(1.0 + at * at) : at;      /* sqrt(1 + theta^2) */
-  const double t = copysign(1.0 / (at + root), theta);
+  return fabs(apq) <= 0.5 * DBL_EPSILON * sqrt(fabs(app)) * sqrt(fabs(aqq));
+}
+
+/* One Jacobi rotation in the plane (p, q), r the third index, that zeroes
+ * a_pq, accumulated into the columns p, q of v: a <- J^T a J, v <- v J with
+ * J_pp = J_qq = c, J_pq = -J_qp = s, t = s/c the smaller root of
+ * t^2 + 2 theta t - 1 = 0, theta = (a_qq - a_pp) / (2 a_pq).
+ * sqrt(1 + theta^2) is |theta| itself in double above 1e150 (where theta^2
+ * would overflow), so no hypot is needed. A negligible a_pq is the rotation
+ * by t = 0 (c = 1, s = 0): a_pq <- 0 and nothing else changes, exactly.
+ * Branch-free, so a loop of points vectorises; returns whether it rotated. */
+HYPER_INLINE int jacobi_rotate(double *app, double *aqq, double *apq, double *arp, double *arq,
+                               double *v0p, double *v0q, double *v1p, double *v1q, double *v2p,
+                               double *v2q)
+{
+  const double a = *apq, dp = *app, dq = *aqq;
+  const int drop = jacobi_negligible(dp, dq, a);
+  const double theta = (dq - dp) / (2.0 * a), at = fabs(theta);
+  const double root = at < 1e150 ? sqrt(1.0 + at * at) : at;       /* sqrt(1 + theta^2) */
+  const double t = drop ? 0.0 : copysign(1.0 / (at + root), theta);
   const double c = 1.0 / sqrt(1.0 + t * t), s = t * c;
   const double h = s / (1.0 + c);                                  /* tan(angle/2) */
-  a[p][p] -= t * apq;                                              /* a_pp - t a_pq */
-  a[q][q] += t * apq;                                              /* a_qq + t a_pq */
-  a[p][q] = a[q][p] = 0.0;
-  const int r = 3 - p - q;                                         /* the third index */
-  const double arp = a[r][p], arq = a[r][q];
-  a[r][p] = a[p][r] = arp - s * (arq + h * arp);                   /* c a_rp - s a_rq */
-  a[r][q] = a[q][r] = arq + s * (arp - h * arq);                   /* s a_rp + c a_rq */
+  *app = dp - t * a;                                               /* a_pp - t a_pq */
+  *aqq = dq + t * a;                                               /* a_qq + t a_pq */
+  *apq = 0.0;
+  const double xp = *arp, xq = *arq;
+  *arp = xp - s * (xq + h * xp);                                   /* c a_rp - s a_rq */
+  *arq = xq + s * (xp - h * xq);                                   /* s a_rp + c a_rq */
+  double *const vp[3] = {v0p, v1p, v2p}, *const vq[3] = {v0q, v1q, v2q};
   for (int k = 0; k < 3; k++) {
-    const double vp = v->m[k][p], vq = v->m[k][q];
-    v->m[k][p] = vp - s * (vq + h * vp);
-    v->m[k][q] = vq + s * (vp - h * vq);
+    const double yp = *vp[k], yq = *vq[k];
+    *vp[k] = yp - s * (yq + h * yp);
+    *vq[k] = yq + s * (yp - h * yq);
   }
+  return !drop;
 }
 
-/* Cyclic Jacobi on the symmetric a (destroyed): a = v diag(lam) v^T. An
- * off-diagonal entry is dropped when it is below eps/2 of the geometric mean
- * of its two diagonal entries (it then moves no eigenvalue by more than
- * round-off relative to itself), so graded and near-zero matrices keep their
- * relative accuracy; the sweeps end when a whole sweep rotates nothing. */
-static void jacobi(double a[3][3], double lam[3], mpm_mat3 *v)
+/* One cyclic sweep, planes (0,1), (0,2), (1,2); returns whether any rotated. */
+HYPER_INLINE int jacobi_sweep(double a[6], double v[9])
 {
-  *v = mpm_mat3_identity();
-  for (int sweep = 0; sweep < JACOBI_SWEEPS; sweep++) {
-    int rotated = 0;
-    for (int k = 0; k < 3; k++) {
-      const int p = jacobi_planes[k][0], q = jacobi_planes[k][1];
-      const double apq = a[p][q];
-      if (apq == 0.0)
-        continue;
-      if (fabs(apq) <= 0.5 * DBL_EPSILON * sqrt(fabs(a[p][p])) * sqrt(fabs(a[q][q]))) {
-        a[p][q] = a[q][p] = 0.0;                                   /* negligible */
-        continue;
-      }
-      if (!isfinite(apq))
-        break;                                                     /* NaN/inf in: no loop */
-      jacobi_rotate(a, v, p, q);
-      rotated = 1;
-    }
-    if (!rotated)
-      break;
-  }
+  int r = jacobi_rotate(&a[0], &a[1], &a[3], &a[5], &a[4], &v[0], &v[1], &v[3], &v[4], &v[6],
+                        &v[7]);                                    /* (0,1), r = 2 */
+  r |= jacobi_rotate(&a[0], &a[2], &a[5], &a[3], &a[4], &v[0], &v[2], &v[3], &v[5], &v[6],
+                     &v[8]);                                       /* (0,2), r = 1 */
+  r |= jacobi_rotate(&a[1], &a[2], &a[4], &a[3], &a[5], &v[1], &v[2], &v[4], &v[5], &v[7],
+                     &v[8]);                                       /* (1,2), r = 0 */
+  return r;
+}
+
+/* Whether the next sweep would rotate nothing: every a_pq negligible (a
+ * sweep that drops each in turn changes no diagonal entry). */
+HYPER_INLINE int jacobi_converged(const double a[6])
+{
+  return jacobi_negligible(a[0], a[1], a[3]) && jacobi_negligible(a[0], a[2], a[5]) &&
+         jacobi_negligible(a[1], a[2], a[4]);
+}
+
+/* ---- a block of points ------------------------------------------------------ */
+
+/* The points of a batch as the passes see them, n values behind each
+ * pointer: every entry of L, F, Fp and of the stress (the entries the plane
+ * does not have, and absent lap, isp, point to zeros; the stress the plane
+ * does not keep is written to a sink). */
+typedef struct hyper_view {
+  const double *L[9];            /* L_ij at [3 i + j] */
+  const double *rho, *lap, *isp;
+  const double *sig_in[6];       /* sigma_n (xx yy zz xy yz zx) */
+  double *sig_out[6];            /* sigma_{n+1} */
+  double *g, *gdp;
+  int *state;
+  double *F[9], *Fp[9];          /* F_ij, Fp_ij at [3 i + j]: in at t_n, out at t_{n+1} */
+} hyper_view;
+
+/* What the last pass does with a point's stress and Fp. */
+enum hyper_mode {
+  HYPER_RETURN = 0,   /* sigma = J^-1 Re Me Re^T, Fp_{n+1} = exp(dt Lp) Fp_n */
+  HYPER_FREE,         /* stress-free: sigma = 0, Fp_{n+1} = F_{n+1} */
+  HYPER_KEEP          /* elastic (or det F <= 0): sigma of Me_tr, Fp kept */
+};
+
+/* Per-point intermediates of a block of up to HYPER_BLOCK points, each an
+ * array over the block. */
+typedef struct hyper_block {
+  double fe[9][HYPER_BLOCK];   /* Fe_tr = F_{n+1} Fp_n^-1, row-major */
+  double a[6][HYPER_BLOCK];    /* C - I (xx yy zz xy yz zx); after block_eigen its
+                                  diagonal holds the eigenvalues mu_i */
+  double v[9][HYPER_BLOCK];    /* V, row-major: the principal directions of Ue */
+  double e[3][HYPER_BLOCK];    /* Ee principal, then dev(Ee) principal */
+  double J[HYPER_BLOCK];       /* det F_{n+1} */
+  double p[HYPER_BLOCK];       /* p = -K tr(Ee) */
+  double tau[HYPER_BLOCK];     /* tau_tr = |dev Me_tr| / sqrt(2) */
+  double gn[HYPER_BLOCK];      /* g_n (0 for a point stress-free at t_n) */
+  double mug[HYPER_BLOCK];     /* mu_n g_n */
+  int dense_n[HYPER_BLOCK];    /* p_n > 0 */
+  double gfree[HYPER_BLOCK];   /* sqrt(2 D0:D0) */
+  double r[HYPER_BLOCK];       /* tau / tau_tr */
+  double x[3][HYPER_BLOCK];    /* exp(dt Lp) principal */
+  int mode[HYPER_BLOCK];       /* enum hyper_mode */
+  int more[HYPER_BLOCK];       /* 1: Jacobi not converged after the vector sweeps */
+  double zero[HYPER_BLOCK];    /* zeros: absent inputs */
+  double sink[2][HYPER_BLOCK]; /* the plane's yz, zx out */
+} hyper_block;
+
+/* C - I = H + H^T + H^T H of f = I + H (h = f - I, exact near I). */
+HYPER_INLINE void c_minus_i(const mpm_mat3 *f, double c[6])
+{
+  mpm_mat3 h = *f;
   for (int i = 0; i < 3; i++)
-    lam[i] = a[i][i];
+    h.m[i][i] -= 1.0;                                              /* h = f - I */
+  const int ij[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+  for (int k = 0; k < 6; k++) {
+    const int i = ij[k][0], j = ij[k][1];
+    const double hh = h.m[0][i] * h.m[0][j] + h.m[1][i] * h.m[1][j] + h.m[2][i] * h.m[2][j];
+    c[k] = h.m[i][j] + h.m[j][i] + hh;                             /* (h + h^T + h^T h)_ij */
+  }
 }
 
-static mpm_sym3 sym3_diag(const double d[3])
+/* a diag(d) a^T for a general a (the congruence of a diagonal). */
+HYPER_INLINE mpm_sym3 congruence_diag(const mpm_mat3 *a, const double d[3])
 {
-  return (mpm_sym3){d[0], d[1], d[2], 0.0, 0.0, 0.0};
+  mpm_mat3 P;
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; k++)
+      P.m[i][k] = a->m[i][k] * d[k];                               /* P = a diag(d) */
+  double c[3][3];
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
+    for (int j = i; j < 3; j++)
+      c[i][j] = P.m[i][0] * a->m[j][0] + P.m[i][1] * a->m[j][1] + P.m[i][2] * a->m[j][2];
+  return (mpm_sym3){c[0][0], c[1][1], c[2][2], c[0][1], c[1][2], c[0][2]};
+}
+
+/* f v diag(d): the columns of f v scaled. */
+HYPER_INLINE mpm_mat3 mul_scale_cols(const mpm_mat3 *f, const mpm_mat3 *v, const double d[3])
+{
+  mpm_mat3 w = mpm_mat3_mul(f, v);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
+    for (int j = 0; j < 3; j++)
+      w.m[i][j] *= d[j];
+  return w;
+}
+
+/* The eigenpairs of the block's a (destroyed): a = v diag(mu) v^T, mu on
+ * the diagonal of a. JACOBI_VECTOR_SWEEPS sweeps over all points at once
+ * (a loop that vectorises), then, for the few points they leave
+ * unconverged, sweeps point by point until one rotates nothing. A point's
+ * result is that of sweeping it alone until a sweep rotates nothing: a
+ * sweep of a converged matrix changes nothing (see jacobi_rotate). */
+static void block_eigen(size_t n, hyper_block *s)
+{
+#pragma GCC ivdep
+  for (size_t q = 0; q < n; q++) {
+    double a[6], v[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+    for (int k = 0; k < 6; k++)
+      a[k] = s->a[k][q];
+#pragma GCC unroll 4
+    for (int sweep = 0; sweep < JACOBI_VECTOR_SWEEPS; sweep++)
+      jacobi_sweep(a, v);
+    for (int k = 0; k < 6; k++)
+      s->a[k][q] = a[k];
+    for (int k = 0; k < 9; k++)
+      s->v[k][q] = v[k];
+    s->more[q] = !jacobi_converged(a);
+  }
+  for (size_t q = 0; q < n; q++) {
+    if (!s->more[q])
+      continue;
+    double a[6], v[9];
+    for (int k = 0; k < 6; k++)
+      a[k] = s->a[k][q];
+    for (int k = 0; k < 9; k++)
+      v[k] = s->v[k][q];
+    for (int sweep = JACOBI_VECTOR_SWEEPS; sweep < JACOBI_SWEEPS; sweep++)
+      if (!jacobi_sweep(a, v) || !isfinite(a[0] + a[1] + a[2]))
+        break;                                                     /* done, or NaN/inf in */
+    for (int k = 0; k < 6; k++)
+      s->a[k][q] = a[k];
+    for (int k = 0; k < 9; k++)
+      s->v[k][q] = v[k];
+  }
+}
+
+/* Pass 1 (vectorises): F_{n+1} = (I + dt L) F_n (advance; else F is
+ * F_{n+1} already), J = det F_{n+1}, Fe_tr = F_{n+1} Fp_n^-1, C - I; and,
+ * for the plastic step, the start of the step: p_n, g_n, mu_n g_n and the
+ * gdot_p of a stress-free point, sqrt(2 D0:D0). */
+HYPER_INLINE void block_kinematics(double dt, const hyper_view *b, size_t n, hyper_block *s,
+                                   int advance, int plastic)
+{
+  const double *L[9], *sig[6];
+  double *F[9], *Fp[9];
+  for (int e = 0; e < 9; e++) {
+    L[e] = b->L[e];
+    F[e] = b->F[e];
+    Fp[e] = b->Fp[e];
+  }
+  for (int k = 0; k < 6; k++)
+    sig[k] = b->sig_in[k];
+  const double *g = b->g;
+#pragma GCC ivdep
+  for (size_t q = 0; q < n; q++) {
+    mpm_mat3 f, fp;
+    for (int e = 0; e < 9; e++) {
+      f.m[e / 3][e % 3] = F[e][q];
+      fp.m[e / 3][e % 3] = Fp[e][q];
+    }
+    mpm_mat3 l;
+    for (int e = 0; e < 9; e++)
+      l.m[e / 3][e % 3] = L[e][q];
+    if (advance) {
+      mpm_mat3 A = mpm_mat3_identity();
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+          A.m[i][j] += dt * l.m[i][j];
+      f = mpm_mat3_mul(&A, &f);                                    /* F_{n+1} = (I + dt L) F_n */
+      for (int e = 0; e < 9; e++)
+        F[e][q] = f.m[e / 3][e % 3];
+    }
+    s->J[q] = mpm_mat3_det(&f);
+    const mpm_mat3 fpi = mpm_mat3_inverse(&fp);
+    const mpm_mat3 fe = mpm_mat3_mul(&f, &fpi);                    /* Fe_tr = F Fp^-1 */
+    for (int e = 0; e < 9; e++)
+      s->fe[e][q] = fe.m[e / 3][e % 3];
+    double c[6];
+    c_minus_i(&fe, c);
+    for (int k = 0; k < 6; k++)
+      s->a[k][q] = c[k];
+    if (plastic) {
+      const mpm_sym3 sn = {sig[0][q], sig[1][q], sig[2][q], sig[3][q], sig[4][q], sig[5][q]};
+      const double p_n = mpm_sym3_pressure(sn);
+      const int was_dense = p_n > 0.0;
+      const double g_n = was_dense ? g[q] : 0.0;
+      s->gn[q] = g_n;
+      s->dense_n[q] = was_dense;
+      s->mug[q] = was_dense ? g_n * mpm_sym3_tau(sn) / p_n : 0.0;  /* mu_n g_n */
+      const mpm_sym3 D0 = mpm_sym3_dev(mpm_mat3_sym(&l));
+      s->gfree[q] = sqrt(2.0 * mpm_sym3_ddot(D0, D0));             /* sqrt(2 D0:D0) */
+    }
+  }
+}
+
+/* Pass 3 (one point at a time: library calls): the principal Hencky strain
+ * Ee_i = ln sqrt(1 + mu_i). */
+static void block_logs(size_t n, hyper_block *s)
+{
+  for (int i = 0; i < 3; i++)
+    for (size_t q = 0; q < n; q++)
+      s->e[i][q] = 0.5 * log1p(s->a[i][q]);                       /* ln sqrt(1 + mu) */
+}
+
+/* Pass 4 (vectorises): dev(Ee), p = -K tr(Ee), tau_tr = |2G dev(Ee)| / sqrt(2). */
+HYPER_INLINE void block_invariants(const mpm_material_params *par, size_t n, hyper_block *s)
+{
+  const double G = par->G, K = par->K;
+  for (size_t q = 0; q < n; q++) {
+    const double e[3] = {s->e[0][q], s->e[1][q], s->e[2][q]};
+    const double tr = e[0] + e[1] + e[2], m = tr / 3.0;
+    double ss = 0.0;
+    for (int i = 0; i < 3; i++) {
+      const double e0 = e[i] - m;                                  /* dev(Ee) */
+      const double s0 = 2.0 * G * e0;                              /* 2G dev(Ee) */
+      s->e[i][q] = e0;
+      ss += s0 * s0;
+    }
+    s->p[q] = -K * tr;                                             /* -tr(Me)/3 */
+    s->tau[q] = sqrt(0.5 * ss);                                    /* |dev Me| / sqrt(2) */
+  }
+}
+
+/* Pass 5 (one point at a time: the fluidity solve and library calls): the
+ * state decision, g_{n+1}, gdot_p, the state, tau / tau_tr and exp(dt Lp)
+ * principal; plastic = 0: the elastic variant (r = 1, Fp kept, g = gdot_p
+ * = 0, no state decision). */
+static void block_return(const mpm_material_params *par, double dt, const hyper_view *b,
+                         size_t n, hyper_block *s, int plastic)
+{
+  for (size_t q = 0; q < n; q++) {
+    s->r[q] = 1.0;
+    s->mode[q] = HYPER_KEEP;
+    if (!plastic) {                                                /* elastic */
+      b->g[q] = 0.0;
+      b->gdp[q] = 0.0;
+      b->state[q] = MPM_STATE_DENSE;
+      continue;
+    }
+    if (!(s->J[q] > 0.0))                                          /* inverted: a failure */
+      continue;
+    const double p = s->p[q], tau = s->tau[q];
+    if (!(b->rho[q] >= par->rho_c) || !(p > 0.0)) {               /* stress-free */
+      s->mode[q] = HYPER_FREE;
+      b->g[q] = 0.0;
+      b->gdp[q] = s->gfree[q];                                     /* sqrt(2 D0:D0) */
+      b->state[q] = MPM_STATE_DISCONNECTED;
+      continue;
+    }
+    double g;
+    if (!s->dense_n[q])
+      g = s->gfree[q] / par->mu_2;                                 /* reconnects: [HS21] eq. 23 */
+    else {
+      const double gs = mpm_material_ngf_gstar(par, dt, s->gn[q], b->lap[q]);      /* g* */
+      g = mpm_material_ngf_fluidity(par, dt, p, tau, gs, s->mug[q], b->isp[q]);    /* g_{n+1} */
+    }
+    const double r = mpm_material_ngf_return_ratio(par, dt, p, g);  /* tau / tau_tr */
+    const double w = r * (par->G * dt * g) / p;                     /* 1 - r, no cancellation */
+    s->r[q] = r;
+    s->mode[q] = HYPER_RETURN;
+    b->g[q] = g;
+    b->gdp[q] = g * r * tau / p;                                    /* g tau / p */
+    b->state[q] = MPM_STATE_DENSE;
+    /* dt Lp = dt gdot_p Np / sqrt(2) = (1 - r) dev(Ee): principal values
+     * w e0_i in V (G dt gdot_p = tau_tr - tau = (1 - r) tau_tr). */
+    for (int i = 0; i < 3; i++)
+      s->x[i][q] = exp(w * s->e[i][q]);
+  }
+}
+
+/* Pass 6 (vectorises): sigma_{n+1} = J^-1 Re Me Re^T with
+ * Me = -p I + r dev(Me_tr) principal in V and Re V = Fe V diag(1/sqrt(1 + mu))
+ * (NaN if J <= 0), or 0 (stress-free); Fp_{n+1} = exp(dt Lp) Fp_n,
+ * exp(dt Lp) = V diag(x) V^T, or F_{n+1} (stress-free), or Fp_n. */
+HYPER_INLINE void block_finish(const mpm_material_params *par, const hyper_view *b, size_t n,
+                               hyper_block *s)
+{
+  const double *F[9];
+  double *Fp[9], *sig[6];
+  for (int e = 0; e < 9; e++) {
+    F[e] = b->F[e];
+    Fp[e] = b->Fp[e];
+  }
+  for (int k = 0; k < 6; k++)
+    sig[k] = b->sig_out[k];
+  const double G2 = 2.0 * par->G;
+#pragma GCC ivdep
+  for (size_t q = 0; q < n; q++) {
+    mpm_mat3 fe, v, fp;
+#pragma GCC unroll 9
+    for (int e = 0; e < 9; e++) {
+      fe.m[e / 3][e % 3] = s->fe[e][q];
+      v.m[e / 3][e % 3] = s->v[e][q];
+      fp.m[e / 3][e % 3] = Fp[e][q];
+    }
+    const double J = s->J[q], p = s->p[q], r = s->r[q];
+    const int mode = s->mode[q];
+    double iu[3], me[3], x[3];
+#pragma GCC unroll 3
+    for (int i = 0; i < 3; i++) {
+      iu[i] = 1.0 / sqrt(1.0 + s->a[i][q]);                        /* 1 / principal stretch */
+      me[i] = (r * (G2 * s->e[i][q]) - p) / J;                     /* J^-1 Me, principal */
+      x[i] = s->x[i][q];
+    }
+    const mpm_mat3 rv = mul_scale_cols(&fe, &v, iu);               /* Re V = Fe V diag(1/s) */
+    const mpm_sym3 sc = congruence_diag(&rv, me);                  /* (Re V) diag (Re V)^T */
+    const double out[6] = {sc.xx, sc.yy, sc.zz, sc.xy, sc.yz, sc.zx};
+#pragma GCC unroll 6
+    for (int k = 0; k < 6; k++)
+      sig[k][q] = mode == HYPER_FREE ? 0.0 : J > 0.0 ? out[k] : NAN;
+    const mpm_sym3 E = congruence_diag(&v, x);                     /* exp(dt Lp) */
+    const mpm_mat3 Ef = mpm_sym3_full(E), efp = mpm_mat3_mul(&Ef, &fp);
+#pragma GCC unroll 9
+    for (int e = 0; e < 9; e++)
+      Fp[e][q] = mode == HYPER_RETURN ? efp.m[e / 3][e % 3]
+               : mode == HYPER_FREE   ? F[e][q]
+                                      : fp.m[e / 3][e % 3];
+  }
+}
+
+/* One step dt of the block's n points of view b (see the top of the file):
+ * advance = 0: F is F_{n+1} already; plastic = 0: the elastic variant. */
+HYPER_INLINE void block_step(const mpm_material_params *par, double dt, const hyper_view *b,
+                             size_t n, hyper_block *s, int advance, int plastic)
+{
+  block_kinematics(dt, b, n, s, advance, plastic);
+  block_eigen(n, s);
+  block_logs(n, s);
+  block_invariants(par, n, s);
+  block_return(par, dt, b, n, s, plastic);
+  block_finish(par, b, n, s);
+}
+
+/* ---- one point ---------------------------------------------------------------- */
+
+/* The view of one point: L, its state and deformation gradients by address
+ * (the block of n = 1). */
+static void point_view(hyper_view *b, const mpm_mat3 *L, mpm_material_hyper_point *pt)
+{
+  for (int e = 0; e < 9; e++) {
+    b->L[e] = &L->m[e / 3][e % 3];
+    b->F[e] = &pt->F.m[e / 3][e % 3];
+    b->Fp[e] = &pt->Fp.m[e / 3][e % 3];
+  }
+  double *sig[6] = {&pt->sigma.xx, &pt->sigma.yy, &pt->sigma.zz, &pt->sigma.xy, &pt->sigma.yz,
+                    &pt->sigma.zx};
+  for (int k = 0; k < 6; k++)
+    b->sig_in[k] = b->sig_out[k] = sig[k];
+  b->rho = &pt->rho;
+  b->lap = &pt->lap;
+  b->isp = &pt->isp;
+  b->g = &pt->g;
+  b->gdp = &pt->gdp;
+  b->state = &pt->state;
+}
+
+/* The step of one point: the block step with n = 1. */
+HYPER_INLINE mpm_material_hyper_point point_step(const mpm_material_params *par, const mpm_mat3 *L,
+                                           double dt, mpm_material_hyper_point pt, int advance,
+                                           int plastic)
+{
+  hyper_block s;
+  hyper_view b;
+  point_view(&b, L, &pt);
+  block_step(par, dt, &b, 1, &s, advance, plastic);
+  return pt;
 }
 
 void mpm_material_hyper_eigen(mpm_sym3 a, double lam[3], mpm_mat3 *v)
 {
-  mpm_mat3 w = mpm_sym3_full(a);
-  jacobi(w.m, lam, v);
+  hyper_block s;
+  const double w[6] = {a.xx, a.yy, a.zz, a.xy, a.yz, a.zx};
+  for (int k = 0; k < 6; k++)
+    s.a[k][0] = w[k];
+  block_eigen(1, &s);
+  for (int i = 0; i < 3; i++)
+    lam[i] = s.a[i][0];
+  for (int e = 0; e < 9; e++)
+    v->m[e / 3][e % 3] = s.v[e][0];
 }
 
 mpm_sym3 mpm_material_hyper_log(mpm_sym3 a)
@@ -157,7 +540,7 @@ mpm_sym3 mpm_material_hyper_log(mpm_sym3 a)
   mpm_material_hyper_eigen(mpm_sym3_add_iso(a, -1.0), lam, &v);   /* a - I = v diag(lam) v^T */
   for (int i = 0; i < 3; i++)
     lam[i] = log1p(lam[i]);                                        /* ln(1 + lam) */
-  return mpm_sym3_congruence(&v, sym3_diag(lam));
+  return congruence_diag(&v, lam);
 }
 
 mpm_sym3 mpm_material_hyper_exp(mpm_sym3 a)
@@ -167,116 +550,37 @@ mpm_sym3 mpm_material_hyper_exp(mpm_sym3 a)
   mpm_material_hyper_eigen(a, lam, &v);
   for (int i = 0; i < 3; i++)
     lam[i] = expm1(lam[i]);                                        /* exp(lam) - 1 */
-  return mpm_sym3_add_iso(mpm_sym3_congruence(&v, sym3_diag(lam)), 1.0);
-}
-
-/* The eigenpairs of C - I, C = f^T f, formed from h = f - I as
- * h + h^T + h^T h: f = r v diag(sqrt(1 + mu)) v^T. */
-static void stretch_eigen(const mpm_mat3 *f, double mu[3], mpm_mat3 *v)
-{
-  mpm_mat3 h = *f;
-  for (int i = 0; i < 3; i++)
-    h.m[i][i] -= 1.0;                                              /* h = f - I */
-  double c[3][3];
-  for (int i = 0; i < 3; i++)
-    for (int j = i; j < 3; j++) {
-      double hh = h.m[0][i] * h.m[0][j] + h.m[1][i] * h.m[1][j] + h.m[2][i] * h.m[2][j];
-      c[i][j] = c[j][i] = h.m[i][j] + h.m[j][i] + hh;              /* (h + h^T + h^T h)_ij */
-    }
-  jacobi(c, mu, v);
-}
-
-/* f v diag(d): the columns of f v scaled. */
-static mpm_mat3 mul_scale_cols(const mpm_mat3 *f, const mpm_mat3 *v, const double d[3])
-{
-  mpm_mat3 w = mpm_mat3_mul(f, v);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      w.m[i][j] *= d[j];
-  return w;
+  return mpm_sym3_add_iso(congruence_diag(&v, lam), 1.0);
 }
 
 void mpm_material_hyper_polar(const mpm_mat3 *f, mpm_mat3 *r, mpm_sym3 *u)
 {
-  double mu[3], su[3], iu[3];
+  hyper_block s;
+  double c[6];
+  c_minus_i(f, c);                                                 /* C - I */
+  for (int k = 0; k < 6; k++)
+    s.a[k][0] = c[k];
+  block_eigen(1, &s);
   mpm_mat3 v;
-  stretch_eigen(f, mu, &v);
+  double su[3], iu[3];
+  for (int e = 0; e < 9; e++)
+    v.m[e / 3][e % 3] = s.v[e][0];
   for (int i = 0; i < 3; i++) {
-    su[i] = sqrt(1.0 + mu[i]);                                     /* principal stretches */
+    su[i] = sqrt(1.0 + s.a[i][0]);                                 /* principal stretches */
     iu[i] = 1.0 / su[i];
   }
-  *u = mpm_sym3_congruence(&v, sym3_diag(su));                     /* U = V diag(s) V^T */
+  *u = congruence_diag(&v, su);                                    /* U = V diag(s) V^T */
   mpm_mat3 rv = mul_scale_cols(f, &v, iu);                         /* R V = F V diag(1/s) */
   mpm_mat3 vt = mpm_mat3_transpose(&v);
   *r = mpm_mat3_mul(&rv, &vt);                                     /* R = (R V) V^T */
 }
 
-/* The trial state of Fe = F Fp^-1 in the principal frame of Ue. */
-typedef struct hyper_trial {
-  double J;        /* det F */
-  mpm_mat3 v;      /* V: principal directions of Ue (intermediate configuration) */
-  mpm_mat3 rv;     /* Re V: the same directions in the current configuration */
-  double e0[3];    /* dev(Ee), principal */
-  double s0[3];    /* dev(Me_tr) = 2G dev(Ee), principal */
-  double p;        /* p = -K tr(Ee) */
-  double tau;      /* tau_tr = |dev Me_tr| / sqrt(2) */
-} hyper_trial;
-
-static hyper_trial hyper_trial_of(const mpm_material_params *par, const mpm_mat3 *F,
-                                  const mpm_mat3 *Fp)
-{
-  hyper_trial t;
-  mpm_mat3 Fpi = mpm_mat3_inverse(Fp);
-  mpm_mat3 Fe = mpm_mat3_mul(F, &Fpi);                             /* Fe_tr = F Fp^-1 */
-  double mu[3], e[3], iu[3];
-  stretch_eigen(&Fe, mu, &t.v);
-  for (int i = 0; i < 3; i++) {
-    e[i] = 0.5 * log1p(mu[i]);                                     /* Ee = ln sqrt(1 + mu) */
-    iu[i] = 1.0 / sqrt(1.0 + mu[i]);
-  }
-  t.rv = mul_scale_cols(&Fe, &t.v, iu);                            /* Re V = Fe V diag(1/s) */
-  t.J = mpm_mat3_det(F);
-  const double tr = e[0] + e[1] + e[2], m = tr / 3.0;
-  double ss = 0.0;
-  for (int i = 0; i < 3; i++) {
-    t.e0[i] = e[i] - m;                                            /* dev(Ee) */
-    t.s0[i] = 2.0 * par->G * t.e0[i];                              /* 2G dev(Ee) */
-    ss += t.s0[i] * t.s0[i];
-  }
-  t.p = -par->K * tr;                                              /* -tr(Me)/3 */
-  t.tau = sqrt(0.5 * ss);                                          /* |dev Me| / sqrt(2) */
-  return t;
-}
-
-/* sigma = J^-1 Re Me Re^T for Me = -p I + r dev(Me_tr) (principal in V);
- * NaN if J <= 0. */
-static mpm_sym3 hyper_cauchy(const hyper_trial *t, double r)
-{
-  if (!(t->J > 0.0)) {
-    const double n = NAN;
-    return (mpm_sym3){n, n, n, n, n, n};
-  }
-  double me[3];
-  for (int i = 0; i < 3; i++)
-    me[i] = (r * t->s0[i] - t->p) / t->J;                          /* J^-1 Me, principal */
-  return mpm_sym3_congruence(&t->rv, sym3_diag(me));              /* (Re V) diag (Re V)^T */
-}
-
-/* F_{n+1} = (I + dt L) F_n. */
-static mpm_mat3 hyper_advance(const mpm_mat3 *L, double dt, const mpm_mat3 *F)
-{
-  mpm_mat3 A = mpm_mat3_identity();
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      A.m[i][j] += dt * L->m[i][j];
-  return mpm_mat3_mul(&A, F);
-}
-
 mpm_sym3 mpm_material_hyper_stress(const mpm_material_params *par, const mpm_mat3 *F,
                                    const mpm_mat3 *Fp)
 {
-  hyper_trial t = hyper_trial_of(par, F, Fp);
-  return hyper_cauchy(&t, 1.0);
+  const mpm_mat3 L = {{{0.0}}};
+  mpm_material_hyper_point pt = {.F = *F, .Fp = *Fp};
+  return point_step(par, &L, 0.0, pt, 0, 0).sigma;
 }
 
 mpm_mat3 mpm_material_hyper_F_of_stress(const mpm_material_params *par, mpm_sym3 sigma)
@@ -314,61 +618,17 @@ mpm_material_hyper_point mpm_material_hyper_elastic_step(const mpm_material_para
                                                          const mpm_mat3 *L, double dt,
                                                          mpm_material_hyper_point pt)
 {
-  pt.F = hyper_advance(L, dt, &pt.F);
-  pt.sigma = mpm_material_hyper_stress(par, &pt.F, &pt.Fp);
-  pt.g = 0.0;
-  pt.gdp = 0.0;
-  pt.state = MPM_STATE_DENSE;
-  return pt;
+  return point_step(par, L, dt, pt, 1, 0);
 }
 
 mpm_material_hyper_point mpm_material_hyper_step(const mpm_material_params *par,
                                                  const mpm_mat3 *L, double dt,
                                                  mpm_material_hyper_point pt)
 {
-  const mpm_sym3 D = mpm_mat3_sym(L);
-  const double p_n = mpm_sym3_pressure(pt.sigma);
-  const int was_dense = p_n > 0.0;
-  const double g_n = was_dense ? pt.g : 0.0;
-  const double mug_n = was_dense ? g_n * mpm_sym3_tau(pt.sigma) / p_n : 0.0;  /* mu_n g_n */
-  pt.F = hyper_advance(L, dt, &pt.F);                              /* F_{n+1} */
-  hyper_trial t = hyper_trial_of(par, &pt.F, &pt.Fp);
-  if (!(t.J > 0.0)) {                                              /* inverted: a failure */
-    pt.sigma = hyper_cauchy(&t, 1.0);
-    return pt;
-  }
-  const double gfree = mpm_material_mu_i_gdp(par, mpm_sym3_zero(), D, MPM_STATE_DISCONNECTED);
-  if (!(pt.rho >= par->rho_c) || !(t.p > 0.0)) {                  /* stress-free */
-    pt.sigma = mpm_sym3_zero();
-    pt.Fp = pt.F;                                                  /* Fe = I */
-    pt.g = 0.0;
-    pt.gdp = gfree;                                                /* sqrt(2 D0:D0) */
-    pt.state = MPM_STATE_DISCONNECTED;
-    return pt;
-  }
-  double g;
-  if (!was_dense)
-    g = gfree / par->mu_2;                                         /* reconnects: [HS21] eq. 23 */
-  else {
-    const double gs = mpm_material_ngf_gstar(par, dt, g_n, pt.lap);                /* g* */
-    g = mpm_material_ngf_fluidity(par, dt, t.p, t.tau, gs, mug_n, pt.isp);        /* g_{n+1} */
-  }
-  const double r = mpm_material_ngf_return_ratio(par, dt, t.p, g); /* tau / tau_tr */
-  const double w = r * (par->G * dt * g) / t.p;                    /* 1 - r, no cancellation */
-  pt.sigma = hyper_cauchy(&t, r);                                  /* Me = -p I + r dev Me_tr */
-  pt.g = g;
-  pt.gdp = g * r * t.tau / t.p;                                    /* g tau / p */
-  /* dt Lp = dt gdot_p Np / sqrt(2) = (1 - r) dev(Ee): principal values
-   * w e0_i in V (G dt gdot_p = tau_tr - tau = (1 - r) tau_tr). */
-  double x[3];
-  for (int i = 0; i < 3; i++)
-    x[i] = exp(w * t.e0[i]);
-  mpm_sym3 expl = mpm_sym3_congruence(&t.v, sym3_diag(x));         /* exp(dt Lp) */
-  mpm_mat3 E = mpm_sym3_full(expl);
-  pt.Fp = mpm_mat3_mul(&E, &pt.Fp);                                /* Fp_{n+1} = exp(dt Lp) Fp_n */
-  pt.state = MPM_STATE_DENSE;
-  return pt;
+  return point_step(par, L, dt, pt, 1, 1);
 }
+
+/* ---- the model -------------------------------------------------------------- */
 
 /* The parameters of the NGF model, checked as the plane NGF checks them. */
 static int ngf_hyper_check(const mpm_material_params *par, mpm_err *err)
@@ -376,57 +636,60 @@ static int ngf_hyper_check(const mpm_material_params *par, mpm_err *err)
   return mpm_material_ngf.check(par, err);
 }
 
-/* The model's updates: the step of each point as it is (its eigen-
- * decompositions iterate; no loop over points vectorises them), point by
- * point over a batch. */
+/* One point of the table's interface: the block step with n = 1, so that
+ * it is the batch update of that point bit for bit. */
 static void ngf_hyper_update_point(const mpm_material_params *par, const mpm_mat3 *L,
                                    double dt, mpm_mpoint *pt, mpm_mdeform *def)
 {
   mpm_material_hyper_point h = {.F = def->F, .Fp = def->Fp, .sigma = pt->sigma, .rho = pt->rho,
                                 .g = pt->g, .lap = pt->lap, .isp = pt->isp, .gdp = pt->gdp,
                                 .state = pt->state};
-  h = mpm_material_hyper_step(par, L, dt, h);
-  *pt = (mpm_mpoint){.sigma = h.sigma, .rho = h.rho, .g = h.g, .lap = h.lap, .isp = h.isp,
-                     .gdp = h.gdp, .state = h.state};
-  *def = (mpm_mdeform){.F = h.F, .Fp = h.Fp};
+  hyper_block s;
+  hyper_view b;
+  point_view(&b, L, &h);
+  block_step(par, dt, &b, 1, &s, 1, 1);
+  pt->sigma = h.sigma;
+  pt->g = h.g;
+  pt->gdp = h.gdp;
+  pt->state = h.state;
+  def->F = h.F;
+  def->Fp = h.Fp;
 }
 
+/* A batch in blocks of HYPER_BLOCK points, nsub steps each, read and
+ * written in place through the block's view; in the plane the absent
+ * entries of L and sigma_n are zeros (sigma yz, zx zeroed each substep)
+ * and sigma yz, zx out are not kept. */
 static void ngf_hyper_update(const mpm_material_params *par, double dt, int nsub,
                              const mpm_material_batch *b)
 {
-  const int D = b->dim, ns = D == 3 ? 6 : 4;
-  for (size_t q = 0; q < b->n; q++) {
-    mpm_mat3 L = {{{0.0}}};
-    for (int i = 0; i < D; i++)
-      for (int j = 0; j < D; j++)
-        L.m[i][j] = b->L[D * i + j][q];
-    double s[6] = {0.0};
-    for (int k = 0; k < ns; k++)
-      s[k] = b->sig[k][q];
-    mpm_material_hyper_point h = {.sigma = {s[0], s[1], s[2], s[3], s[4], s[5]}, .rho = b->rho[q],
-                                  .g = b->g[q], .lap = b->lap ? b->lap[q] : 0.0,
-                                  .isp = b->isp ? b->isp[q] : 0.0, .gdp = b->gdp[q],
-                                  .state = b->state[q]};
+  const int D = b->dim;
+  hyper_block s;
+  for (size_t q = 0; q < HYPER_BLOCK; q++)
+    s.zero[q] = 0.0;
+  for (size_t q0 = 0; q0 < b->n; q0 += HYPER_BLOCK) {
+    const size_t n = b->n - q0 < HYPER_BLOCK ? b->n - q0 : HYPER_BLOCK;
+    hyper_view v;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        v.L[3 * i + j] = i < D && j < D ? b->L[D * i + j] + q0 : s.zero;
+    for (int k = 0; k < 6; k++) {
+      const int kept = D == 3 || k < 4;
+      v.sig_in[k] = kept ? b->sig[k] + q0 : s.zero;
+      v.sig_out[k] = kept ? b->sig[k] + q0 : s.sink[k - 4];
+    }
+    v.rho = b->rho + q0;
+    v.lap = b->lap ? b->lap + q0 : s.zero;
+    v.isp = b->isp ? b->isp + q0 : s.zero;
+    v.g = b->g + q0;
+    v.gdp = b->gdp + q0;
+    v.state = b->state + q0;
     for (int e = 0; e < 9; e++) {
-      h.F.m[e / 3][e % 3] = b->F[e][q];
-      h.Fp.m[e / 3][e % 3] = b->Fp[e][q];
+      v.F[e] = b->F[e] + q0;
+      v.Fp[e] = b->Fp[e] + q0;
     }
-    for (int k = 0; k < nsub; k++) {
-      if (D == 2)                 /* plane strain: the stress out of the plane is zero */
-        h.sigma.yz = h.sigma.zx = 0.0;
-      h = mpm_material_hyper_step(par, &L, dt, h);
-    }
-    const double out[6] = {h.sigma.xx, h.sigma.yy, h.sigma.zz, h.sigma.xy, h.sigma.yz,
-                           h.sigma.zx};
-    for (int k = 0; k < ns; k++)
-      b->sig[k][q] = out[k];
-    b->g[q] = h.g;
-    b->gdp[q] = h.gdp;
-    b->state[q] = h.state;
-    for (int e = 0; e < 9; e++) {
-      b->F[e][q] = h.F.m[e / 3][e % 3];
-      b->Fp[e][q] = h.Fp.m[e / 3][e % 3];
-    }
+    for (int k = 0; k < nsub; k++)
+      block_step(par, dt, &v, n, &s, 1, 1);
   }
 }
 
