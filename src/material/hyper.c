@@ -73,6 +73,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "core/points.h"
 
@@ -89,6 +91,87 @@ enum {
   JACOBI_VECTOR_SWEEPS = 3,  /* sweeps of the vectorised pass: enough for ~98 % of points */
   JACOBI_SWEEPS = 32         /* a 3x3 needs a few sweeps; the cap only bounds a bad input */
 };
+
+/* ---- ln(1 + x) and exp(x) that vectorise ------------------------------------
+ * The algorithms of fdlibm (s_log1p.c, e_log.c, e_exp.c), written without
+ * branches or library calls (the exponent is taken and put back on the
+ * bits), so a loop of points calls no library function and vectorises.
+ * tests/test_hyper.c measures both against long double over dense sweeps:
+ * below 1 ulp (0.82 and 0.88 at worst), as fdlibm's. */
+
+HYPER_INLINE uint64_t bits_of(double x)
+{
+  uint64_t b;
+  memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+HYPER_INLINE double of_bits(uint64_t b)
+{
+  double x;
+  memcpy(&x, &b, sizeof x);
+  return x;
+}
+
+/* ln 2 in two parts, ln2_hi with its last 21 bits zero: k ln2_hi is exact
+ * for |k| < 2^11. */
+#define LN2_HI 6.93147180369123816490e-01
+#define LN2_LO 1.90821492927058770002e-10
+
+/* ln(1 + x): u = 1 + x rounded and its exact error c (1 + x = u + c, by
+ * Fast2Sum); u = 2^k m with m in [sqrt(2)/2, sqrt(2)), f = m - 1 (exact);
+ * ln(1 + x) = k ln 2 + ln(1 + f) + c/u, ln(1 + f) = f - f^2/2 + s (f^2/2 + R(s)),
+ * s = f / (2 + f), R the minimax polynomial of e_log.c (error < 2^-58.45).
+ * x = -1: -inf; x < -1 or NaN: NaN; +inf: +inf. */
+HYPER_INLINE double hyper_log1p(double x)
+{
+  const double Lg1 = 6.666666666666735130e-01, Lg2 = 3.999999999940941908e-01,
+               Lg3 = 2.857142874366239149e-01, Lg4 = 2.222219843214978396e-01,
+               Lg5 = 1.818357216161805012e-01, Lg6 = 1.531383769920937332e-01,
+               Lg7 = 1.479819860511658591e-01;
+  const double u = 1.0 + x;
+  const double c = x < 1.0 ? x - (u - 1.0) : 1.0 - (u - x);       /* 1 + x - u, exactly */
+  const uint64_t b = bits_of(u) + ((uint64_t)(0x3ff00000 - 0x3fe6a09e) << 32);
+  const double k = of_bits(0x4330000000000000u | b >> 52) - (0x1p52 + 1023.0);   /* exponent */
+  const double f = of_bits((b & 0x000fffffffffffffu) + ((uint64_t)0x3fe6a09e << 32)) - 1.0;
+  const double s = f / (2.0 + f), z = s * s, w = z * z;
+  const double R = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7))) + w * (Lg2 + w * (Lg4 + w * Lg6));
+  const double hfsq = 0.5 * f * f;
+  const double r = s * (hfsq + R) + (k * LN2_LO + c / u) - hfsq + f + k * LN2_HI;
+  return u > 0.0 && u < INFINITY ? r : u == 0.0 ? -INFINITY : u > 0.0 ? u : NAN;
+}
+
+/* exp(x): k = round(x / ln 2) (by adding and taking off 1.5 2^52),
+ * r = x - k ln 2 in hi - lo (exact hi), exp(r) = 1 + r + r c / (2 - c) with
+ * c = r - r^2 P(r^2) the Remez form of e_exp.c, times 2^k = 2^k1 2^k2
+ * (k1 = floor(k/2): each factor normal, one rounding for a subnormal
+ * result). x > 710: +inf, x < -746: 0, NaN: NaN. */
+HYPER_INLINE double hyper_exp(double x)
+{
+  const double P1 = 1.66666666666666019037e-01, P2 = -2.77777777770155933842e-03,
+               P3 = 6.61375632143793436117e-05, P4 = -1.65339022054652515390e-06,
+               P5 = 4.13813679705723846039e-08;
+  const double big = 0x1.8p52;
+  const double xc = x > 710.0 ? 710.0 : x < -746.0 ? -746.0 : x;   /* beyond: inf, 0 */
+  const double k = (xc * 1.44269504088896338700 + big) - big;     /* round(x / ln 2) */
+  const double hi = xc - k * LN2_HI, lo = k * LN2_LO, r = hi - lo, rr = r * r;
+  const double c = r - rr * (P1 + rr * (P2 + rr * (P3 + rr * (P4 + rr * P5))));
+  const double y = 1.0 - ((lo - (r * c) / (2.0 - c)) - hi);        /* exp(r) */
+  const double k1 = floor(0.5 * k), k2 = k - k1;
+  const double s1 = of_bits((bits_of(k1 + big) + 1023) << 52);     /* 2^k1 */
+  const double s2 = of_bits((bits_of(k2 + big) + 1023) << 52);     /* 2^k2 */
+  return y * s1 * s2;
+}
+
+double mpm_material_hyper_log1p(double x)
+{
+  return hyper_log1p(x);
+}
+
+double mpm_material_hyper_exp_scalar(double x)
+{
+  return hyper_exp(x);
+}
 
 /* ---- cyclic Jacobi on one symmetric 3x3 ------------------------------------
  * The matrix is held as a[6] in the order of mpm_sym3 (xx yy zz xy yz zx),
@@ -182,7 +265,8 @@ enum hyper_mode {
 };
 
 /* Per-point intermediates of a block of up to HYPER_BLOCK points, each an
- * array over the block. */
+ * array over the block (all double, flags too: an int array in a loop of
+ * doubles would make it take 8 points at a time, in twice the registers). */
 typedef struct hyper_block {
   double fe[9][HYPER_BLOCK];   /* Fe_tr = F_{n+1} Fp_n^-1, row-major */
   double a[6][HYPER_BLOCK];    /* C - I (xx yy zz xy yz zx); after block_eigen its
@@ -194,12 +278,12 @@ typedef struct hyper_block {
   double tau[HYPER_BLOCK];     /* tau_tr = |dev Me_tr| / sqrt(2) */
   double gn[HYPER_BLOCK];      /* g_n (0 for a point stress-free at t_n) */
   double mug[HYPER_BLOCK];     /* mu_n g_n */
-  int dense_n[HYPER_BLOCK];    /* p_n > 0 */
+  double pn[HYPER_BLOCK];      /* p_n = -tr(sigma_n)/3 */
   double gfree[HYPER_BLOCK];   /* sqrt(2 D0:D0) */
   double r[HYPER_BLOCK];       /* tau / tau_tr */
-  double x[3][HYPER_BLOCK];    /* exp(dt Lp) principal */
-  int mode[HYPER_BLOCK];       /* enum hyper_mode */
-  int more[HYPER_BLOCK];       /* 1: Jacobi not converged after the vector sweeps */
+  double w[HYPER_BLOCK];       /* dt Lp = w dev(Ee) (1 - r for a return, else 0) */
+  double mode[HYPER_BLOCK];    /* enum hyper_mode */
+  double more[HYPER_BLOCK];    /* 1: Jacobi not converged after the vector sweeps, else 0 */
   double zero[HYPER_BLOCK];    /* zeros: absent inputs */
   double sink[2][HYPER_BLOCK]; /* the plane's yz, zx out */
 } hyper_block;
@@ -248,7 +332,7 @@ HYPER_INLINE mpm_mat3 mul_scale_cols(const mpm_mat3 *f, const mpm_mat3 *v, const
   return w;
 }
 
-/* The eigenpairs of the block's a (destroyed): a = v diag(mu) v^T, mu on
+/* Pass 3: the eigenpairs of the block's a (destroyed): a = v diag(mu) v^T, mu on
  * the diagonal of a. JACOBI_VECTOR_SWEEPS sweeps over all points at once
  * (a loop that vectorises), then, for the few points they leave
  * unconverged, sweeps point by point until one rotates nothing. A point's
@@ -268,10 +352,10 @@ static void block_eigen(size_t n, hyper_block *s)
       s->a[k][q] = a[k];
     for (int k = 0; k < 9; k++)
       s->v[k][q] = v[k];
-    s->more[q] = !jacobi_converged(a);
+    s->more[q] = jacobi_converged(a) ? 0.0 : 1.0;
   }
   for (size_t q = 0; q < n; q++) {
-    if (!s->more[q])
+    if (s->more[q] == 0.0)
       continue;
     double a[6], v[9];
     for (int k = 0; k < 6; k++)
@@ -289,32 +373,28 @@ static void block_eigen(size_t n, hyper_block *s)
 }
 
 /* Pass 1 (vectorises): F_{n+1} = (I + dt L) F_n (advance; else F is
- * F_{n+1} already), J = det F_{n+1}, Fe_tr = F_{n+1} Fp_n^-1, C - I; and,
- * for the plastic step, the start of the step: p_n, g_n, mu_n g_n and the
- * gdot_p of a stress-free point, sqrt(2 D0:D0). */
-HYPER_INLINE void block_kinematics(double dt, const hyper_view *b, size_t n, hyper_block *s,
-                                   int advance, int plastic)
+ * F_{n+1} already), J = det F_{n+1}; for the plastic step, the start of the
+ * step: p_n, g_n, mu_n g_n and the gdot_p of a stress-free point,
+ * sqrt(2 D0:D0) (mpm_material_mu_i_gdp's, with the same helpers). */
+HYPER_INLINE void block_advance(double dt, const hyper_view *b, size_t n, hyper_block *s,
+                                int advance, int plastic)
 {
   const double *L[9], *sig[6];
-  double *F[9], *Fp[9];
+  double *F[9];
   for (int e = 0; e < 9; e++) {
     L[e] = b->L[e];
     F[e] = b->F[e];
-    Fp[e] = b->Fp[e];
   }
   for (int k = 0; k < 6; k++)
     sig[k] = b->sig_in[k];
   const double *g = b->g;
 #pragma GCC ivdep
   for (size_t q = 0; q < n; q++) {
-    mpm_mat3 f, fp;
+    mpm_mat3 f, l;
     for (int e = 0; e < 9; e++) {
       f.m[e / 3][e % 3] = F[e][q];
-      fp.m[e / 3][e % 3] = Fp[e][q];
-    }
-    mpm_mat3 l;
-    for (int e = 0; e < 9; e++)
       l.m[e / 3][e % 3] = L[e][q];
+    }
     if (advance) {
       mpm_mat3 A = mpm_mat3_identity();
       for (int i = 0; i < 3; i++)
@@ -325,6 +405,35 @@ HYPER_INLINE void block_kinematics(double dt, const hyper_view *b, size_t n, hyp
         F[e][q] = f.m[e / 3][e % 3];
     }
     s->J[q] = mpm_mat3_det(&f);
+    if (plastic) {
+      const mpm_sym3 sn = {sig[0][q], sig[1][q], sig[2][q], sig[3][q], sig[4][q], sig[5][q]};
+      const double p_n = mpm_sym3_pressure(sn);
+      const int was_dense = p_n > 0.0;
+      const double g_n = was_dense ? g[q] : 0.0;
+      s->gn[q] = g_n;
+      s->pn[q] = p_n;
+      s->mug[q] = was_dense ? g_n * mpm_sym3_tau(sn) / p_n : 0.0;  /* mu_n g_n */
+      const mpm_sym3 D0 = mpm_sym3_dev(mpm_mat3_sym(&l));
+      s->gfree[q] = sqrt(2.0 * mpm_sym3_ddot(D0, D0));             /* sqrt(2 D0:D0) */
+    }
+  }
+}
+
+/* Pass 2 (vectorises): Fe_tr = F_{n+1} Fp_n^-1 and C - I. */
+HYPER_INLINE void block_trial(const hyper_view *b, size_t n, hyper_block *s)
+{
+  const double *F[9], *Fp[9];
+  for (int e = 0; e < 9; e++) {
+    F[e] = b->F[e];
+    Fp[e] = b->Fp[e];
+  }
+#pragma GCC ivdep
+  for (size_t q = 0; q < n; q++) {
+    mpm_mat3 f, fp;
+    for (int e = 0; e < 9; e++) {
+      f.m[e / 3][e % 3] = F[e][q];
+      fp.m[e / 3][e % 3] = Fp[e][q];
+    }
     const mpm_mat3 fpi = mpm_mat3_inverse(&fp);
     const mpm_mat3 fe = mpm_mat3_mul(&f, &fpi);                    /* Fe_tr = F Fp^-1 */
     for (int e = 0; e < 9; e++)
@@ -333,35 +442,18 @@ HYPER_INLINE void block_kinematics(double dt, const hyper_view *b, size_t n, hyp
     c_minus_i(&fe, c);
     for (int k = 0; k < 6; k++)
       s->a[k][q] = c[k];
-    if (plastic) {
-      const mpm_sym3 sn = {sig[0][q], sig[1][q], sig[2][q], sig[3][q], sig[4][q], sig[5][q]};
-      const double p_n = mpm_sym3_pressure(sn);
-      const int was_dense = p_n > 0.0;
-      const double g_n = was_dense ? g[q] : 0.0;
-      s->gn[q] = g_n;
-      s->dense_n[q] = was_dense;
-      s->mug[q] = was_dense ? g_n * mpm_sym3_tau(sn) / p_n : 0.0;  /* mu_n g_n */
-      const mpm_sym3 D0 = mpm_sym3_dev(mpm_mat3_sym(&l));
-      s->gfree[q] = sqrt(2.0 * mpm_sym3_ddot(D0, D0));             /* sqrt(2 D0:D0) */
-    }
   }
 }
 
-/* Pass 3 (one point at a time: library calls): the principal Hencky strain
- * Ee_i = ln sqrt(1 + mu_i). */
-static void block_logs(size_t n, hyper_block *s)
-{
-  for (int i = 0; i < 3; i++)
-    for (size_t q = 0; q < n; q++)
-      s->e[i][q] = 0.5 * log1p(s->a[i][q]);                       /* ln sqrt(1 + mu) */
-}
-
-/* Pass 4 (vectorises): dev(Ee), p = -K tr(Ee), tau_tr = |2G dev(Ee)| / sqrt(2). */
+/* Pass 4 (vectorises): Ee_i = ln sqrt(1 + mu_i) principal, dev(Ee),
+ * p = -K tr(Ee), tau_tr = |2G dev(Ee)| / sqrt(2). */
 HYPER_INLINE void block_invariants(const mpm_material_params *par, size_t n, hyper_block *s)
 {
   const double G = par->G, K = par->K;
   for (size_t q = 0; q < n; q++) {
-    const double e[3] = {s->e[0][q], s->e[1][q], s->e[2][q]};
+    double e[3];
+    for (int i = 0; i < 3; i++)
+      e[i] = 0.5 * hyper_log1p(s->a[i][q]);                        /* ln sqrt(1 + mu) */
     const double tr = e[0] + e[1] + e[2], m = tr / 3.0;
     double ss = 0.0;
     for (int i = 0; i < 3; i++) {
@@ -375,15 +467,15 @@ HYPER_INLINE void block_invariants(const mpm_material_params *par, size_t n, hyp
   }
 }
 
-/* Pass 5 (one point at a time: the fluidity solve and library calls): the
- * state decision, g_{n+1}, gdot_p, the state, tau / tau_tr and exp(dt Lp)
- * principal; plastic = 0: the elastic variant (r = 1, Fp kept, g = gdot_p
+/* Pass 5 (one point at a time: the fluidity solve): the state decision,
+ * g_{n+1}, gdot_p, the state, tau / tau_tr and dt Lp; plastic = 0: the elastic variant (r = 1, Fp kept, g = gdot_p
  * = 0, no state decision). */
 static void block_return(const mpm_material_params *par, double dt, const hyper_view *b,
                          size_t n, hyper_block *s, int plastic)
 {
   for (size_t q = 0; q < n; q++) {
     s->r[q] = 1.0;
+    s->w[q] = 0.0;
     s->mode[q] = HYPER_KEEP;
     if (!plastic) {                                                /* elastic */
       b->g[q] = 0.0;
@@ -402,66 +494,83 @@ static void block_return(const mpm_material_params *par, double dt, const hyper_
       continue;
     }
     double g;
-    if (!s->dense_n[q])
+    if (!(s->pn[q] > 0.0))
       g = s->gfree[q] / par->mu_2;                                 /* reconnects: [HS21] eq. 23 */
     else {
       const double gs = mpm_material_ngf_gstar(par, dt, s->gn[q], b->lap[q]);      /* g* */
       g = mpm_material_ngf_fluidity(par, dt, p, tau, gs, s->mug[q], b->isp[q]);    /* g_{n+1} */
     }
     const double r = mpm_material_ngf_return_ratio(par, dt, p, g);  /* tau / tau_tr */
+    /* dt Lp = dt gdot_p Np / sqrt(2) = (1 - r) dev(Ee): principal values
+     * w e0_i in V (G dt gdot_p = tau_tr - tau = (1 - r) tau_tr). */
     const double w = r * (par->G * dt * g) / p;                     /* 1 - r, no cancellation */
     s->r[q] = r;
+    s->w[q] = w;
     s->mode[q] = HYPER_RETURN;
     b->g[q] = g;
     b->gdp[q] = g * r * tau / p;                                    /* g tau / p */
     b->state[q] = MPM_STATE_DENSE;
-    /* dt Lp = dt gdot_p Np / sqrt(2) = (1 - r) dev(Ee): principal values
-     * w e0_i in V (G dt gdot_p = tau_tr - tau = (1 - r) tau_tr). */
-    for (int i = 0; i < 3; i++)
-      s->x[i][q] = exp(w * s->e[i][q]);
   }
 }
 
 /* Pass 6 (vectorises): sigma_{n+1} = J^-1 Re Me Re^T with
  * Me = -p I + r dev(Me_tr) principal in V and Re V = Fe V diag(1/sqrt(1 + mu))
- * (NaN if J <= 0), or 0 (stress-free); Fp_{n+1} = exp(dt Lp) Fp_n,
- * exp(dt Lp) = V diag(x) V^T, or F_{n+1} (stress-free), or Fp_n. */
-HYPER_INLINE void block_finish(const mpm_material_params *par, const hyper_view *b, size_t n,
+ * (NaN if J <= 0), or 0 (stress-free). */
+HYPER_INLINE void block_stress(const mpm_material_params *par, const hyper_view *b, size_t n,
                                hyper_block *s)
 {
-  const double *F[9];
-  double *Fp[9], *sig[6];
-  for (int e = 0; e < 9; e++) {
-    F[e] = b->F[e];
-    Fp[e] = b->Fp[e];
-  }
+  double *sig[6];
   for (int k = 0; k < 6; k++)
     sig[k] = b->sig_out[k];
   const double G2 = 2.0 * par->G;
 #pragma GCC ivdep
   for (size_t q = 0; q < n; q++) {
-    mpm_mat3 fe, v, fp;
+    mpm_mat3 fe, v;
 #pragma GCC unroll 9
     for (int e = 0; e < 9; e++) {
       fe.m[e / 3][e % 3] = s->fe[e][q];
       v.m[e / 3][e % 3] = s->v[e][q];
-      fp.m[e / 3][e % 3] = Fp[e][q];
     }
     const double J = s->J[q], p = s->p[q], r = s->r[q];
-    const int mode = s->mode[q];
-    double iu[3], me[3], x[3];
+    double iu[3], me[3];
 #pragma GCC unroll 3
     for (int i = 0; i < 3; i++) {
       iu[i] = 1.0 / sqrt(1.0 + s->a[i][q]);                        /* 1 / principal stretch */
       me[i] = (r * (G2 * s->e[i][q]) - p) / J;                     /* J^-1 Me, principal */
-      x[i] = s->x[i][q];
     }
     const mpm_mat3 rv = mul_scale_cols(&fe, &v, iu);               /* Re V = Fe V diag(1/s) */
     const mpm_sym3 sc = congruence_diag(&rv, me);                  /* (Re V) diag (Re V)^T */
     const double out[6] = {sc.xx, sc.yy, sc.zz, sc.xy, sc.yz, sc.zx};
+    const int free = s->mode[q] == HYPER_FREE, bad = !(J > 0.0);
 #pragma GCC unroll 6
     for (int k = 0; k < 6; k++)
-      sig[k][q] = mode == HYPER_FREE ? 0.0 : J > 0.0 ? out[k] : NAN;
+      sig[k][q] = free ? 0.0 : bad ? NAN : out[k];
+  }
+}
+
+/* Pass 7 (vectorises): Fp_{n+1} = exp(dt Lp) Fp_n, exp(dt Lp) = V diag(x) V^T
+ * with x_i = exp(w dev(Ee)_i); or F_{n+1} (stress-free), or Fp_n kept. */
+HYPER_INLINE void block_flow(const hyper_view *b, size_t n, hyper_block *s)
+{
+  const double *F[9];
+  double *Fp[9];
+  for (int e = 0; e < 9; e++) {
+    F[e] = b->F[e];
+    Fp[e] = b->Fp[e];
+  }
+#pragma GCC ivdep
+  for (size_t q = 0; q < n; q++) {
+    mpm_mat3 v, fp;
+#pragma GCC unroll 9
+    for (int e = 0; e < 9; e++) {
+      v.m[e / 3][e % 3] = s->v[e][q];
+      fp.m[e / 3][e % 3] = Fp[e][q];
+    }
+    const double w = s->w[q], mode = s->mode[q];
+    double x[3];
+#pragma GCC unroll 3
+    for (int i = 0; i < 3; i++)
+      x[i] = hyper_exp(w * s->e[i][q]);                            /* exp(dt Lp) principal */
     const mpm_sym3 E = congruence_diag(&v, x);                     /* exp(dt Lp) */
     const mpm_mat3 Ef = mpm_sym3_full(E), efp = mpm_mat3_mul(&Ef, &fp);
 #pragma GCC unroll 9
@@ -477,12 +586,13 @@ HYPER_INLINE void block_finish(const mpm_material_params *par, const hyper_view 
 HYPER_INLINE void block_step(const mpm_material_params *par, double dt, const hyper_view *b,
                              size_t n, hyper_block *s, int advance, int plastic)
 {
-  block_kinematics(dt, b, n, s, advance, plastic);
+  block_advance(dt, b, n, s, advance, plastic);
+  block_trial(b, n, s);
   block_eigen(n, s);
-  block_logs(n, s);
   block_invariants(par, n, s);
   block_return(par, dt, b, n, s, plastic);
-  block_finish(par, b, n, s);
+  block_stress(par, b, n, s);
+  block_flow(b, n, s);
 }
 
 /* ---- one point ---------------------------------------------------------------- */
@@ -539,7 +649,7 @@ mpm_sym3 mpm_material_hyper_log(mpm_sym3 a)
   mpm_mat3 v;
   mpm_material_hyper_eigen(mpm_sym3_add_iso(a, -1.0), lam, &v);   /* a - I = v diag(lam) v^T */
   for (int i = 0; i < 3; i++)
-    lam[i] = log1p(lam[i]);                                        /* ln(1 + lam) */
+    lam[i] = hyper_log1p(lam[i]);                                  /* ln(1 + lam) */
   return congruence_diag(&v, lam);
 }
 
