@@ -97,9 +97,10 @@
  *
  * The batch update runs on blocks of HYPER_BLOCK points held as arrays, a
  * pass at a time: F_{n+1}; Fe_tr and C - I; the eigenpairs; the principal
- * logarithms and invariants; the return, point by point (the fluidity solve
- * of ngf.c); the stress; Fp. Every pass but the return is a loop that
- * vectorises (no library call: ln(1 + x) and exp(x) are written out below).
+ * logarithms, invariants and state decision; the fluidity solve of ngf.c,
+ * point by point; the return and the stress; Fp. Every pass but the
+ * fluidity solve is a loop that vectorises (no library call: ln(1 + x) and
+ * exp(x) are written out below).
  * One point (mpm_material_hyper_step and the other point functions, the
  * table's update_point) is the block of one, so the batch gives the point
  * update bit for bit. */
@@ -325,7 +326,8 @@ typedef struct hyper_block {
   double mug[HYPER_BLOCK];     /* mu_n g_n */
   double pn[HYPER_BLOCK];      /* p_n = -tr(sigma_n)/3 */
   double gfree[HYPER_BLOCK];   /* sqrt(2 D0:D0) */
-  double r[HYPER_BLOCK];       /* tau / tau_tr */
+  double g[HYPER_BLOCK];       /* g_{n+1} */
+  double solve[HYPER_BLOCK];   /* 1: g_{n+1} from the local fluidity solve, else 0 */
   double w[HYPER_BLOCK];       /* dt Lp = w dev(Ee) (1 - r for a return, else 0) */
   double mode[HYPER_BLOCK];    /* enum hyper_mode */
   double more[HYPER_BLOCK];    /* 1: Jacobi not converged yet, else 0 */
@@ -527,10 +529,16 @@ HYPER_NOINLINE void block_eigen(size_t n, hyper_block *s)
 }
 
 /* Pass 4 (vectorises): Ee_i = ln sqrt(1 + mu_i) principal, dev(Ee),
- * p = -K tr(Ee), tau_tr = |2G dev(Ee)| / sqrt(2). */
-HYPER_INLINE void block_invariants(const mpm_material_params *par, size_t n, hyper_block *s)
+ * p = -K tr(Ee), tau_tr = |2G dev(Ee)| / sqrt(2); for the plastic step the
+ * state decision: det F <= 0, a failure (mode keep: the stress is NaN);
+ * rho_{n+1} < rho_c or p <= 0, stress-free; else the return, with
+ * g = sqrt(2 D0:D0) / mu_2 for a point that reconnects ([HS21] eq. 23) or
+ * the fluidity solve of the next pass (solve = 1). */
+HYPER_INLINE void block_invariants(const mpm_material_params *par, const hyper_view *b,
+                                   size_t n, hyper_block *s, int plastic)
 {
-  const double G = par->G, K = par->K;
+  const double G = par->G, K = par->K, rho_c = par->rho_c, mu_2 = par->mu_2;
+  const double *rho = b->rho;
   for (size_t q = 0; q < n; q++) {
     double e[3];
     for (int i = 0; i < 3; i++)
@@ -543,89 +551,90 @@ HYPER_INLINE void block_invariants(const mpm_material_params *par, size_t n, hyp
       s->e[i][q] = e0;
       ss += s0 * s0;
     }
-    s->p[q] = -K * tr;                                             /* -tr(Me)/3 */
+    const double p = -K * tr;                                      /* -tr(Me)/3 */
+    s->p[q] = p;
     s->tau[q] = sqrt(0.5 * ss);                                    /* |dev Me| / sqrt(2) */
+    if (plastic) {
+      const int bad = !(s->J[q] > 0.0), loose = !(rho[q] >= rho_c) || !(p > 0.0);
+      const double mode = bad ? HYPER_KEEP : loose ? HYPER_FREE : HYPER_RETURN;
+      s->mode[q] = mode;
+      s->solve[q] = mode == HYPER_RETURN && s->pn[q] > 0.0 ? 1.0 : 0.0;
+      s->g[q] = s->gfree[q] / mu_2;                                /* reconnects */
+    } else {
+      s->mode[q] = HYPER_KEEP;
+      s->solve[q] = 0.0;
+      s->g[q] = 0.0;
+    }
   }
 }
 
-/* Pass 5 (one point at a time: the fluidity solve): the state decision,
- * g_{n+1}, gdot_p, the state, tau / tau_tr and dt Lp; plastic = 0: the
- * elastic variant (r = 1, Fp kept, g = gdot_p = 0, no state decision). */
-static void block_return(const mpm_material_params *par, double dt, const hyper_view *b,
-                         size_t n, hyper_block *s, int plastic)
+/* Pass 5 (one point at a time: library calls): g_{n+1} of the points that
+ * were dense, the root of the local NGF solve (ngf.c) with
+ * g* = max(0, g_n + (dt/t0) A^2 d^2 lap); the state. */
+static void block_solve(const mpm_material_params *par, double dt, const hyper_view *b,
+                        size_t n, hyper_block *s, int plastic)
 {
   for (size_t q = 0; q < n; q++) {
-    s->r[q] = 1.0;
-    s->w[q] = 0.0;
-    s->mode[q] = HYPER_KEEP;
-    if (!plastic) {                                                /* elastic */
-      b->g[q] = 0.0;
-      b->gdp[q] = 0.0;
-      b->state[q] = MPM_STATE_DENSE;
-      continue;
+    if (s->solve[q] != 0.0) {
+      const double gs = mpm_material_ngf_gstar(par, dt, s->gn[q], b->lap[q]);   /* g* */
+      s->g[q] = mpm_material_ngf_fluidity(par, dt, s->p[q], s->tau[q], gs, s->mug[q],
+                                          b->isp[q]);                            /* g_{n+1} */
     }
-    if (!(s->J[q] > 0.0))                                          /* inverted: a failure */
-      continue;
-    const double p = s->p[q], tau = s->tau[q];
-    if (!(b->rho[q] >= par->rho_c) || !(p > 0.0)) {               /* stress-free */
-      s->mode[q] = HYPER_FREE;
-      b->g[q] = 0.0;
-      b->gdp[q] = s->gfree[q];                                     /* sqrt(2 D0:D0) */
-      b->state[q] = MPM_STATE_DISCONNECTED;
-      continue;
-    }
-    double g;
-    if (!(s->pn[q] > 0.0))
-      g = s->gfree[q] / par->mu_2;                                 /* reconnects: [HS21] eq. 23 */
-    else {
-      const double gs = mpm_material_ngf_gstar(par, dt, s->gn[q], b->lap[q]);      /* g* */
-      g = mpm_material_ngf_fluidity(par, dt, p, tau, gs, s->mug[q], b->isp[q]);    /* g_{n+1} */
-    }
-    const double r = mpm_material_ngf_return_ratio(par, dt, p, g);  /* tau / tau_tr */
-    /* dt Lp = dt gdot_p Np / sqrt(2) = (1 - r) dev(Ee): principal values
-     * w e0_i in V (G dt gdot_p = tau_tr - tau = (1 - r) tau_tr). */
-    const double w = r * (par->G * dt * g) / p;                     /* 1 - r, no cancellation */
-    s->r[q] = r;
-    s->w[q] = w;
-    s->mode[q] = HYPER_RETURN;
-    b->g[q] = g;
-    b->gdp[q] = g * r * tau / p;                                    /* g tau / p */
-    b->state[q] = MPM_STATE_DENSE;
+    const double mode = s->mode[q];
+    b->state[q] = !plastic || mode == HYPER_RETURN ? MPM_STATE_DENSE
+                : mode == HYPER_FREE               ? MPM_STATE_DISCONNECTED
+                                                   : b->state[q];
   }
 }
 
-/* Pass 6 (vectorises): sigma_{n+1} = J^-1 Re Me Re^T with
- * Me = -p I + r dev(Me_tr) principal in V and Re V = Fe V diag(1/sqrt(1 + mu))
- * (NaN if J <= 0), or 0 (stress-free). */
-HYPER_INLINE void block_stress(const mpm_material_params *par, const hyper_view *b, size_t n,
-                               hyper_block *s)
+/* Pass 6 (vectorises): the return, tau / tau_tr = r = p / (p + G dt g),
+ * gdot_p = g tau / p = (tau_tr - tau) / (G dt), and dt Lp = (1 - r) dev(Ee)
+ * (principal values w e0_i in V: G dt gdot_p = tau_tr - tau = (1 - r) tau_tr);
+ * g and gdot_p out (stress-free: 0 and sqrt(2 D0:D0); elastic: 0 and 0;
+ * det F <= 0: kept). sigma_{n+1} = J^-1 Re Me Re^T with
+ * Me = -p I + r dev(Me_tr) principal in V, Re V = Fe V diag(1/sqrt(1 + mu)),
+ * so sigma = J^-1 (Fe V) diag(Me_i / (1 + mu_i)) (Fe V)^T (NaN if J <= 0),
+ * or 0 (stress-free). */
+HYPER_INLINE void block_stress(const mpm_material_params *par, double dt, const hyper_view *b,
+                               size_t n, hyper_block *s, int plastic)
 {
   double *sig[6];
   for (int k = 0; k < 6; k++)
     sig[k] = b->sig_out[k];
-  const double G2 = 2.0 * par->G;
+  double *g_out = b->g, *gdp_out = b->gdp;
+  const mpm_material_params pl = *par;   /* a local copy: its fields load unconditionally */
+  const double G2 = 2.0 * par->G, Gdt = par->G * dt;
 #pragma GCC ivdep
   for (size_t q = 0; q < n; q++) {
+    const double J = s->J[q], p = s->p[q], tau = s->tau[q], g = s->g[q], mode = s->mode[q];
+    const int ret = mode == HYPER_RETURN;
+    const double r = ret ? mpm_material_ngf_return_ratio(&pl, dt, p, g) : 1.0;  /* tau/tau_tr */
+    s->w[q] = ret ? r * (Gdt * g) / p : 0.0;                       /* 1 - r, no cancellation */
+    const int loose = mode == HYPER_FREE, bad = !(J > 0.0);
+    if (plastic) {
+      const double g_n = g_out[q], gdp_n = gdp_out[q], gfree = s->gfree[q];
+      g_out[q] = ret ? g : loose ? 0.0 : g_n;
+      gdp_out[q] = ret ? g * r * tau / p : loose ? gfree : gdp_n;
+    } else {
+      g_out[q] = 0.0;
+      gdp_out[q] = 0.0;
+    }
     mpm_mat3 fe, v;
 #pragma GCC unroll 9
     for (int e = 0; e < 9; e++) {
       fe.m[e / 3][e % 3] = s->fe[e][q];
       v.m[e / 3][e % 3] = s->v[e][q];
     }
-    const double J = s->J[q], p = s->p[q], r = s->r[q];
-    double iu[3], me[3];
+    double d[3];
 #pragma GCC unroll 3
-    for (int i = 0; i < 3; i++) {
-      iu[i] = 1.0 / sqrt(1.0 + s->a[i][q]);                        /* 1 / principal stretch */
-      me[i] = (r * (G2 * s->e[i][q]) - p) / J;                     /* J^-1 Me, principal */
-    }
-    const mpm_mat3 rv = mul_scale_cols(&fe, &v, iu);               /* Re V = Fe V diag(1/s) */
-    const mpm_sym3 sc = congruence_diag(&rv, me);                  /* (Re V) diag (Re V)^T */
+    for (int i = 0; i < 3; i++)                                    /* J^-1 Me_i / (1 + mu_i) */
+      d[i] = (r * (G2 * s->e[i][q]) - p) / (J * (1.0 + s->a[i][q]));
+    const mpm_mat3 fv = mpm_mat3_mul(&fe, &v);                     /* Fe V */
+    const mpm_sym3 sc = congruence_diag(&fv, d);
     const double out[6] = {sc.xx, sc.yy, sc.zz, sc.xy, sc.yz, sc.zx};
-    const int free = s->mode[q] == HYPER_FREE, bad = !(J > 0.0);
 #pragma GCC unroll 6
     for (int k = 0; k < 6; k++)
-      sig[k][q] = free ? 0.0 : bad ? NAN : out[k];
+      sig[k][q] = loose ? 0.0 : bad ? NAN : out[k];
   }
 }
 
@@ -670,9 +679,9 @@ HYPER_INLINE void block_step(const mpm_material_params *par, double dt, const hy
   block_advance(dt, b, n, s, advance, plastic);
   block_trial(b, n, s);
   block_eigen(n, s);
-  block_invariants(par, n, s);
-  block_return(par, dt, b, n, s, plastic);
-  block_stress(par, b, n, s);
+  block_invariants(par, b, n, s, plastic);
+  block_solve(par, dt, b, n, s, plastic);
+  block_stress(par, dt, b, n, s, plastic);
   block_flow(b, n, s);
 }
 
