@@ -303,7 +303,7 @@ typedef struct hyper_view {
   double *F[9], *Fp[9];          /* F_ij, Fp_ij at [3 i + j]: in at t_n, out at t_{n+1} */
 } hyper_view;
 
-/* What the last pass does with a point's stress and Fp. */
+/* What the last passes do with a point's stress, g and Fp. */
 enum hyper_mode {
   HYPER_RETURN = 0,   /* sigma = J^-1 Re Me Re^T, Fp_{n+1} = exp(dt Lp) Fp_n */
   HYPER_FREE,         /* stress-free: sigma = 0, Fp_{n+1} = F_{n+1} */
@@ -318,7 +318,7 @@ typedef struct hyper_block {
   double a[6][HYPER_BLOCK];    /* C - I (xx yy zz xy yz zx); after block_eigen its
                                   diagonal holds the eigenvalues mu_i */
   double v[9][HYPER_BLOCK];    /* V, row-major: the principal directions of Ue */
-  double e[3][HYPER_BLOCK];    /* Ee principal, then dev(Ee) principal */
+  double e[3][HYPER_BLOCK];    /* dev(Ee), principal */
   double J[HYPER_BLOCK];       /* det F_{n+1} */
   double p[HYPER_BLOCK];       /* p = -K tr(Ee) */
   double tau[HYPER_BLOCK];     /* tau_tr = |dev Me_tr| / sqrt(2) */
@@ -457,10 +457,10 @@ HYPER_INLINE void block_trial(const hyper_view *b, size_t n, hyper_block *s)
 }
 
 /* sweeps cyclic sweeps of the first n matrices of s->a (first) or of the
- * packed s->ca (destroyed) with their rotations accumulated into s->v or
- * s->cv (first: v = I on entry, set here); then more = 0 where the matrix has converged (or,
- * after the first sweeps, is not finite: no sweep helps), else 1. A loop
- * that vectorises. */
+ * packed s->ca (destroyed), their rotations accumulated into s->v or s->cv
+ * (first: v = I on entry, set here); then more = 0 where the matrix has
+ * converged (or, after the first sweeps, is not finite: no sweep helps),
+ * else 1. A loop that vectorises. */
 HYPER_INLINE void jacobi_pass(size_t n, hyper_block *s, int sweeps, int first)
 {
   double(*a)[HYPER_BLOCK] = first ? s->a : s->ca, (*v)[HYPER_BLOCK] = first ? s->v : s->cv;
@@ -709,9 +709,10 @@ static void point_view(hyper_view *b, const mpm_mat3 *L, mpm_material_hyper_poin
 }
 
 /* The step of one point: the block step with n = 1. */
-HYPER_INLINE mpm_material_hyper_point point_step(const mpm_material_params *par, const mpm_mat3 *L,
-                                           double dt, mpm_material_hyper_point pt, int advance,
-                                           int plastic)
+HYPER_INLINE mpm_material_hyper_point point_step(const mpm_material_params *par,
+                                                 const mpm_mat3 *L, double dt,
+                                                 mpm_material_hyper_point pt, int advance,
+                                                 int plastic)
 {
   hyper_block s;
   hyper_view b;
