@@ -115,13 +115,20 @@
 
 /* Written to be inlined where it is used: into the loops over a block's
  * points, which then vectorise, and into the point functions; or kept as
- * one function that every path calls (the eigen pass). */
+ * one function that every path calls (the eigen pass). HYPER_IVDEP: the
+ * iterations of the loop that follows are independent (the points of a
+ * block, read and written through arrays the compiler cannot tell apart). */
 #if defined(__GNUC__)
 #define HYPER_INLINE static inline __attribute__((always_inline))
 #define HYPER_NOINLINE static __attribute__((noinline))
 #else
 #define HYPER_INLINE static inline
 #define HYPER_NOINLINE static
+#endif
+#if defined(__GNUC__) && !defined(__clang__)
+#define HYPER_IVDEP _Pragma("GCC ivdep")
+#else
+#define HYPER_IVDEP
 #endif
 
 enum {
@@ -399,7 +406,7 @@ HYPER_INLINE void block_advance(double dt, const hyper_view *b, size_t n, hyper_
   for (int k = 0; k < 6; k++)
     sig[k] = b->sig_in[k];
   const double *g = b->g;
-#pragma GCC ivdep
+  HYPER_IVDEP
   for (size_t q = 0; q < n; q++) {
     mpm_mat3 f, l;
     for (int e = 0; e < 9; e++) {
@@ -438,7 +445,7 @@ HYPER_INLINE void block_trial(const hyper_view *b, size_t n, hyper_block *s)
     F[e] = b->F[e];
     Fp[e] = b->Fp[e];
   }
-#pragma GCC ivdep
+  HYPER_IVDEP
   for (size_t q = 0; q < n; q++) {
     mpm_mat3 f, fp;
     for (int e = 0; e < 9; e++) {
@@ -465,7 +472,7 @@ HYPER_INLINE void jacobi_pass(size_t n, hyper_block *s, int sweeps, int first)
 {
   double(*a)[HYPER_BLOCK] = first ? s->a : s->ca, (*v)[HYPER_BLOCK] = first ? s->v : s->cv;
   double *more = first ? s->more : s->cmore;
-#pragma GCC ivdep
+  HYPER_IVDEP
   for (size_t q = 0; q < n; q++) {
     double w[6], u[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
     for (int k = 0; k < 6; k++)
@@ -604,7 +611,7 @@ HYPER_INLINE void block_stress(const mpm_material_params *par, double dt, const 
   double *g_out = b->g, *gdp_out = b->gdp;
   const mpm_material_params pl = *par;   /* a local copy: its fields load unconditionally */
   const double G2 = 2.0 * par->G, Gdt = par->G * dt;
-#pragma GCC ivdep
+  HYPER_IVDEP
   for (size_t q = 0; q < n; q++) {
     const double J = s->J[q], p = s->p[q], tau = s->tau[q], g = s->g[q], mode = s->mode[q];
     const int ret = mode == HYPER_RETURN;
@@ -648,7 +655,7 @@ HYPER_INLINE void block_flow(const hyper_view *b, size_t n, hyper_block *s)
     F[e] = b->F[e];
     Fp[e] = b->Fp[e];
   }
-#pragma GCC ivdep
+  HYPER_IVDEP
   for (size_t q = 0; q < n; q++) {
     mpm_mat3 v, fp;
 #pragma GCC unroll 9
