@@ -3,12 +3,14 @@
  * definitions: the general 3x3 helpers of tensor3.h; the Jacobi
  * eigen-decomposition; the polar decomposition (near the identity, for
  * random stretches and for rotations up to 180 degrees); the log/exp round
- * trip; the Hencky stress of a uniaxial stretch against its closed form;
+ * trip; the branch-free ln(1 + x) and exp(x) of the update against long
+ * double; the Hencky stress of a uniaxial stretch against its closed form;
  * objectivity of the elastic and of the dense plastic update; the order of
  * the F update; rate and path independence of the elastic response; the
  * plastic return (tau, direction, the reused NGF root, the flow rule, det Fp,
  * the stored state giving back the returned stress); steady simple shear in
- * the local limit against mu(I); the state decisions.
+ * the local limit against mu(I); the state decisions; the batch update
+ * against the point update, bit for bit.
  *
  * Tolerances are multiples of eps = DBL_EPSILON, each with its reason. The
  * recurring one: C = Fe^T Fe is formed in floating point, so whatever the
@@ -20,6 +22,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/points.h"
 #include "core/tensor3.h"
@@ -250,6 +253,99 @@ START_TEST(t_eigen)
 }
 END_TEST
 
+/* Jacobi on the kinds of matrix the update meets, 2000 of each: C - I of
+ * F = R (I + e X) for e = 1e-2, 1e-6, 1e-12 (near-identity stretches turned
+ * by random rotations R; entries of X in [-1, 1]); A = Q diag(d) Q^T with two
+ * eigenvalues d, d (1 + delta) and with three within delta, delta = 1e-3,
+ * 1e-8, 1e-14 and 0 (nearly degenerate); graded d = (1, 1e-8, 1e-16). The
+ * residual a v - v diag(lam) and v^T v - I to 8 eps |a| and 8 eps (the
+ * largest measured over 200,000 of each: 6 eps and 4 eps), and, for the
+ * built A, the sorted eigenvalues against d to 20 eps max|d|: A itself is
+ * Q diag(d) Q^T rounded, each entry off by up to 4 eps max|d| (three
+ * products and two sums), which moves the spectrum by up to three times that
+ * (the 2-norm of a 3x3 is below 3 times its largest entry), and Jacobi adds
+ * its 6 eps. A plane-strain matrix (a_yz =
+ * a_zx = 0) keeps its zeros exactly: lam_z = a_zz and v = diag(v2, 1), the
+ * zero rotations in the planes (x, z), (y, z) changing nothing. */
+static void sort3(double d[3])
+{
+  for (int i = 0; i < 2; i++)
+    for (int j = 0; j < 2 - i; j++)
+      if (d[j] > d[j + 1]) {
+        const double t = d[j];
+        d[j] = d[j + 1];
+        d[j + 1] = t;
+      }
+}
+
+static void check_eigen(mpm_sym3 a, const double *d, const char *kind, int n)
+{
+  double lam[3];
+  mpm_mat3 v;
+  mpm_material_hyper_eigen(a, lam, &v);
+  mpm_mat3 A = mpm_sym3_full(a), av = mpm_mat3_mul(&A, &v), vl = v;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      vl.m[i][j] *= lam[j];
+  const double na = sym3_maxabs(a);
+  ck_assert_msg(mat3_maxdiff(&av, &vl) <= 8.0 * EPS * na, "%s %d: residual %g of %g", kind, n,
+                mat3_maxdiff(&av, &vl), na);
+  ck_assert_msg(orth_err(&v) <= 8.0 * EPS, "%s %d: v^T v - I = %g", kind, n, orth_err(&v));
+  if (d) {
+    double l[3] = {lam[0], lam[1], lam[2]}, r[3] = {d[0], d[1], d[2]};
+    sort3(l);
+    sort3(r);
+    const double nd = fmax(fabs(r[0]), fabs(r[2]));
+    for (int i = 0; i < 3; i++)
+      ck_assert_msg(fabs(l[i] - r[i]) <= 20.0 * EPS * nd, "%s %d: eigenvalue %.17g, built %.17g",
+                    kind, n, l[i], r[i]);
+  }
+}
+
+START_TEST(t_eigen_kinds)
+{
+  unsigned long s = 17u;
+  const double es[] = {1e-2, 1e-6, 1e-12};
+  for (size_t k = 0; k < sizeof es / sizeof es[0]; k++)
+    for (int n = 0; n < 2000; n++) {
+      mpm_mat3 R = rand_rotation(&s), X = rand_mat(&s, es[k]);
+      for (int i = 0; i < 3; i++)
+        X.m[i][i] += 1.0;
+      const mpm_mat3 F = mpm_mat3_mul(&R, &X), Ft = mpm_mat3_transpose(&F);
+      mpm_mat3 C = mpm_mat3_mul(&Ft, &F);
+      const mpm_sym3 cmi = {C.m[0][0] - 1.0, C.m[1][1] - 1.0, C.m[2][2] - 1.0, C.m[0][1],
+                            C.m[1][2], C.m[0][2]};
+      check_eigen(cmi, NULL, "C - I", n);
+    }
+  const double deltas[] = {1e-3, 1e-8, 1e-14, 0.0};
+  for (size_t k = 0; k < sizeof deltas / sizeof deltas[0]; k++)
+    for (int three = 0; three < 2; three++)
+      for (int n = 0; n < 2000; n++) {
+        const double d0 = sym_rand(&s), dl = deltas[k];
+        double d[3] = {d0, d0 * (1.0 + dl * sym_rand(&s)),
+                       three ? d0 * (1.0 + dl * sym_rand(&s)) : sym_rand(&s)};
+        const mpm_mat3 q = rand_rotation(&s);
+        check_eigen(mpm_sym3_congruence(&q, (mpm_sym3){d[0], d[1], d[2], 0.0, 0.0, 0.0}), d,
+                    three ? "three close" : "two close", n);
+      }
+  for (int n = 0; n < 2000; n++) {
+    double d[3] = {sym_rand(&s), 1e-8 * sym_rand(&s), 1e-16 * sym_rand(&s)};
+    const mpm_mat3 q = rand_rotation(&s);
+    const mpm_sym3 a = mpm_sym3_congruence(&q, (mpm_sym3){d[0], d[1], d[2], 0.0, 0.0, 0.0});
+    check_eigen(a, NULL, "graded", n);
+  }
+  for (int n = 0; n < 200; n++) {
+    const mpm_sym3 a = {sym_rand(&s), sym_rand(&s), sym_rand(&s), sym_rand(&s), 0.0, 0.0};
+    double lam[3];
+    mpm_mat3 v;
+    mpm_material_hyper_eigen(a, lam, &v);
+    ck_assert(lam[2] == a.zz && v.m[2][2] == 1.0);
+    ck_assert(v.m[0][2] == 0.0 && v.m[1][2] == 0.0 && v.m[2][0] == 0.0 && v.m[2][1] == 0.0);
+    check_eigen(a, NULL, "plane", n);
+  }
+}
+END_TEST
+
 /* Polar decomposition F = R U: R orthogonal and det R = 1, U symmetric
  * (by its type) positive definite, R U = F, for (a) random stretches
  * F = Q1 diag(s) Q2, s in [0.5, 2], (b) near-identity F = I + 1e-8 X,
@@ -360,6 +456,104 @@ START_TEST(t_log_exp)
   /* Not positive definite: NaN, never a number. */
   mpm_sym3 bad = mpm_material_hyper_log((mpm_sym3){1.0, -1.0, 1.0, 0, 0, 0});
   ck_assert(isnan(bad.yy));
+}
+END_TEST
+
+/* Error of got in units in the last place of the double nearest the
+ * reference ref: |got - ref| / ulp (subnormal spacing below DBL_MIN);
+ * 0 when both are the same infinity or NaN, inf when only one is. */
+static double ulp_error(double got, long double ref)
+{
+  if (isnan(ref) || isinf(ref))
+    return (isnan(ref) && isnan(got)) || got == ref ? 0.0 : INFINITY;
+  const double r = fabs((double)ref);
+  const double ulp = r >= DBL_MIN ? ldexp(1.0, ilogb(r) - (DBL_MANT_DIG - 1))
+                                  : ldexp(1.0, DBL_MIN_EXP - DBL_MANT_DIG);
+  return (double)(fabsl((long double)got - ref) / ulp);
+}
+
+/* The ln(1 + x) and exp(x) of the update (mpm_material_hyper_log1p,
+ * _exp_scalar; branch-free fdlibm algorithms) against long double over dense
+ * sweeps: ln(1 + x) for x = +-10^k, k from -320 to 300 in steps of 1e-3, for
+ * x = -1 + 10^-k (k to 16.5) and for x from -0.5 to 3 in steps of 2^-17;
+ * exp(x) for x from -746 to 710 in steps of 1e-3 (subnormal results
+ * included, in units of their spacing) and x = +-10^k, k from -320 to 2.8.
+ * fdlibm bounds both errors below 1 ulp (measured here: 0.82 and 0.88), the
+ * reference (64-bit significand) adds 2^-11 ulp at most. Then the special
+ * values: -1, below -1, +-inf, NaN, zeros, the overflow and underflow
+ * thresholds; a tiny x is its own ln(1 + x). Without an extended long
+ * double the reference is the C library's, to 2 ulp. */
+START_TEST(t_log1p_exp)
+{
+  const int ext = LDBL_MANT_DIG >= 64;
+  const double tol = ext ? 1.0 : 2.0;
+  double worst = 0.0, at = 0.0;
+  for (int sg = -1; sg <= 1; sg += 2)
+    for (int k = -320000; k <= 300000; k++) {
+      const double x = sg * pow(10.0, k * 1e-3);
+      if (!(x > -1.0))
+        continue;
+      const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
+      const double e = ulp_error(mpm_material_hyper_log1p(x), ref);
+      if (e > worst) {
+        worst = e;
+        at = x;
+      }
+    }
+  for (double k = 0.0; k <= 16.5; k += 1e-5) {
+    const double x = -1.0 + pow(10.0, -k);
+    const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
+    const double e = ulp_error(mpm_material_hyper_log1p(x), ref);
+    if (e > worst) {
+      worst = e;
+      at = x;
+    }
+  }
+  for (double x = -0.5; x <= 3.0; x += 0x1p-17) {
+    const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
+    const double e = ulp_error(mpm_material_hyper_log1p(x), ref);
+    if (e > worst) {
+      worst = e;
+      at = x;
+    }
+  }
+  ck_assert_msg(worst < tol, "ln(1 + x): %.3f ulp at x = %.17g", worst, at);
+  worst = 0.0;
+  for (int k = -746000; k <= 710000; k++) {
+    const double x = k * 1e-3;
+    const long double ref = ext ? expl((long double)x) : (long double)exp(x);
+    const double e = ulp_error(mpm_material_hyper_exp_scalar(x), ref);
+    if (e > worst) {
+      worst = e;
+      at = x;
+    }
+  }
+  for (int sg = -1; sg <= 1; sg += 2)
+    for (int k = -320000; k <= 2800; k++) {
+      const double x = sg * pow(10.0, k * 1e-3);
+      const long double ref = ext ? expl((long double)x) : (long double)exp(x);
+      const double e = ulp_error(mpm_material_hyper_exp_scalar(x), ref);
+      if (e > worst) {
+        worst = e;
+        at = x;
+      }
+    }
+  ck_assert_msg(worst < tol, "exp(x): %.3f ulp at x = %.17g", worst, at);
+  ck_assert(mpm_material_hyper_log1p(-1.0) == -INFINITY);
+  ck_assert(isnan(mpm_material_hyper_log1p(-1.5)) && isnan(mpm_material_hyper_log1p(-INFINITY)));
+  ck_assert(mpm_material_hyper_log1p(INFINITY) == INFINITY);
+  ck_assert(isnan(mpm_material_hyper_log1p(NAN)));
+  ck_assert(mpm_material_hyper_log1p(0.0) == 0.0 && mpm_material_hyper_log1p(-0.0) == 0.0);
+  ck_assert(mpm_material_hyper_log1p(1e-300) == 1e-300);
+  ck_assert(mpm_material_hyper_log1p(-0x1p-60) == -0x1p-60);
+  ck_assert(mpm_material_hyper_exp_scalar(0.0) == 1.0);
+  ck_assert(mpm_material_hyper_exp_scalar(-INFINITY) == 0.0);
+  ck_assert(mpm_material_hyper_exp_scalar(INFINITY) == INFINITY);
+  ck_assert(isnan(mpm_material_hyper_exp_scalar(NAN)));
+  ck_assert(isfinite(mpm_material_hyper_exp_scalar(709.78)));
+  ck_assert(mpm_material_hyper_exp_scalar(709.79) == INFINITY);
+  ck_assert(mpm_material_hyper_exp_scalar(-745.2) == 0.0);
+  ck_assert(mpm_material_hyper_exp_scalar(-745.0) > 0.0);   /* the smallest subnormal */
 }
 END_TEST
 
@@ -768,6 +962,164 @@ START_TEST(t_states)
 }
 END_TEST
 
+/* The same bits, or both NaN (a NaN's payload may depend on the order of
+ * the operands, which the compiler is free to swap). */
+static int same_or_nan(double a, double b)
+{
+  return !memcmp(&a, &b, sizeof a) || (isnan(a) && isnan(b));
+}
+
+/* One point of kind k for the batch test: F, Fp, sigma_n, rho, g of every
+ * state the update meets (dim 2: in the plane, no out-of-plane shear). */
+static mpm_material_hyper_point batch_point(const mpm_material_params *par, unsigned long *s,
+                                            int k, int dim)
+{
+  const mpm_mat3 I = mpm_mat3_identity();
+  mpm_mat3 F = I, Fp = I, R = dim == 3 ? rand_rotation(s) : rotation(0.0, 0.0, 1.0, PI * lcg(s));
+  mpm_mat3 X = rand_mat(s, 1.0);
+  if (dim == 2)
+    X.m[0][2] = X.m[1][2] = X.m[2][0] = X.m[2][1] = 0.0;
+  double rho = 2000.0, g = 30.0 * lcg(s);
+  switch (k) {
+  case 0:                                                         /* generic */
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        F.m[i][j] = (i == j ? 0.98 : 0.0) + 0.02 * X.m[i][j];
+    F = mpm_mat3_mul(&R, &F);
+    break;
+  case 1:                                                         /* near the identity */
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        F.m[i][j] = (i == j ? 1.0 : 0.0) - 1e-7 * fabs(X.m[i][j]);
+    F = mpm_mat3_mul(&R, &F);
+    break;
+  case 2:                                                         /* isotropic compression */
+    for (int i = 0; i < 3; i++)
+      F.m[i][i] = 0.995;
+    break;
+  case 3: {                                                       /* turned by 180 degrees */
+    const mpm_mat3 Q = dim == 3 ? rotation(X.m[0][0], X.m[1][1], X.m[2][2] + 2.0, PI)
+                                : rotation(0.0, 0.0, 1.0, PI);
+    for (int i = 0; i < 3; i++)
+      F.m[i][i] = 0.99 + 0.002 * X.m[i][i];
+    F = mpm_mat3_mul(&Q, &F);
+    break;
+  }
+  case 4:                                                         /* tension: stress-free */
+    for (int i = 0; i < 3; i++)
+      F.m[i][i] = 1.01;
+    break;
+  case 5:                                                         /* below rho_c */
+    F = mpm_mat3_mul(&R, &F);
+    for (int i = 0; i < 3; i++)
+      F.m[i][i] *= 0.99;
+    rho = 0.9 * par->rho_c;
+    break;
+  case 6:                                                         /* inverted */
+    F.m[0][0] = -0.99;
+    break;
+  default:                                                        /* not a number */
+    F.m[1][0] = NAN;
+    break;
+  }
+  if (k <= 3) {                                                   /* plastic strain too */
+    mpm_sym3 a = mpm_sym3_dev(rand_sym(s, 0.02));
+    if (dim == 2)
+      a.yz = a.zx = 0.0;
+    Fp = mpm_sym3_full(mpm_material_hyper_exp(a));
+    F = mpm_mat3_mul(&F, &Fp);
+  }
+  mpm_sym3 sig = k == 6 || k == 7 ? mpm_sym3_zero() : mpm_material_hyper_stress(par, &F, &Fp);
+  if (k <= 3 && lcg(s) < 0.25)
+    sig = mpm_sym3_zero();                                        /* reconnecting */
+  mpm_material_hyper_point pt = hpoint(F, Fp, sig, rho, g, 1e4 * sym_rand(s));
+  pt.isp = lcg(s) < 0.5 ? 0.0 : 0.02 * lcg(s);
+  return pt;
+}
+
+/* The batch update (mpm_material_ngf_hyper.update: blocks of 64 points,
+ * every pass a loop over a block, the Jacobi points not converged after
+ * three sweeps packed and swept again) gives each point what its point
+ * update gives (update_point: the block of one), bit for bit (or NaN for
+ * NaN), for 150 points (two full blocks and a partial one) in 3D and in
+ * the plane, two substeps, of every kind the update meets: generic F (about
+ * half need a fourth sweep), near the identity, isotropic compression (a
+ * triple eigenvalue), turned by 180 degrees, reconnecting (sigma_n = 0),
+ * tension and low density (stress-free), inverted (det F < 0), NaN. */
+START_TEST(t_batch_is_point)
+{
+  enum { N = 150, NSUB = 2 };
+  const mpm_material_params par = params(MPM_NGF_DK);
+  const double dt = 1e-4;
+  for (int dim = 2; dim <= 3; dim++) {
+    unsigned long s = 31u + (unsigned long)dim;
+    double L[9][N], rho[N], lap[N], isp[N], sig[6][N], g[N], gdp[N], F[9][N], Fp[9][N];
+    int state[N];
+    mpm_mpoint pt[N];
+    mpm_mdeform def[N];
+    mpm_mat3 Lm[N];
+    for (int q = 0; q < N; q++) {
+      const mpm_material_hyper_point h = batch_point(&par, &s, q % 8, dim);
+      mpm_mat3 l = {{{0.0}}};
+      for (int i = 0; i < dim; i++)
+        for (int j = 0; j < dim; j++)
+          l.m[i][j] = 20.0 * sym_rand(&s);
+      Lm[q] = l;
+      for (int i = 0; i < dim; i++)
+        for (int j = 0; j < dim; j++)
+          L[dim * i + j][q] = l.m[i][j];
+      pt[q] = (mpm_mpoint){.sigma = h.sigma, .rho = h.rho, .g = h.g, .lap = h.lap, .isp = h.isp,
+                           .gdp = 0.0, .state = MPM_STATE_DENSE};
+      def[q] = (mpm_mdeform){.F = h.F, .Fp = h.Fp};
+      const double sv[6] = {h.sigma.xx, h.sigma.yy, h.sigma.zz, h.sigma.xy, h.sigma.yz, h.sigma.zx};
+      for (int k = 0; k < 6; k++)
+        sig[k][q] = sv[k];
+      rho[q] = h.rho;
+      lap[q] = h.lap;
+      isp[q] = h.isp;
+      g[q] = h.g;
+      gdp[q] = 0.0;
+      state[q] = MPM_STATE_DENSE;
+      for (int e = 0; e < 9; e++) {
+        F[e][q] = h.F.m[e / 3][e % 3];
+        Fp[e][q] = h.Fp.m[e / 3][e % 3];
+      }
+    }
+    mpm_material_batch b = {.n = N, .dim = dim, .rho = rho, .lap = lap, .isp = isp, .g = g,
+                            .gdp = gdp, .state = state};
+    for (int k = 0; k < dim * dim; k++)
+      b.L[k] = L[k];
+    for (int k = 0; k < (dim == 3 ? 6 : 4); k++)
+      b.sig[k] = sig[k];
+    for (int e = 0; e < 9; e++) {
+      b.F[e] = F[e];
+      b.Fp[e] = Fp[e];
+    }
+    mpm_material_ngf_hyper.update(&par, dt, NSUB, &b);
+    int dense = 0, free = 0;
+    for (int q = 0; q < N; q++) {
+      for (int k = 0; k < NSUB; k++)
+        mpm_material_ngf_hyper.update_point(&par, &Lm[q], dt, &pt[q], &def[q]);
+      const double sv[6] = {pt[q].sigma.xx, pt[q].sigma.yy, pt[q].sigma.zz, pt[q].sigma.xy,
+                            pt[q].sigma.yz, pt[q].sigma.zx};
+      for (int k = 0; k < (dim == 3 ? 6 : 4); k++)
+        ck_assert_msg(same_or_nan(sv[k], sig[k][q]), "%dD point %d (kind %d): sigma %d %.17g, "
+                      "batch %.17g", dim, q, q % 8, k, sv[k], sig[k][q]);
+      ck_assert_msg(same_or_nan(pt[q].g, g[q]) && same_or_nan(pt[q].gdp, gdp[q]) &&
+                    pt[q].state == state[q], "%dD point %d: g, gdot_p or state", dim, q);
+      for (int e = 0; e < 9; e++)
+        ck_assert_msg(same_or_nan(def[q].F.m[e / 3][e % 3], F[e][q]) &&
+                      same_or_nan(def[q].Fp.m[e / 3][e % 3], Fp[e][q]),
+                      "%dD point %d (kind %d): F or Fp entry %d", dim, q, q % 8, e);
+      dense += state[q] == MPM_STATE_DENSE && g[q] > 0.0 && isfinite(sig[0][q]);
+      free += state[q] == MPM_STATE_DISCONNECTED;
+    }
+    ck_assert_int_ge(dense, N / 4);                /* the kinds are met, not all one state */
+    ck_assert_int_ge(free, N / 8);
+  }
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("hyper");
@@ -775,8 +1127,10 @@ int main(void)
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, t_mat3_helpers);
   tcase_add_test(tc, t_eigen);
+  tcase_add_test(tc, t_eigen_kinds);
   tcase_add_test(tc, t_polar);
   tcase_add_test(tc, t_log_exp);
+  tcase_add_test(tc, t_log1p_exp);
   tcase_add_test(tc, t_uniaxial_hencky);
   tcase_add_test(tc, t_F_of_stress);
   tcase_add_test(tc, t_objectivity);
@@ -785,6 +1139,7 @@ int main(void)
   tcase_add_test(tc, t_plastic_return);
   tcase_add_test(tc, t_steady_shear_local);
   tcase_add_test(tc, t_states);
+  tcase_add_test(tc, t_batch_is_point);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

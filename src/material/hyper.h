@@ -38,6 +38,13 @@ mpm_sym3 mpm_material_hyper_log(mpm_sym3 a);
 /* exp a of a symmetric a. */
 mpm_sym3 mpm_material_hyper_exp(mpm_sym3 a);
 
+/* ln(1 + x) and exp(x) as the update computes them: the fdlibm algorithms
+ * without branches or library calls, so that a loop of points vectorises;
+ * error below 1 ulp (tests/test_hyper.c measures it). -inf at x = -1, NaN
+ * below; exp: +inf above 709.78, 0 below -745.13. */
+double mpm_material_hyper_log1p(double x);
+double mpm_material_hyper_exp_scalar(double x);
+
 /* Right polar decomposition f = r u of a matrix with det f > 0: r a rotation,
  * u symmetric positive definite. */
 void mpm_material_hyper_polar(const mpm_mat3 *f, mpm_mat3 *r, mpm_sym3 *u);
