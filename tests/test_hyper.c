@@ -473,12 +473,12 @@ static double ulp_error(double got, long double ref)
 }
 
 /* The ln(1 + x) and exp(x) of the update (mpm_material_hyper_log1p,
- * _exp_scalar; branch-free fdlibm algorithms) against long double over dense
+ * _exp_scalar; branch-free, see hyper.c) against long double over dense
  * sweeps: ln(1 + x) for x = +-10^k, k from -320 to 300 in steps of 1e-3, for
  * x = -1 + 10^-k (k to 16.5) and for x from -0.5 to 3 in steps of 2^-17;
  * exp(x) for x from -746 to 710 in steps of 1e-3 (subnormal results
  * included, in units of their spacing) and x = +-10^k, k from -320 to 2.8.
- * fdlibm bounds both errors below 1 ulp (measured here: 0.82 and 0.88), the
+ * Both errors stay below 1 ulp (measured here: 0.815 and 0.874), the
  * reference (64-bit significand) adds 2^-11 ulp at most. Then the special
  * values: -1, below -1, +-inf, NaN, zeros, the overflow and underflow
  * thresholds; a tiny x is its own ln(1 + x). Without an extended long

@@ -138,11 +138,11 @@ enum {
 };
 
 /* ---- ln(1 + x) and exp(x) that vectorise ------------------------------------
- * The algorithms of fdlibm (s_log1p.c, e_log.c, e_exp.c), written without
- * branches or library calls (the exponent is taken and put back on the
- * bits), so a loop of points calls no library function and vectorises.
- * tests/test_hyper.c measures both against long double over dense sweeps:
- * below 1 ulp (0.82 and 0.88 at worst), as fdlibm's. */
+ * Each reduces its argument by a power of two, taken and put back on the
+ * bits, and sums a series on the reduced range whose coefficients are exact
+ * fractions (below), without branches or library calls, so a loop of
+ * points calls no library function and vectorises. tests/test_hyper.c
+ * measures both against long double over dense sweeps (t_log1p_exp). */
 
 HYPER_INLINE uint64_t bits_of(double x)
 {
@@ -158,49 +158,57 @@ HYPER_INLINE double of_bits(uint64_t b)
   return x;
 }
 
-/* ln 2 in two parts, ln2_hi with its last 21 bits zero: k ln2_hi is exact
- * for |k| < 2^11. */
-#define LN2_HI 6.93147180369123816490e-01
-#define LN2_LO 1.90821492927058770002e-10
+/* ln 2 = LN2_HI + LN2_LO: LN2_HI is ln 2 rounded to a 29-bit significand,
+ * so k LN2_HI is exact for the |k| < 2^11 of a double's exponents; LN2_LO
+ * the rest, rounded (together within 1.4e-27 of ln 2). */
+#define LN2_HI 0x1.62e42ffp-1
+#define LN2_LO -0x1.718432a1b0e26p-35
 
 /* ln(1 + x): u = 1 + x rounded and its exact error c (1 + x = u + c, by
  * Fast2Sum); u = 2^k m with m in [sqrt(2)/2, sqrt(2)), f = m - 1 (exact);
- * ln(1 + x) = k ln 2 + ln(1 + f) + c/u, ln(1 + f) = f - f^2/2 + s (f^2/2 + R(s)),
- * s = f / (2 + f), R the minimax polynomial of e_log.c (error < 2^-58.45).
- * x = -1: -inf; x < -1 or NaN: NaN; +inf: +inf. */
+ * ln(1 + x) = k ln 2 + ln(1 + f) + c/u. With s = f / (2 + f) (|s| <= 0.172),
+ * ln(1 + f) = 2 atanh(s) = 2s + s R, R = sum_j 2 s^2j / (2j + 1), and since
+ * 2s = f - s f = f - f^2/2 + s f^2/2, ln(1 + f) = f - f^2/2 + s (f^2/2 + R),
+ * the small terms added to f last. R to j = 10: the next term is below
+ * 2 (0.172)^22 / 23 < 2^-58 of f. x = -1: -inf; x < -1 or NaN: NaN; +inf:
+ * +inf. */
 HYPER_INLINE double hyper_log1p(double x)
 {
-  const double Lg1 = 6.666666666666735130e-01, Lg2 = 3.999999999940941908e-01,
-               Lg3 = 2.857142874366239149e-01, Lg4 = 2.222219843214978396e-01,
-               Lg5 = 1.818357216161805012e-01, Lg6 = 1.531383769920937332e-01,
-               Lg7 = 1.479819860511658591e-01;
   const double u = 1.0 + x;
   const double c = x < 1.0 ? x - (u - 1.0) : 1.0 - (u - x);       /* 1 + x - u, exactly */
+  /* m: the mantissa of u scaled into [sqrt(2)/2, sqrt(2)) (0x3fe6a09e:
+   * the high word of sqrt(2)/2), k its exponent */
   const uint64_t b = bits_of(u) + ((uint64_t)(0x3ff00000 - 0x3fe6a09e) << 32);
   const double k = of_bits(0x4330000000000000u | b >> 52) - (0x1p52 + 1023.0);   /* exponent */
   const double f = of_bits((b & 0x000fffffffffffffu) + ((uint64_t)0x3fe6a09e << 32)) - 1.0;
-  const double s = f / (2.0 + f), z = s * s, w = z * z;
-  const double R = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7))) + w * (Lg2 + w * (Lg4 + w * Lg6));
+  const double s = f / (2.0 + f), z = s * s;
+  double R = 2.0 / 21;
+  for (int j = 9; j >= 1; j--)                                     /* Horner in z */
+    R = 2.0 / (2 * j + 1) + z * R;
+  R *= z;
   const double hfsq = 0.5 * f * f;
   const double r = s * (hfsq + R) + (k * LN2_LO + c / u) - hfsq + f + k * LN2_HI;
   return u > 0.0 && u < INFINITY ? r : u == 0.0 ? -INFINITY : u > 0.0 ? u : NAN;
 }
 
 /* exp(x): k = round(x / ln 2) (by adding and taking off 1.5 2^52),
- * r = x - k ln 2 in hi - lo (exact hi), exp(r) = 1 + r + r c / (2 - c) with
- * c = r - r^2 P(r^2) the Remez form of e_exp.c, times 2^k = 2^k1 2^k2
- * (k1 = floor(k/2): each factor normal, one rounding for a subnormal
- * result). x > 710: +inf, x < -746: 0, NaN: NaN. */
+ * r = x - k ln 2 = hi - lo (hi exact), |r| <= 0.347; with
+ * c = r - (r coth(r/2) - 2), exp(r) = 1 + r + r c / (2 - c), the form that
+ * keeps the rounding of the series small; r coth(r/2) - 2 by its Taylor
+ * series, sum_n 2 B_2n r^2n / (2n)! over n = 1 .. 6 (B_2n the Bernoulli
+ * numbers: 1/6, -1/360, 1/15120, -1/604800, 1/23950080, -691/653837184000;
+ * the next term moves exp(r) by less than 2^-58 of it); times 2^k = 2^k1 2^k2 (k1 = floor(k/2):
+ * each factor normal, one rounding for a subnormal result). x > 710: +inf,
+ * x < -746: 0, NaN: NaN. */
 HYPER_INLINE double hyper_exp(double x)
 {
-  const double P1 = 1.66666666666666019037e-01, P2 = -2.77777777770155933842e-03,
-               P3 = 6.61375632143793436117e-05, P4 = -1.65339022054652515390e-06,
-               P5 = 4.13813679705723846039e-08;
   const double big = 0x1.8p52;
   const double xc = x > 710.0 ? 710.0 : x < -746.0 ? -746.0 : x;   /* beyond: inf, 0 */
-  const double k = (xc * 1.44269504088896338700 + big) - big;     /* round(x / ln 2) */
+  const double k = (xc * 0x1.71547652b82fep0 + big) - big;        /* round(x / ln 2) */
   const double hi = xc - k * LN2_HI, lo = k * LN2_LO, r = hi - lo, rr = r * r;
-  const double c = r - rr * (P1 + rr * (P2 + rr * (P3 + rr * (P4 + rr * P5))));
+  const double T = rr * (1.0 / 6 + rr * (-1.0 / 360 + rr * (1.0 / 15120 + rr *
+                   (-1.0 / 604800 + rr * (1.0 / 23950080 + rr * (-691.0 / 653837184000.0))))));
+  const double c = r - T;
   const double y = 1.0 - ((lo - (r * c) / (2.0 - c)) - hi);        /* exp(r) */
   const double k1 = floor(0.5 * k), k2 = k - k1;
   const double s1 = of_bits((bits_of(k1 + big) + 1023) << 52);     /* 2^k1 */

@@ -38,8 +38,8 @@ mpm_sym3 mpm_material_hyper_log(mpm_sym3 a);
 /* exp a of a symmetric a. */
 mpm_sym3 mpm_material_hyper_exp(mpm_sym3 a);
 
-/* ln(1 + x) and exp(x) as the update computes them: the fdlibm algorithms
- * without branches or library calls, so that a loop of points vectorises;
+/* ln(1 + x) and exp(x) as the update computes them: argument reduction and
+ * series without branches or library calls, so that a loop of points vectorises;
  * error below 1 ulp (tests/test_hyper.c measures it). -inf at x = -1, NaN
  * below; exp: +inf above 709.78, 0 below -745.13. */
 double mpm_material_hyper_log1p(double x);
