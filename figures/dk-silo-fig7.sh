@@ -38,12 +38,16 @@ nf=$(($(wc -l < "$run/diagnostics.csv") - 1))
 [ "$f1" -lt "$nf" ] || { echo "dk-silo-fig7.sh: $run has $nf frames, FIG7_FRAMES needs $f1" >&2; exit 1; }
 dy=$("$GRANMPM" info "$run" | awk '$1 == "dy" { print $3; exit }')
 # points within half a unit of each height, every frame of the window: f,h,x,vy
+# (and one file per frame, frames/F.csv, for the fits of single frames)
+mkdir -p "$work/frames"
 echo "f,h,x,vy" > "$work/slices.csv"
 for f in $(seq "$f0" "$f1"); do
   "$GRANMPM" extract "$run" --frame "$f" --fields x,y,vy,state |
-    awk -F, -v f="$f" -v W=$W -v dy="$dy" 'NR > 1 {
+    awk -F, -v f="$f" -v W=$W -v dy="$dy" 'NR == 1 { print "f,h,x,vy" } NR > 1 {
       for (h = 1; h <= 3; h++) { yh = (1 + 0.5 * h) * W
-        if ($2 >= yh - dy / 2 && $2 < yh + dy / 2) printf "%d,%d,%s,%s\n", f, h, $1, $3 } }'
+        if ($2 >= yh - dy / 2 && $2 < yh + dy / 2) printf "%d,%d,%s,%s\n", f, h, $1, $3 } }' \
+    > "$work/frames/$f.csv"
+  tail -n +2 "$work/frames/$f.csv"
 done >> "$work/slices.csv"
 awk -F, -v f0="$f0" -v f1="$f1" 'NR == f0 + 2 { n0 = $11; t0 = $1 } NR == f1 + 2 { n1 = $11; t1 = $1 }
   END { printf "frames %d-%d (t = %.3f-%.3f s): %.1f points leaving a frame\n", f0, f1, t0, t1, (n0 - n1) / (f1 - f0) }' \
@@ -52,8 +56,8 @@ awk -F, -v f0="$f0" -v f1="$f1" 'NR == f0 + 2 { n0 = $11; t0 = $1 } NR == f1 + 2
 awk -F, -v f0="$f0" -v f1="$f1" 'NR >= f0 + 2 && NR <= f1 + 2 { if (NR > f0 + 2) { q = p - $11; s += q; ss += q * q; k++ } p = $11 }
   END { m = s / k; printf "points leaving per frame over the window: mean %.1f, standard deviation %.1f\n", m, sqrt(ss / k - m * m) }' \
   "$run/diagnostics.csv"
-gnuplot -e "data='$work/slices.csv'; f0=$f0; f1=$f1; W=$W; L=$L; d=$d; \
-  table='$work/fits.csv'; ttl='A = $A, W/d = $wd, frames $f0-$f1'; out='$out/$name.png'" \
+gnuplot -e "data='$work/slices.csv'; frames='$work/frames'; f0=$f0; f1=$f1; W=$W; L=$L; d=$d; \
+  table='$work/fits.csv'; ttl='A = $A, W/d = $wd, units of $(awk -v d="$dy" 'BEGIN { print d * 1000 }') mm, frames $f0-$f1'; out='$out/$name.png'" \
   "$src/figures/dk-silo-fig7.gp" 2> "$work/fit.log"
 # B per height: mean and standard deviation over the frames; all heights together
 awk -F, -v d=$d 'NR > 1 && $1 != "all" { h = $2; n[h]++; s[h] += $5; ss[h] += $5 * $5; N++; S += $5; SS += $5 * $5 }
