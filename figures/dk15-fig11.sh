@@ -15,7 +15,9 @@ in=$src/inputs/slug-reduced.conf
 run=${DK15_RUNS:+$DK15_RUNS/slug}
 if [ -z "$run" ]; then
   run=$work/slug
-  OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$granmpm" run "$in" --quiet --output "$run"
+  # once per output directory (scripts/run-once: a finished run is kept)
+  OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$src/scripts/run-once" "$run" "$granmpm" run "$in" --quiet \
+    --output "$run" --set output.checkpoint_wall=300
 fi
 files= titles=
 for t in 0 0.3 0.55 0.6 0.7 3; do

@@ -17,12 +17,12 @@ files= titles=
 for t in 0 2 5; do
   for D in 10 14 18; do
     run=$work/D$D
-    if [ ! -s "$run/diagnostics.csv" ]; then
-      half=$(awk -v d="$D" 'BEGIN { printf "%.10g", d / 200 }')
-      OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$granmpm" run "$src/inputs/silo.conf" --quiet \
-        --output "$run" --set outlet.to="$half" --set stop.mass=0 --set time.t_end=5 \
-        --set time.frame_dt=0.05 "${res[@]}" 2> /dev/null
-    fi
+    half=$(awk -v d="$D" 'BEGIN { printf "%.10g", d / 200 }')
+    # once per output directory (scripts/run-once: a finished run is kept)
+    OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$src/scripts/run-once" "$run" "$granmpm" run \
+      "$src/inputs/silo.conf" --quiet --output "$run" --set outlet.to="$half" --set stop.mass=0 \
+      --set time.t_end=5 --set time.frame_dt=0.05 --set output.checkpoint_wall=300 "${res[@]}" \
+      2> "$work/D$D.log"
     f=$work/D$D-$t.csv
     "$granmpm" extract "$run" --frame $((t * 20)) --fields x,y,gdot_p > "$f"
     files="$files $f"

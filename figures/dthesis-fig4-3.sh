@@ -9,20 +9,14 @@
 set -euo pipefail
 src=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
 export GRANMPM=${GRANMPM:-$src/src/app/granmpm}
-export GRANMPM_BUILDDIR=${GRANMPM_BUILDDIR:-$(cd "$(dirname "$GRANMPM")/../.." && pwd)}
 out=${1:?usage: dthesis-fig4-3.sh OUTDIR}
-[ -x "$GRANMPM_BUILDDIR/verification/ngf1d/ngf1d" ] ||
-  { echo "dthesis-fig4-3.sh: $GRANMPM_BUILDDIR/verification/ngf1d/ngf1d not built (make check builds it)" >&2; exit 1; }
+source "$src/figures/vchute-runs.inc"      # $runs, shared with the other chapter 4 drivers
 work=$out/dthesis-fig4-3.d
-runs=${V8_OUTDIR:-$out/vertical-chute}   # shared with dthesis-fig4-5.sh (V8's case names)
-mkdir -p "$work" "$runs"
-export V8_REUSE=1
+mkdir -p "$work"
 mesh=(--set mesh.nx=80 --set mesh.ny=4 --set mesh.dx=0.0125 --set mesh.dy=0.0125 --set fill.ymax=0.05
       --set fill.ppu=1)                   # a strip 4 units high, as V8 runs it
-"$src/verification/V8-vertical-chute/case" local-80x1 "$runs" "${mesh[@]}" --set material.A=0 &
-"$src/verification/V8-vertical-chute/case" linear-80x1 "$runs" "${mesh[@]}" \
-  --set material.g_sample=linear
-wait
+v8_case local-80x1 "${mesh[@]}" --set material.A=0
+v8_case linear-80x1 "${mesh[@]}" --set material.g_sample=linear
 for c in local-80x1 linear-80x1; do
   cp "$runs/$c-profile.csv" "$runs/$c-ref.csv" "$work/"
 done

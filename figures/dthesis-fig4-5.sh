@@ -9,13 +9,13 @@
 set -euo pipefail
 src=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
 export GRANMPM=${GRANMPM:-$src/src/app/granmpm}
-export GRANMPM_BUILDDIR=${GRANMPM_BUILDDIR:-$(cd "$(dirname "$GRANMPM")/../.." && pwd)}
 out=${1:?usage: dthesis-fig4-5.sh OUTDIR}
+source "$src/figures/vchute-runs.inc"      # $runs, shared with the other chapter 4 drivers
 work=$out/dthesis-fig4-5.d
-export V8_OUTDIR=${V8_OUTDIR:-$out/vertical-chute} V8_REUSE=1
-mkdir -p "$work" "$V8_OUTDIR"
-"$src/verification/V8-vertical-chute/check" || true   # the figure shows the misses too
-cp "$V8_OUTDIR/v8.csv" "$work/"
+mkdir -p "$work"
+v8_runs                                   # the figure shows the misses too
+cat "$runs/check.log"
+cp "$runs/v8.csv" "$work/"
 # v8.csv -> rows "ppe elements rel_disp abs_disp rel_flip abs_flip thesis_rel thesis_abs" per rule
 awk -F, 'NR > 1 { split($1, a, "-"); split(a[2], r, "x")
   # [D-thesis] Table 4.2: absolute errors, same exponents as the relative ones

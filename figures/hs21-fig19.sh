@@ -13,10 +13,12 @@ out=${1:?usage: hs21-fig19.sh OUTDIR}
 work=$out/hs21-fig19.d
 mkdir -p "$work"
 run=$work/silo3d-ngf
-[ -s "$run/diagnostics.csv" ] && grep -q '^2\.4' "$run/diagnostics.csv" ||
-  "$granmpm" run "$src/inputs/silo3d.conf" --quiet --force --output "$run" \
-    --set time.t_end=2.4 --set time.frame_dt=0.05 --set material.model=ngf_hyper \
-    --set material.p_sample=point
+# once per output directory (scripts/run-once: a finished run is kept, an
+# interrupted one goes on from its checkpoint)
+OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} "$src/scripts/run-once" "$run" "$granmpm" run \
+  "$src/inputs/silo3d.conf" --quiet --output "$run" \
+  --set time.t_end=2.4 --set time.frame_dt=0.05 --set material.model=ngf_hyper \
+  --set material.p_sample=point --set output.checkpoint_wall=300
 speed= gdp= titles=
 for t in 0.6 1.2 2.4; do
   f=$(awk -v t="$t" 'BEGIN { printf "%d", t / 0.05 + 0.5 }')
