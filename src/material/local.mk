@@ -2,7 +2,7 @@ noinst_LTLIBRARIES += libmpm_material.la
 libmpm_material_la_SOURCES = src/material/material.c src/material/material.h \
 	src/material/elastic.c src/material/mu_i.c src/material/ngf.c \
 	src/material/density.c src/material/density.h \
-	src/material/hyper.c src/material/hyper.h
+	src/material/hyper.c src/material/hyper.h src/material/hyper_math.h
 
 check_PROGRAMS += tests/test_mu_i tests/test_ngf
 TESTS += tests/test_mu_i tests/test_ngf
