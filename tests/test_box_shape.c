@@ -43,6 +43,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "box.h"
 #include "core/points.h"
 #include "mesh/mesh.h"
 #include "shape/corners.h"
@@ -59,51 +60,6 @@ static double uni(uint64_t *s)
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
   z ^= z >> 31;
   return (double)(z >> 11) * 0x1.0p-53;
-}
-
-/* A set-up mesh of boxes with distinct unit sizes and an offset origin;
- * periodic axes from the bits of per (x: 1, y: 2, z: 4). */
-static mpm_mesh make_box(int nx, int ny, int nz, int per)
-{
-  mpm_mesh m;
-  memset(&m, 0, sizeof m);
-  m.dim = 3;
-  m.nx = nx;
-  m.ny = ny;
-  m.nz = nz;
-  m.x0 = -0.4;
-  m.y0 = 0.25;
-  m.z0 = 0.1;
-  m.dx = 0.13;
-  m.dy = 0.11;
-  m.dz = 0.12;
-  m.periodic_x = per & 1;
-  m.periodic_y = per >> 1 & 1;
-  m.periodic_z = per >> 2 & 1;
-  mpm_err err = {0};
-  ck_assert_msg(mpm_mesh_setup(&m, &err) == MPM_OK, "%s", err.msg);
-  return m;
-}
-
-/* Logical indices of storage node id. */
-static void node_ijk(const mpm_mesh *m, int id, int ijk[3])
-{
-  ijk[0] = id % m->snx;
-  ijk[1] = id / m->snx % m->sny;
-  ijk[2] = id / (m->snx * m->sny);
-}
-
-/* Position of storage node id shifted by whole periods to lie nearest xp. */
-static void node_near(const mpm_mesh *m, int id, const double xp[3], double x[3])
-{
-  int ijk[3];
-  node_ijk(m, id, ijk);
-  mpm_mesh_node_pos(m, ijk[0], ijk[1], ijk[2], x);
-  const int per[3] = {m->periodic_x, m->periodic_y, m->periodic_z};
-  const double len[3] = {m->lx, m->ly, m->lz};
-  for (int d = 0; d < 3; d++)
-    if (per[d])
-      x[d] += len[d] * round((xp[d] - x[d]) / len[d]);
 }
 
 static double det3(const double r[9])
@@ -210,7 +166,7 @@ static int check_invariants(const mpm_mesh *m, const mpm_shape_type *type, const
     for (int l = 0; l < k; l++)
       twice += node[k] == node[l];              /* merged: each node once */
     double xi[3];
-    node_near(m, node[k], xp, xi);
+    box_node_near(m, node[k], xp, xi);
     const double gk[3] = {gx[k], gy[k], gz[k]};
     s0 += S[k];
     for (int a = 0; a < 3; a++) {
@@ -511,7 +467,7 @@ START_TEST(t_box_ugimp_clamped)
     double s0 = 0, gs[3] = {0, 0, 0};
     for (int k = 0; k < n; k++) {
       int ijk[3];
-      node_ijk(&m, node[k], ijk);
+      box_node_ijk(&m, node[k], ijk);
       ck_assert_double_eq_tol(S[k], (ijk[0] == 0 ? 0.75 : 0.25) * 0.25, TOL);
       s0 += S[k];
       for (int d = 0; d < 3; d++)
@@ -557,7 +513,7 @@ START_TEST(t_box_ugimp_periodic)
   int last = 0;
   for (int k = 0; k < n; k++) {
     int ijk[3];
-    node_ijk(&m, node[k], ijk);
+    box_node_ijk(&m, node[k], ijk);
     if (ijk[0] == m.nx - 1) {
       ck_assert_double_eq_tol(S[k], 0.15 * 0.25, TOL);
       last++;

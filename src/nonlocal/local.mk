@@ -27,7 +27,7 @@ tests_test_field_LDADD = libmpm_nonlocal.la libmpm_shape.la libmpm_linalg.la lib
 
 check_PROGRAMS += tests/test_steady
 TESTS += tests/test_steady
-tests_test_steady_SOURCES = tests/test_steady.c
+tests_test_steady_SOURCES = tests/test_steady.c tests/plane.h
 tests_test_steady_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_steady_LDADD = libmpm_nonlocal.la libmpm_linalg.la libmpm_shape.la libmpm_material.la \
 	libmpm_mesh.la libmpm_core.la $(SUITESPARSE_LIBS) $(CHECK_LIBS) -lm

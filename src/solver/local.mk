@@ -5,7 +5,7 @@ libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.
 
 check_PROGRAMS += tests/test_solver
 TESTS += tests/test_solver
-tests_test_solver_SOURCES = tests/test_solver.c tests/sim_config.h
+tests_test_solver_SOURCES = tests/test_solver.c tests/sim_config.h tests/plane.h
 tests_test_solver_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_solver_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
 	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_linalg.la \
@@ -18,7 +18,7 @@ tests_test_threads_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_threads_LDADD = $(tests_test_solver_LDADD)
 check_PROGRAMS += tests/test_silo
 TESTS += tests/test_silo
-tests_test_silo_SOURCES = tests/test_silo.c tests/sim_config.h
+tests_test_silo_SOURCES = tests/test_silo.c tests/sim_config.h tests/plane.h
 tests_test_silo_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_silo_LDADD = libmpm_solver.la libmpm_diag.la libmpm_scenario.la libmpm_bc.la \
 	libmpm_nonlocal.la libmpm_material.la libmpm_shape.la libmpm_mesh.la libmpm_linalg.la \
