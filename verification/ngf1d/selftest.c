@@ -69,9 +69,9 @@ static void order(tally *t, const char *name, ngf1d_problem pb, int n0, int leve
   }
   char label[96];
   for (int k = levels - 2; k < levels && ok; k++) {
-    snprintf(label, sizeof label, "%s: order of g, n = %d..%d", name, n0 << (k - 1), n0 << (k + 1));
+    snprintf(label, sizeof label, "%s: order of g, n = %d..%d", name, n0 << (k - 2), n0 << k);
     report(t, label, log2(eg[k - 1] / eg[k]), 1.9, 2.1);
-    snprintf(label, sizeof label, "%s: order of v, n = %d..%d", name, n0 << (k - 1), n0 << (k + 1));
+    snprintf(label, sizeof label, "%s: order of v, n = %d..%d", name, n0 << (k - 2), n0 << k);
     report(t, label, log2(ev[k - 1] / ev[k]), 1.9, 2.1);
   }
   if (!ok)
