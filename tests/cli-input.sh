@@ -102,6 +102,23 @@ check_bad long-line "granmpm: $tmp/long.conf:2: a line of 4194311 characters (al
   "$tmp/long.conf"
 [ $(($(date +%s) - start)) -le 5 ] || fail "unclosed \${ and a long line: $(($(date +%s) - start)) s"
 
+# A huge 3D fill is refused at once: the point count went through every row
+# of sub-cells of the box (4 x 4000 x 4000 units at 8 points a side: 1e9
+# rows, minutes), now through one slice across the fill's gate axis. Under
+# timeout, so that it cannot hang the suite.
+count=$((count + 1))
+start=$(date +%s)
+timeout 60 "$GRANMPM" check "$srcdir/inputs/silo3d.conf" --set mesh.nx=4 --set mesh.ny=4000 \
+  --set mesh.nz=4000 --set fill.grains.xmax=0.04 --set fill.grains.ymax=40 \
+  --set fill.grains.zmax=40 --set fill.grains.ppu=8 --set outlet.to=0.02 >"$tmp/out" 2>"$tmp/err"
+st=$?
+took=$(($(date +%s) - start))
+case "$st $(cat "$tmp/err")" in
+  "2 granmpm: --set 'fill.grains.ppu=8': key 'fill.grains.ppu': the run needs about "*" bytes of memory (32768000000 points, 80040005 nodes), more than the "*) ;;
+  *) fail "huge 3D fill: exit $st"; cat "$tmp/err" ;;
+esac
+[ "$took" -le 2 ] || fail "huge 3D fill: check took $took s"
+
 # The file itself is the problem.
 check_bad missing "granmpm: $tmp/missing.conf: cannot open input file: No such file or directory" \
   "$tmp/missing.conf"
