@@ -10,14 +10,15 @@
 # memory and free space); the hostile ones give it from `run` too, which
 # then writes nothing. So must a missing file, a directory, a file with a NUL byte,
 # bad --set arguments, a line too long and a text of unclosed "${" (in
-# linear time). Good inputs (tests/inputs/good and the shipped inputs/) exit
+# linear time), and an output directory the run cannot write. Good inputs (tests/inputs/good and the shipped inputs/) exit
 # 0, and the resolved input they print is itself an input that checks and
 # prints the same.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/cli-input.XXXXXX") || exit 99
-trap 'rm -rf "$tmp"' EXIT INT TERM
+mnt=""
+trap 'if [ -n "$mnt" ]; then umount "$mnt"; fi; rm -rf "$tmp"' EXIT INT TERM
 fails=0
 count=0
 
@@ -118,6 +119,54 @@ case "$st $(cat "$tmp/err")" in
   *) fail "huge 3D fill: exit $st"; cat "$tmp/err" ;;
 esac
 [ "$took" -le 2 ] || fail "huge 3D fill: check took $took s"
+
+# An output directory the run cannot write is refused by check as by run
+# (exit 2, before anything is written; check used to pass it and run failed
+# with exit 1), and trying it leaves nothing behind: a file (/etc/passwd as
+# the audit found it), a path through a file, a read-only directory (mode 555
+# for a user; a read-only tmpfs for root, who may write in any mode, when it
+# may mount one), named from --output and from the input's output.dir.
+good="$srcdir/tests/inputs/good/minimal.conf"
+allowed="(allowed: a directory that can be created, or one this user may write in)"
+printf 'x\n' >"$tmp/file"
+for cmd in check run; do
+  check_bad "$cmd --output FILE" "granmpm: output directory '$tmp/file': the run cannot write its output there: it is not a directory $allowed" \
+    "$good" --output "$tmp/file"
+  check_bad "$cmd --output FILE/x" "granmpm: output directory '$tmp/file/x': the run cannot write its output there: Not a directory $allowed" \
+    "$good" --output "$tmp/file/x"
+done
+cmd=check
+check_bad "check --output /etc/passwd" "granmpm: output directory '/etc/passwd': the run cannot write its output there: it is not a directory $allowed" \
+  "$good" --output /etc/passwd
+{ cat "$good"; printf 'output {\n  dir = "%s"\n}\n' "$tmp/file"; } >"$tmp/outfile.conf"
+check_bad "output.dir a file" "granmpm: $tmp/outfile.conf:19: key 'output.dir': the run cannot write its output in '$tmp/file': it is not a directory $allowed" \
+  "$tmp/outfile.conf"
+ro=""
+if [ "$(id -u)" -ne 0 ]; then
+  mkdir "$tmp/ro" && chmod 555 "$tmp/ro" && ro=$tmp/ro
+  why="Permission denied"
+elif mkdir "$tmp/ro" && mount -t tmpfs -o ro,size=20m granmpm-ro "$tmp/ro" 2>/dev/null; then
+  ro=$tmp/ro
+  mnt=$ro
+  why="Read-only file system"
+fi
+if [ -n "$ro" ]; then
+  for cmd in check run; do
+    check_bad "$cmd --output read-only" "granmpm: output directory '$ro': the run cannot write its output there: cannot create a file in it: $why $allowed" \
+      "$good" --output "$ro"
+    check_bad "$cmd --output read-only/new" "granmpm: output directory '$ro/new': the run cannot write its output there: cannot create a directory in '$ro': $why $allowed" \
+      "$good" --output "$ro/new"
+  done
+  cmd=check
+  [ "$(id -u)" -ne 0 ] && chmod 755 "$ro"
+  if [ -n "$mnt" ]; then umount "$mnt" && mnt=""; fi
+else
+  echo "SKIP read-only output directory: neither a user nor able to mount a tmpfs"
+fi
+count=$((count + 1))
+"$GRANMPM" check "$good" --output "$tmp/new/run" >/dev/null 2>"$tmp/err" || fail "check --output NEW: $(cat "$tmp/err")"
+[ -e "$tmp/new" ] && fail "check --output NEW created it"
+[ -z "$(find "$tmp" -name '.granmpm-check-*')" ] || fail "check left its try of the output behind"
 
 # The file itself is the problem.
 check_bad missing "granmpm: $tmp/missing.conf: cannot open input file: No such file or directory" \

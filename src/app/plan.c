@@ -6,11 +6,13 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/plan.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -188,6 +190,80 @@ static int check_size(mpm_app_plan *p)
   return 0;
 }
 
+/* Whether the run can write in dir as it will (io/output.c: the directory
+ * and its missing parents created, then files created in it), tried without
+ * leaving anything: a file made and removed in dir, or, when dir does not
+ * exist yet, a directory made and removed in its nearest existing parent.
+ * 0, or -1 with why in buf. */
+static int try_output(const char *dir, char *buf, size_t len)
+{
+  struct stat st;
+  char path[MPM_PATH_MAX + 32];
+  if (stat(dir, &st) == 0) {
+    if (!S_ISDIR(st.st_mode)) {
+      snprintf(buf, len, "it is not a directory");
+      return -1;
+    }
+    snprintf(path, sizeof path, "%s/.granmpm-check-XXXXXX", dir);
+    const int fd = mkstemp(path);
+    if (fd < 0) {
+      snprintf(buf, len, "cannot create a file in it: %s", strerror(errno));
+      return -1;
+    }
+    close(fd);
+    unlink(path);
+    return 0;
+  }
+  if (errno != ENOENT) {
+    snprintf(buf, len, "%s", strerror(errno));
+    return -1;
+  }
+  char parent[MPM_PATH_MAX];              /* the nearest existing parent */
+  snprintf(parent, sizeof parent, "%s", dir);
+  for (;;) {
+    char *slash = strrchr(parent, '/');
+    while (slash && slash > parent && slash[-1] == '/')
+      slash--;
+    if (!slash)
+      snprintf(parent, sizeof parent, ".");
+    else if (slash == parent)
+      snprintf(parent, sizeof parent, "/");
+    else
+      *slash = '\0';
+    if (stat(parent, &st) == 0 || errno != ENOENT || !slash || strcmp(parent, "/") == 0)
+      break;
+  }
+  if (stat(parent, &st) != 0 || !S_ISDIR(st.st_mode)) {
+    snprintf(buf, len, "its parent '%s' is %s", parent,
+             stat(parent, &st) != 0 ? strerror(errno) : "not a directory");
+    return -1;
+  }
+  snprintf(path, sizeof path, "%s/.granmpm-check-XXXXXX", parent);
+  if (!mkdtemp(path)) {
+    snprintf(buf, len, "cannot create a directory in '%s': %s", parent, strerror(errno));
+    return -1;
+  }
+  rmdir(path);
+  return 0;
+}
+
+/* The output directory can be written as the run will write it: from the
+ * input (output.dir, named by its line) or from the command line. */
+static int check_output(mpm_app_plan *p, int given)
+{
+  char why[MPM_PATH_MAX + 160];
+  const char *dir = p->cfg.output.dir;
+  if (try_output(dir, why, sizeof why) == 0)
+    return 0;
+  if (!given)
+    return fail(p, "output.dir", "the run cannot write its output in '%s': %s (allowed: a "
+                "directory that can be created, or one this user may write in)", dir, why);
+  fprintf(stderr, "granmpm: output directory '%s': the run cannot write its output there: %s "
+          "(allowed: a directory that can be created, or one this user may write in)\n", dir,
+          why);
+  return MPM_APP_EXIT_USAGE;
+}
+
 int mpm_app_plan_load(mpm_app_plan *p, const char *file, const char *text,
                       const char *const *sets, int nset, const char *outdir)
 {
@@ -213,6 +289,8 @@ int mpm_app_plan_load(mpm_app_plan *p, const char *file, const char *text,
     st = check_time(p);
   if (st == 0)
     st = check_size(p);
+  if (st == 0)
+    st = check_output(p, outdir != NULL);
   return st;
 }
 

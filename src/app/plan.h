@@ -2,7 +2,8 @@
  * same code for all three so that they never disagree: the input loaded
  * and checked, the run's size estimated and weighed against the machine
  * (available memory, free space where the output goes), the time step
- * against the stable one, and the simulation built (the fills included).
+ * against the stable one, the output directory tried as the run will write
+ * it, and the simulation built (the fills included).
  * Every error at this stage names the file, line and key. */
 #ifndef MPM_APP_PLAN_H
 #define MPM_APP_PLAN_H
@@ -25,7 +26,7 @@ typedef struct mpm_app_plan {
 
 /* Load the input (file, or text named file when text is not NULL) with the
  * --set overrides, put the output in outdir (NULL: the input's), and check
- * the fills, the time step and the size. Returns 0, or the exit status
+ * the fills, the time step, the size and that the output can be written. Returns 0, or the exit status
  * after printing the one error line. */
 int mpm_app_plan_load(mpm_app_plan *p, const char *file, const char *text,
                       const char *const *sets, int nset, const char *outdir);
