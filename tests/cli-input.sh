@@ -223,6 +223,22 @@ grep -qx "# size: 1600 points, 1586 nodes, 56840 steps of 5.27799e-05 s (stable:
   grep -q "^# estimated memory .* MB (.* available), output .* MB (.* free where it goes)\$" "$tmp/out" ||
   { fail "the size of the example"; grep '^# ' "$tmp/out"; }
 
+# check estimates the run time (steps x substeps x points at the rates of
+# scripts/bench, solver/plan.c) and warns above a day on one thread:
+# material.n_sub = 1e6 used to pass silently (133 days for the example).
+count=$((count + 1))
+grep -q "^# estimated run time 19 s on one thread (56840 steps x 1 substeps x 1600 points; docs/input-reference.md, \"The size of a run\")\$" "$tmp/out" ||
+  { fail "the run time of the example"; grep '^# ' "$tmp/out"; }
+count=$((count + 1))
+"$GRANMPM" check "$srcdir/inputs/example.conf" --set material.n_sub=1000000 >"$tmp/out" 2>"$tmp/err"
+st=$?
+want="granmpm: warning: $srcdir/inputs/example.conf: the run would take about 133 days on one thread (56840 steps x 1e+06 substeps x 1600 points; more than a day) (key 'material.n_sub')"
+if [ "$st" -ne 0 ] || ! grep -q "^# estimated run time 133 days on one thread" "$tmp/out" ||
+   [ "$(cat "$tmp/err")" != "$want" ]; then
+  fail "n_sub = 1e6: exit $st, stderr '$(cat "$tmp/err")'"
+  echo "  want: $want"
+fi
+
 # Good inputs: exit 0, and the printed input reads back to the same.
 for f in "$srcdir"/tests/inputs/good/*.conf "$srcdir"/inputs/*.conf; do
   [ -f "$f" ] || continue

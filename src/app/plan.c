@@ -315,6 +315,24 @@ static void human(double b, char *buf, size_t len)
   snprintf(buf, len, k ? "%.3g %s" : "%.0f %s", b, unit[k]);
 }
 
+/* seconds as "45 s", "3.2 min", "5.1 h", "137 days" or "12 years" */
+static void duration(double s, char *buf, size_t len)
+{
+  if (s < 60.0)
+    snprintf(buf, len, "%.2g s", s);
+  else if (s < 3600.0)
+    snprintf(buf, len, "%.2g min", s / 60.0);
+  else if (s < 86400.0)
+    snprintf(buf, len, "%.2g h", s / 3600.0);
+  else if (s < 365.0 * 86400.0)
+    snprintf(buf, len, "%.3g days", s / 86400.0);
+  else
+    snprintf(buf, len, "%.3g years", s / (365.0 * 86400.0));
+}
+
+/* Above this estimated run time on one thread a run gets a warning. */
+#define LONG_RUN_SECONDS 86400.0
+
 void mpm_app_plan_print(const mpm_app_plan *p, FILE *f)
 {
   const mpm_sim_size *z = &p->size;
@@ -328,13 +346,37 @@ void mpm_app_plan_print(const mpm_app_plan *p, FILE *f)
           z->dt_stable, z->n_sub, z->frames);
   fprintf(f, "# estimated memory %s (%s available), output %s (%s free where it goes)\n", mem,
           p->mem_avail >= 0.0 ? avail : "unknown", out, p->disk_free >= 0.0 ? free_ : "unknown");
+  char when[32];
+  duration(z->seconds, when, sizeof when);
+  fprintf(f, "# estimated run time %s on one thread (%.6g steps x %.6g substeps x %zu points; "
+          "docs/input-reference.md, \"The size of a run\")\n", when, z->steps, z->n_sub,
+          z->points);
 }
 
-/* A nonlocal model whose explicit diffusion of g is unstable at the planned
- * time step and substeps: a warning on stderr, not an error (MODEL.md section
- * 5). The implicit diffusion has no such limit. */
+/* A run estimated to take more than a day on one thread: a warning naming
+ * the key that makes it long (the substeps when they take most of it). */
+static void warn_long(const mpm_app_plan *p)
+{
+  const mpm_sim_size *z = &p->size;
+  if (!(z->seconds > LONG_RUN_SECONDS))
+    return;
+  char when[32];
+  duration(z->seconds, when, sizeof when);
+  const char *key = 2.0 * z->sub_seconds < z->seconds ? "time.t_end"
+                    : p->cfg.material.dt_sub > 0.0    ? "material.dt_sub"
+                                                      : "material.n_sub";
+  fprintf(stderr, "granmpm: warning: %s: the run would take about %s on one thread (%.6g "
+          "steps x %.6g substeps x %zu points; more than a day) (key '%s')\n", p->file, when,
+          z->steps, z->n_sub, z->points, key);
+}
+
+/* Warnings on stderr, not errors: a run estimated to take more than a day
+ * on one thread; a nonlocal model whose explicit diffusion of g is unstable
+ * at the planned time step and substeps (MODEL.md section 5; the implicit
+ * diffusion has no such limit). */
 void mpm_app_plan_warn(const mpm_app_plan *p)
 {
+  warn_long(p);
   const mpm_config *cfg = &p->cfg;
   const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
   const mpm_nonlocal_diffusion *d = mpm_nonlocal_diffusion_name(cfg->material.diffusion)

@@ -37,7 +37,8 @@ int mpm_app_plan_build(mpm_app_plan *p);
 /* The size of the run, as comment lines of an input file. */
 void mpm_app_plan_print(const mpm_app_plan *p, FILE *f);
 
-/* A warning on stderr when an explicit NGF diffusion is unstable. */
+/* Warnings on stderr: a run estimated to take more than a day on one
+ * thread, an explicit NGF diffusion that is unstable. */
 void mpm_app_plan_warn(const mpm_app_plan *p);
 
 void mpm_app_plan_free(mpm_app_plan *p);  /* the simulation and the input */

@@ -151,6 +151,8 @@ typedef struct mpm_sim_size {
   double memory;                     /* memory the run holds at its peak [bytes], estimate */
   double output;                     /* bytes written: run.h5, run.xdmf, diagnostics.csv,
                                         checkpoint.h5 (with its temporary copy), estimate */
+  double seconds;                    /* run time on one thread, estimate (plan.c) */
+  double sub_seconds;                /* ... of it, the substeps beyond the first */
 } mpm_sim_size;
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
