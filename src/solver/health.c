@@ -77,17 +77,34 @@ double mpm_sim_g_max(const mpm_sim *s)
   return MPM_SIM_G_DT_MAX / s->dt;
 }
 
-/* 1 if the sum over k < nv of v[k][p] is not finite for a p of [a, b). */
-static int sum_bad(const double *const *v, int nv, size_t a, size_t b)
-{
-  int bad = 0;
-  for (size_t p = a; p < b; p++) {
-    double t = 0.0;
-    for (int k = 0; k < nv; k++)
-      t += v[k][p];
-    bad |= !isfinite(t);
+/* 1 if the sum over k < NV of v[k][p] is not finite for a p of [a, b): NV a
+ * constant (4 or 9, a tensor's components in the plane or in 3D), so that
+ * the sum is unrolled and the loop over the points vectorises. */
+#define SUM_BAD(NV)                                                                   \
+  static int sum##NV##_bad(const double *const *v, size_t a, size_t b)                \
+  {                                                                                   \
+    int bad = 0;                                                                      \
+    for (size_t p = a; p < b; p++) {                                                  \
+      double t = 0.0;                                                                 \
+      for (int k = 0; k < NV; k++)                                                    \
+        t += v[k][p];                                                                 \
+      bad |= !(t - t == 0.0);                                                         \
+    }                                                                                 \
+    return bad;                                                                       \
   }
-  return bad;
+SUM_BAD(4)
+SUM_BAD(9)
+#undef SUM_BAD
+
+/* The D x D components of a tensor field t[i][j] bad somewhere in [a, b). */
+static int tensor_bad(double *const t[3][3], int D, size_t a, size_t b)
+{
+  const double *v[9];
+  int nv = 0;
+  for (int i = 0; i < D; i++)
+    for (int j = 0; j < D; j++)
+      v[nv++] = t[i][j];
+  return D == 3 ? sum9_bad(v, a, b) : sum4_bad(v, a, b);
 }
 
 int mpm_sim_updated_bad(const mpm_sim *s, size_t a, size_t b)
@@ -116,26 +133,11 @@ int mpm_sim_updated_bad(const mpm_sim *s, size_t a, size_t b)
   if (bad)
     return 1;
   const int D = s->dim;
-  const double *v[18];
-  int nv = 0;
-  if (P->defgrad)
-    for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++) {
-        v[nv++] = P->F[i][j];
-        v[nv++] = P->Fp[i][j];
-      }
-  if (nv && sum_bad(v, nv, a, b))
+  if (P->defgrad && (tensor_bad(P->F, 3, a, b) || tensor_bad(P->Fp, 3, a, b)))
     return 1;
-  nv = 0;
-  if (s->shape->convect)
-    for (int k = 0; k < D; k++)
-      for (int d = 0; d < D; d++)
-        v[nv++] = P->ext[k][d];
-  if (s->cfg.time.transfer == MPM_TRANSFER_APIC)
-    for (int i = 0; i < D; i++)
-      for (int j = 0; j < D; j++)
-        v[nv++] = P->aff[i][j];
-  return nv && sum_bad(v, nv, a, b);
+  if (s->shape->convect && tensor_bad(P->ext, D, a, b))
+    return 1;
+  return s->cfg.time.transfer == MPM_TRANSFER_APIC && tensor_bad(P->aff, D, a, b);
 }
 
 /* A field of the point store, for the diagnosis. */
