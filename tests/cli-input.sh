@@ -10,14 +10,15 @@
 # memory and free space); the hostile ones give it from `run` too, which
 # then writes nothing. So must a missing file, a directory, a file with a NUL byte,
 # bad --set arguments, a line too long and a text of unclosed "${" (in
-# linear time). Good inputs (tests/inputs/good and the shipped inputs/) exit
+# linear time), and an output directory the run cannot write. Good inputs (tests/inputs/good and the shipped inputs/) exit
 # 0, and the resolved input they print is itself an input that checks and
 # prints the same.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/cli-input.XXXXXX") || exit 99
-trap 'rm -rf "$tmp"' EXIT INT TERM
+mnt=""
+trap 'if [ -n "$mnt" ]; then umount "$mnt"; fi; rm -rf "$tmp"' EXIT INT TERM
 fails=0
 count=0
 
@@ -102,6 +103,71 @@ check_bad long-line "granmpm: $tmp/long.conf:2: a line of 4194311 characters (al
   "$tmp/long.conf"
 [ $(($(date +%s) - start)) -le 5 ] || fail "unclosed \${ and a long line: $(($(date +%s) - start)) s"
 
+# A huge 3D fill is refused at once: the point count went through every row
+# of sub-cells of the box (4 x 4000 x 4000 units at 8 points a side: 1e9
+# rows, minutes), now through one slice across the fill's gate axis. Under
+# timeout, so that it cannot hang the suite.
+count=$((count + 1))
+start=$(date +%s)
+timeout 60 "$GRANMPM" check "$srcdir/inputs/silo3d.conf" --set mesh.nx=4 --set mesh.ny=4000 \
+  --set mesh.nz=4000 --set fill.grains.xmax=0.04 --set fill.grains.ymax=40 \
+  --set fill.grains.zmax=40 --set fill.grains.ppu=8 --set outlet.to=0.02 >"$tmp/out" 2>"$tmp/err"
+st=$?
+took=$(($(date +%s) - start))
+case "$st $(cat "$tmp/err")" in
+  "2 granmpm: --set 'fill.grains.ppu=8': key 'fill.grains.ppu': the run needs about "*" bytes of memory (32768000000 points, 80040005 nodes), more than the "*) ;;
+  *) fail "huge 3D fill: exit $st"; cat "$tmp/err" ;;
+esac
+[ "$took" -le 2 ] || fail "huge 3D fill: check took $took s"
+
+# An output directory the run cannot write is refused by check as by run
+# (exit 2, before anything is written; check used to pass it and run failed
+# with exit 1), and trying it leaves nothing behind: a file (/etc/passwd as
+# the audit found it), a path through a file, a read-only directory (mode 555
+# for a user; a read-only tmpfs for root, who may write in any mode, when it
+# may mount one), named from --output and from the input's output.dir.
+good="$srcdir/tests/inputs/good/minimal.conf"
+allowed="(allowed: a directory that can be created, or one this user may write in)"
+printf 'x\n' >"$tmp/file"
+for cmd in check run; do
+  check_bad "$cmd --output FILE" "granmpm: output directory '$tmp/file': the run cannot write its output there: it is not a directory $allowed" \
+    "$good" --output "$tmp/file"
+  check_bad "$cmd --output FILE/x" "granmpm: output directory '$tmp/file/x': the run cannot write its output there: Not a directory $allowed" \
+    "$good" --output "$tmp/file/x"
+done
+cmd=check
+check_bad "check --output /etc/passwd" "granmpm: output directory '/etc/passwd': the run cannot write its output there: it is not a directory $allowed" \
+  "$good" --output /etc/passwd
+{ cat "$good"; printf 'output {\n  dir = "%s"\n}\n' "$tmp/file"; } >"$tmp/outfile.conf"
+check_bad "output.dir a file" "granmpm: $tmp/outfile.conf:19: key 'output.dir': the run cannot write its output in '$tmp/file': it is not a directory $allowed" \
+  "$tmp/outfile.conf"
+ro=""
+if [ "$(id -u)" -ne 0 ]; then
+  mkdir "$tmp/ro" && chmod 555 "$tmp/ro" && ro=$tmp/ro
+  why="Permission denied"
+elif mkdir "$tmp/ro" && mount -t tmpfs -o ro,size=20m granmpm-ro "$tmp/ro" 2>/dev/null; then
+  ro=$tmp/ro
+  mnt=$ro
+  why="Read-only file system"
+fi
+if [ -n "$ro" ]; then
+  for cmd in check run; do
+    check_bad "$cmd --output read-only" "granmpm: output directory '$ro': the run cannot write its output there: cannot create a file in it: $why $allowed" \
+      "$good" --output "$ro"
+    check_bad "$cmd --output read-only/new" "granmpm: output directory '$ro/new': the run cannot write its output there: cannot create a directory in '$ro': $why $allowed" \
+      "$good" --output "$ro/new"
+  done
+  cmd=check
+  [ "$(id -u)" -ne 0 ] && chmod 755 "$ro"
+  if [ -n "$mnt" ]; then umount "$mnt" && mnt=""; fi
+else
+  echo "SKIP read-only output directory: neither a user nor able to mount a tmpfs"
+fi
+count=$((count + 1))
+"$GRANMPM" check "$good" --output "$tmp/new/run" >/dev/null 2>"$tmp/err" || fail "check --output NEW: $(cat "$tmp/err")"
+[ -e "$tmp/new" ] && fail "check --output NEW created it"
+[ -z "$(find "$tmp" -name '.granmpm-check-*')" ] || fail "check left its try of the output behind"
+
 # The file itself is the problem.
 check_bad missing "granmpm: $tmp/missing.conf: cannot open input file: No such file or directory" \
   "$tmp/missing.conf"
@@ -156,6 +222,22 @@ count=$((count + 1))
 grep -qx "# size: 1600 points, 1586 nodes, 56840 steps of 5.27799e-05 s (stable: 0.00010556 s), 1 substeps per step, at most 152 frames" "$tmp/out" &&
   grep -q "^# estimated memory .* MB (.* available), output .* MB (.* free where it goes)\$" "$tmp/out" ||
   { fail "the size of the example"; grep '^# ' "$tmp/out"; }
+
+# check estimates the run time (steps x substeps x points at the rates of
+# scripts/bench, solver/plan.c) and warns above a day on one thread:
+# material.n_sub = 1e6 used to pass silently (133 days for the example).
+count=$((count + 1))
+grep -q "^# estimated run time 19 s on one thread (56840 steps x 1 substeps x 1600 points; docs/input-reference.md, \"The size of a run\")\$" "$tmp/out" ||
+  { fail "the run time of the example"; grep '^# ' "$tmp/out"; }
+count=$((count + 1))
+"$GRANMPM" check "$srcdir/inputs/example.conf" --set material.n_sub=1000000 >"$tmp/out" 2>"$tmp/err"
+st=$?
+want="granmpm: warning: $srcdir/inputs/example.conf: the run would take about 133 days on one thread (56840 steps x 1e+06 substeps x 1600 points; more than a day) (key 'material.n_sub')"
+if [ "$st" -ne 0 ] || ! grep -q "^# estimated run time 133 days on one thread" "$tmp/out" ||
+   [ "$(cat "$tmp/err")" != "$want" ]; then
+  fail "n_sub = 1e6: exit $st, stderr '$(cat "$tmp/err")'"
+  echo "  want: $want"
+fi
 
 # Good inputs: exit 0, and the printed input reads back to the same.
 for f in "$srcdir"/tests/inputs/good/*.conf "$srcdir"/inputs/*.conf; do

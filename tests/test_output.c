@@ -826,7 +826,7 @@ START_TEST(t_reopen_truncates)
   ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 2);
   free(x);
   write_frame(out, 2);
-  ck_assert_int_eq(mpm_io_output_end(out, "finished", &err), MPM_OK);
+  ck_assert_int_eq(mpm_io_output_end(out, "finished", NULL, &err), MPM_OK);
   ck_assert_int_eq(mpm_io_output_close(out, &err), MPM_OK);
   ck_assert_msg(extract(dir, 2, NULL, &t, &err) == MPM_OK, "%s", err.msg);
   check_table(t.buf, 2, all_fields, NALL);
@@ -848,6 +848,7 @@ START_TEST(t_reopen_truncates)
   ck_assert_int_eq(p.threads, 3);
   ck_assert_int_eq(p.resumed, 1);
   ck_assert_str_eq(p.status, "finished");
+  ck_assert_str_eq(p.failure, "");
   ck_assert_msg(strstr(p.resume_log, " threads=2: granmpm resume x\n"), "%s", p.resume_log);
   ck_assert_int_eq((int)strlen(p.start_time), 20);                 /* 2025-01-31T12:00:00Z */
   ck_assert_int_eq((int)strlen(p.end_time), 20);

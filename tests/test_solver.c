@@ -1102,6 +1102,54 @@ START_TEST(t_health_messages)
 }
 END_TEST
 
+/* Every field the step writes is looked at after each update, not only once
+ * a speed trips (the fluidity of an unstable diffusion of g grew to inf, or
+ * to 1e33 in 3D, and the run "finished"): a plastic shear rate that is not
+ * finite, a volume that is not positive, a stress beyond 1e300 are found by
+ * mpm_sim_updated_bad and named by mpm_sim_check_state; |g| dt beyond
+ * MPM_SIM_G_DT_MAX is absurd. A wrong value that the step overwrites
+ * before it looks (gdot_p of the elastic model) is no failure. */
+START_TEST(t_health_every_field)
+{
+  mpm_config c;
+  base_config(&c, 2, 1, 0.0, 0.0);
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_int_eq(mpm_sim_create(&s, &c, &err), MPM_OK);
+  mpm_points *P = s->pts;
+  ck_assert_int_eq(mpm_sim_updated_bad(s, 0, P->n), 0);
+  P->gdp[0] = NAN;
+  ck_assert_int_eq(mpm_sim_updated_bad(s, 0, P->n), 1);
+  ck_assert_int_eq(mpm_sim_check_state(s, 0.5, &err), MPM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "point 0: plastic shear rate gdot_p = nan 1/s at (0.05, 0.05) m, "
+                       "t = 0.5 s: the plastic shear rate is not finite"), "%s", err.msg);
+  P->gdp[0] = 0.0;
+  P->vol[0] = -1e-3;
+  ck_assert_int_eq(mpm_sim_updated_bad(s, 0, P->n), 1);
+  ck_assert_int_eq(mpm_sim_check_state(s, 0.5, &err), MPM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "point 0: volume = -0.001 m^2") &&
+                strstr(err.msg, "the volume is not positive"), "%s", err.msg);
+  P->vol[0] = 1e-2;
+  P->syy[0] = P->sxx[0] = 1.7e308;                 /* their sum overflows */
+  ck_assert_int_eq(mpm_sim_updated_bad(s, 0, P->n), 1);
+  ck_assert_int_eq(mpm_sim_check_state(s, 0.5, &err), MPM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "point 0: stress sxx = 1.7e+308 Pa") &&
+                strstr(err.msg, "the stress is absurd: beyond 1e+300 in magnitude"), "%s",
+                err.msg);
+  P->syy[0] = P->sxx[0] = 0.0;
+  P->g[0] = 2.0 * mpm_sim_g_max(s);                /* named by the full check */
+  ck_assert_int_eq(mpm_sim_check_state(s, 0.5, &err), MPM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "point 0: fluidity g = 2e+07 1/s") &&
+                strstr(err.msg, "the fluidity is absurd: |g| dt = 2e+03 > 1000 with dt = 0.0001 s"),
+                "%s", err.msg);
+  P->g[0] = 0.0;
+  ck_assert_int_eq(mpm_sim_check_state(s, 0.5, &err), MPM_OK);
+  P->gdp[1] = INFINITY;                            /* overwritten by the step: no failure */
+  ck_assert_int_eq(mpm_sim_step(s, &err), MPM_OK);
+  mpm_sim_free(s);
+}
+END_TEST
+
 /* Run-driver hooks counting frames and checkpoints, stopping on request
  * after a given number of steps. */
 typedef struct counter {
@@ -1265,6 +1313,7 @@ int main(void)
   tcase_add_test(tc, t_ngf_point_leaves_mesh);
   tcase_add_test(tc, t_light_node_body_force_only);
   tcase_add_test(tc, t_health_messages);
+  tcase_add_test(tc, t_health_every_field);
   tcase_add_test(tc, t_restart_bitwise);
   tcase_add_test(tc, t_checkpoint_wall);
   suite_add_tcase(su, tc);

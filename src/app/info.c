@@ -1,8 +1,8 @@
 /* info.c: `granmpm info DIR`: where a run came from and how it stands, from
  * the attributes of DIR/run.h5 and DIR/checkpoint.h5 (io.h,
  * mpm_io_run_provenance): program version and source revision, command
- * line, host, threads, start and end, status, resumptions, frames, the
- * checkpoint, and the resolved input. With --status, the status alone (one
+ * line, host, threads, start and end, status (and why a failed run
+ * failed), resumptions, frames, the checkpoint, and the resolved input. With --status, the status alone (one
  * word, for scripts: finished, stopped, failed, running). */
 #include "app/info.h"
 
@@ -26,6 +26,8 @@ static void print_info(const char *dir, const mpm_io_provenance *p, FILE *f)
     fprintf(f, " (continue with: granmpm resume %s)", dir);
   else if (strcmp(p->status, "running") == 0)
     fprintf(f, " (or killed before its first checkpoint)");
+  if (p->failure[0])
+    fprintf(f, "\nfailure:    %s", p->failure);
   fprintf(f, "\nprogram:    granmpm %s (revision %s)\n", p->version,
           p->revision[0] ? p->revision : "unknown");
   fprintf(f, "command:    %s\n", p->command_line);
@@ -41,7 +43,9 @@ static void print_info(const char *dir, const mpm_io_provenance *p, FILE *f)
     fprintf(f, "  %.*s\n", (int)n, l);
     l += n + (l[n] == '\n');
   }
-  if (p->nframes > 0)
+  if (p->nframes > 0 && p->t_last < 0.0)       /* its time never written: a full disk */
+    fprintf(f, "frames:     %d, the last incomplete (no time recorded)\n", p->nframes);
+  else if (p->nframes > 0)
     fprintf(f, "frames:     %d, the last at t = %.6g s\n", p->nframes, p->t_last);
   else
     fprintf(f, "frames:     0\n");

@@ -6,11 +6,13 @@
 #define _POSIX_C_SOURCE 200809L
 #include "app/plan.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -188,6 +190,80 @@ static int check_size(mpm_app_plan *p)
   return 0;
 }
 
+/* Whether the run can write in dir as it will (io/output.c: the directory
+ * and its missing parents created, then files created in it), tried without
+ * leaving anything: a file made and removed in dir, or, when dir does not
+ * exist yet, a directory made and removed in its nearest existing parent.
+ * 0, or -1 with why in buf. */
+static int try_output(const char *dir, char *buf, size_t len)
+{
+  struct stat st;
+  char path[MPM_PATH_MAX + 32];
+  if (stat(dir, &st) == 0) {
+    if (!S_ISDIR(st.st_mode)) {
+      snprintf(buf, len, "it is not a directory");
+      return -1;
+    }
+    snprintf(path, sizeof path, "%s/.granmpm-check-XXXXXX", dir);
+    const int fd = mkstemp(path);
+    if (fd < 0) {
+      snprintf(buf, len, "cannot create a file in it: %s", strerror(errno));
+      return -1;
+    }
+    close(fd);
+    unlink(path);
+    return 0;
+  }
+  if (errno != ENOENT) {
+    snprintf(buf, len, "%s", strerror(errno));
+    return -1;
+  }
+  char parent[MPM_PATH_MAX];              /* the nearest existing parent */
+  snprintf(parent, sizeof parent, "%s", dir);
+  for (;;) {
+    char *slash = strrchr(parent, '/');
+    while (slash && slash > parent && slash[-1] == '/')
+      slash--;
+    if (!slash)
+      snprintf(parent, sizeof parent, ".");
+    else if (slash == parent)
+      snprintf(parent, sizeof parent, "/");
+    else
+      *slash = '\0';
+    if (stat(parent, &st) == 0 || errno != ENOENT || !slash || strcmp(parent, "/") == 0)
+      break;
+  }
+  if (stat(parent, &st) != 0 || !S_ISDIR(st.st_mode)) {
+    snprintf(buf, len, "its parent '%s' is %s", parent,
+             stat(parent, &st) != 0 ? strerror(errno) : "not a directory");
+    return -1;
+  }
+  snprintf(path, sizeof path, "%s/.granmpm-check-XXXXXX", parent);
+  if (!mkdtemp(path)) {
+    snprintf(buf, len, "cannot create a directory in '%s': %s", parent, strerror(errno));
+    return -1;
+  }
+  rmdir(path);
+  return 0;
+}
+
+/* The output directory can be written as the run will write it: from the
+ * input (output.dir, named by its line) or from the command line. */
+static int check_output(mpm_app_plan *p, int given)
+{
+  char why[MPM_PATH_MAX + 160];
+  const char *dir = p->cfg.output.dir;
+  if (try_output(dir, why, sizeof why) == 0)
+    return 0;
+  if (!given)
+    return fail(p, "output.dir", "the run cannot write its output in '%s': %s (allowed: a "
+                "directory that can be created, or one this user may write in)", dir, why);
+  fprintf(stderr, "granmpm: output directory '%s': the run cannot write its output there: %s "
+          "(allowed: a directory that can be created, or one this user may write in)\n", dir,
+          why);
+  return MPM_APP_EXIT_USAGE;
+}
+
 int mpm_app_plan_load(mpm_app_plan *p, const char *file, const char *text,
                       const char *const *sets, int nset, const char *outdir)
 {
@@ -213,6 +289,8 @@ int mpm_app_plan_load(mpm_app_plan *p, const char *file, const char *text,
     st = check_time(p);
   if (st == 0)
     st = check_size(p);
+  if (st == 0)
+    st = check_output(p, outdir != NULL);
   return st;
 }
 
@@ -237,6 +315,24 @@ static void human(double b, char *buf, size_t len)
   snprintf(buf, len, k ? "%.3g %s" : "%.0f %s", b, unit[k]);
 }
 
+/* seconds as "45 s", "3.2 min", "5.1 h", "137 days" or "12 years" */
+static void duration(double s, char *buf, size_t len)
+{
+  if (s < 60.0)
+    snprintf(buf, len, "%.2g s", s);
+  else if (s < 3600.0)
+    snprintf(buf, len, "%.2g min", s / 60.0);
+  else if (s < 86400.0)
+    snprintf(buf, len, "%.2g h", s / 3600.0);
+  else if (s < 365.0 * 86400.0)
+    snprintf(buf, len, "%.3g days", s / 86400.0);
+  else
+    snprintf(buf, len, "%.3g years", s / (365.0 * 86400.0));
+}
+
+/* Above this estimated run time on one thread a run gets a warning. */
+#define LONG_RUN_SECONDS 86400.0
+
 void mpm_app_plan_print(const mpm_app_plan *p, FILE *f)
 {
   const mpm_sim_size *z = &p->size;
@@ -250,13 +346,37 @@ void mpm_app_plan_print(const mpm_app_plan *p, FILE *f)
           z->dt_stable, z->n_sub, z->frames);
   fprintf(f, "# estimated memory %s (%s available), output %s (%s free where it goes)\n", mem,
           p->mem_avail >= 0.0 ? avail : "unknown", out, p->disk_free >= 0.0 ? free_ : "unknown");
+  char when[32];
+  duration(z->seconds, when, sizeof when);
+  fprintf(f, "# estimated run time %s on one thread (%.6g steps x %.6g substeps x %zu points; "
+          "docs/input-reference.md, \"The size of a run\")\n", when, z->steps, z->n_sub,
+          z->points);
 }
 
-/* A nonlocal model whose explicit diffusion of g is unstable at the planned
- * time step and substeps: a warning on stderr, not an error (MODEL.md section
- * 5). The implicit diffusion has no such limit. */
+/* A run estimated to take more than a day on one thread: a warning naming
+ * the key that makes it long (the substeps when they take most of it). */
+static void warn_long(const mpm_app_plan *p)
+{
+  const mpm_sim_size *z = &p->size;
+  if (!(z->seconds > LONG_RUN_SECONDS))
+    return;
+  char when[32];
+  duration(z->seconds, when, sizeof when);
+  const char *key = 2.0 * z->sub_seconds < z->seconds ? "time.t_end"
+                    : p->cfg.material.dt_sub > 0.0    ? "material.dt_sub"
+                                                      : "material.n_sub";
+  fprintf(stderr, "granmpm: warning: %s: the run would take about %s on one thread (%.6g "
+          "steps x %.6g substeps x %zu points; more than a day) (key '%s')\n", p->file, when,
+          z->steps, z->n_sub, z->points, key);
+}
+
+/* Warnings on stderr, not errors: a run estimated to take more than a day
+ * on one thread; a nonlocal model whose explicit diffusion of g is unstable
+ * at the planned time step and substeps (MODEL.md section 5; the implicit
+ * diffusion has no such limit). */
 void mpm_app_plan_warn(const mpm_app_plan *p)
 {
+  warn_long(p);
   const mpm_config *cfg = &p->cfg;
   const mpm_material_type *t = mpm_material_lookup(cfg->material.model);
   const mpm_nonlocal_diffusion *d = mpm_nonlocal_diffusion_name(cfg->material.diffusion)

@@ -204,7 +204,7 @@ static int execute(mpm_app_plan *p, run_ctx *ctx)
   const int stopped = st == MPM_OK && sim->stop == MPM_STOP_REQUEST;
   mpm_err cerr = {0};
   if (mpm_io_output_end(ctx->out, st != MPM_OK ? "failed" : stopped ? "stopped" : "finished",
-                        &cerr) != MPM_OK && st == MPM_OK) {
+                        st != MPM_OK ? err.msg : "", &cerr) != MPM_OK && st == MPM_OK) {
     st = cerr.code;
     err = cerr;
   }

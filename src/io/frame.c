@@ -254,9 +254,9 @@ int mpm_io_run_provenance(const mpm_io_run *r, mpm_io_provenance *p, mpm_err *er
 {
   memset(p, 0, sizeof *p);
   char **texts[] = {&p->version, &p->revision, &p->command_line, &p->input, &p->host,
-                    &p->start_time, &p->end_time, &p->status, &p->resume_log};
+                    &p->start_time, &p->end_time, &p->status, &p->failure, &p->resume_log};
   const char *names[] = {"version", "revision", "command_line", "input", "host",
-                         "start_time", "end_time", "status", "resume_log"};
+                         "start_time", "end_time", "status", "failure", "resume_log"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
     if (!(*texts[k] = text_or_empty(r->file, names[k]))) {
       mpm_io_run_provenance_clear(p);
@@ -283,7 +283,7 @@ void mpm_io_run_provenance_clear(mpm_io_provenance *p)
   if (!p)
     return;
   char *texts[] = {p->version, p->revision, p->command_line, p->input, p->host,
-                   p->start_time, p->end_time, p->status, p->resume_log};
+                   p->start_time, p->end_time, p->status, p->failure, p->resume_log};
   for (size_t k = 0; k < sizeof texts / sizeof texts[0]; k++)
     free(texts[k]);
   memset(p, 0, sizeof *p);

@@ -154,6 +154,37 @@ herr_t mpm_io_h5_attr_string(hid_t obj, const char *name, const char *s)
   return rc;
 }
 
+herr_t mpm_io_h5_attr_string_room(hid_t obj, const char *name, const char *s, size_t room)
+{
+  char *buf = calloc(room, 1);
+  if (!buf)
+    return -1;
+  snprintf(buf, room, "%s", s ? s : "");
+  herr_t rc = -1;
+  hid_t a = H5Aexists(obj, name) > 0 ? H5Aopen(obj, name, H5P_DEFAULT) : H5I_INVALID_HID;
+  hid_t t = a < 0 ? H5I_INVALID_HID : H5Aget_type(a);
+  if (t >= 0 && H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t) &&
+      H5Tget_size(t) == room) {
+    rc = H5Awrite(a, t, buf);                 /* in place: no new space in the file */
+  } else {
+    mpm_io_h5_close(t);
+    t = H5I_INVALID_HID;
+    mpm_io_h5_close(a);
+    a = H5I_INVALID_HID;
+    hid_t space = H5Screate(H5S_SCALAR);
+    t = H5Tcopy(H5T_C_S1);
+    if ((H5Aexists(obj, name) <= 0 || H5Adelete(obj, name) >= 0) && space >= 0 && t >= 0 &&
+        H5Tset_size(t, room) >= 0 && H5Tset_strpad(t, H5T_STR_NULLTERM) >= 0 &&
+        (a = H5Acreate2(obj, name, t, space, H5P_DEFAULT, H5P_DEFAULT)) >= 0)
+      rc = H5Awrite(a, t, buf);
+    mpm_io_h5_close(space);
+  }
+  mpm_io_h5_close(t);
+  mpm_io_h5_close(a);
+  free(buf);
+  return rc;
+}
+
 int mpm_io_h5_attr_read(hid_t obj, const char *name, hid_t type, void *v)
 {
   if (H5Aexists(obj, name) <= 0)

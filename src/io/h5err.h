@@ -48,6 +48,12 @@ herr_t mpm_io_h5_attr_int(hid_t obj, const char *name, int v);
 herr_t mpm_io_h5_attr_long(hid_t obj, const char *name, long v);
 herr_t mpm_io_h5_attr_string(hid_t obj, const char *name, const char *s);
 
+/* A string attribute of room bytes (s cut to room - 1, NUL-padded): one of
+ * that size already there is overwritten in place, which needs no new space
+ * in the file (a run on a full disk can still record how it ended);
+ * otherwise it is created (replacing one of another size or type). */
+herr_t mpm_io_h5_attr_string_room(hid_t obj, const char *name, const char *s, size_t room);
+
 /* A scalar attribute as type (H5T_NATIVE_*); 0 or -1. */
 int mpm_io_h5_attr_read(hid_t obj, const char *name, hid_t type, void *v);
 

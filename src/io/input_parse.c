@@ -405,6 +405,25 @@ static int check_line_lengths(in_ctx *c, const char *s)
   return MPM_OK;
 }
 
+/* The UTF-8 byte-order mark, U+FEFF, which some editors put at the start of
+ * a text file: invisible, so a message that quotes it shows nothing. */
+static const char BOM[] = "\xEF\xBB\xBF";
+enum { BOM_LEN = sizeof BOM - 1 };
+
+/* A byte-order mark at the very start of the text is blanked (read as three
+ * spaces: lines and offsets stay); one anywhere else outside a comment (a
+ * file pasted into another) is an error naming it and its line, rather
+ * than an unknown name of invisible bytes. Run after blank_comments. */
+static int byte_order_mark(in_ctx *c, const char *s)
+{
+  const char *p = strstr(s, BOM);
+  if (!p)
+    return MPM_OK;
+  where w = {.at = {line_at(s, (size_t)(p - s)), 0}, .sec = -1, .key = -1, .fill = -1};
+  return mpm_io_in_fail_at(c, &w, "a UTF-8 byte-order mark (bytes EF BB BF, invisible) inside "
+                           "the text (allowed: only as the first bytes of the file)");
+}
+
 int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
 {
   const char *nul = memchr(s, '\0', len);
@@ -412,11 +431,13 @@ int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
     where w = {.at = {line_at(s, (size_t)(nul - s)), 0}, .sec = -1, .key = -1, .fill = -1};
     return mpm_io_in_fail_at(c, &w, "NUL byte in the input file (allowed: text)");
   }
+  if (len >= BOM_LEN && memcmp(s, BOM, BOM_LEN) == 0)
+    memset(s, ' ', BOM_LEN);                   /* a leading mark: read as nothing */
   int lines = line_at(s, len) - (len > 0 && s[len - 1] == '\n');
   c->eof_line = lines > 0 ? lines : 1;
   if (check_line_lengths(c, s) != MPM_OK)
     return MPM_EINPUT;
-  if (blank_comments(c, s) != MPM_OK)
+  if (blank_comments(c, s) != MPM_OK || byte_order_mark(c, s) != MPM_OK)
     return MPM_EINPUT;
   find_section_lines(c, s);
   build_options(c);

@@ -69,7 +69,8 @@ typedef struct mpm_io_origin {
  * (NULL: none, and a plane run). run.h5's root attributes: version,
  * revision, command_line, input (the resolved text, mpm_io_input_write),
  * host, threads, start_time, end_time ("" until mpm_io_output_end), status
- * ("running" until then), resumed (0) and resume_log (""). A 3D run's
+ * ("running" until then), failure ("" unless the run failed), resumed (0)
+ * and resume_log (""). A 3D run's
  * frames take 3D stores (mpm_points_alloc_dim(n, 3)) and hold their dim-3
  * fields too, with an attribute dimension = 3 and XYZ points in run.xdmf;
  * its /mesh holds the attributes of the plane's mesh that a box has
@@ -85,9 +86,13 @@ int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin
 int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
                          long nframes, mpm_err *err);
 
-/* The end of a run in run.h5: end_time now and status ("finished",
- * "stopped" (resumable), "failed"). */
-int mpm_io_output_end(mpm_io_output *out, const char *status, mpm_err *err);
+/* The end of a run in run.h5: end_time now, status ("finished", "stopped"
+ * (resumable), "failed") and failure (why it failed: the error's one line;
+ * NULL or "" otherwise). The three are written in place (the room for them
+ * is taken when the run starts), so a run whose disk is full can still say
+ * that it failed and why, where HDF5 can still write at all. */
+int mpm_io_output_end(mpm_io_output *out, const char *status, const char *failure,
+                      mpm_err *err);
 
 /* 1 when dir holds a run (run.h5 or checkpoint.h5), with *what the file. */
 int mpm_io_output_occupied(const char *dir, const char **what);
@@ -166,7 +171,8 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
  * (mpm_io_output_open; "" for those an older run lacks) and its frames. */
 typedef struct mpm_io_provenance {
   char *version, *revision, *command_line, *input, *host;
-  char *start_time, *end_time, *status, *resume_log;
+  char *start_time, *end_time, *status, *failure, *resume_log;  /* failure: why a failed
+                                                                    run failed, or "" */
   int threads, resumed;       /* -1: not recorded */
   int nframes;
   double t_last;              /* time of the last frame [s] */

@@ -131,10 +131,40 @@ static int make_dirs(const char *dir, mpm_err *err)
 
 /* ---- open ------------------------------------------------------------------- */
 
+/* ---- the reserve ---------------------------------------------------------------
+ * A run that fills its disk must still record that it failed and why, and
+ * HDF5 needs some free space to flush run.h5 once a write has failed (its
+ * metadata of the frame under way): the run holds RESERVE_BYTES in a file
+ * of its directory while it writes and removes it before it records its
+ * end (and when it closes). Best effort: no reserve where there is no room
+ * for one. */
+enum { RESERVE_BYTES = 64 * 1024 };
+
+static void reserve_take(mpm_io_output *out)
+{
+  FILE *f = fopen(out->reserve_path, "wb");
+  static const char zeros[4096];
+  int bad = !f;
+  for (size_t n = 0; !bad && n < RESERVE_BYTES; n += sizeof zeros)
+    bad = fwrite(zeros, 1, sizeof zeros, f) != sizeof zeros;
+  if (f)
+    bad |= fclose(f) != 0;
+  if (bad)
+    unlink(out->reserve_path);
+}
+
+static void reserve_free(mpm_io_output *out)
+{
+  if (out->reserve_path)
+    unlink(out->reserve_path);
+}
+
 static void output_free(mpm_io_output *out)
 {
   if (!out)
     return;
+  reserve_free(out);
+  free(out->reserve_path);
   mpm_io_h5_close(out->xdmf_group);
   mpm_io_h5_close(out->frames);
   mpm_io_h5_close(out->file);
@@ -162,7 +192,8 @@ static mpm_io_output *output_alloc(const char *dir)
   out->h5_path = mpm_io_path_join(dir, "run.h5");
   out->csv_path = mpm_io_path_join(dir, "diagnostics.csv");
   out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
-  if (!out->h5_path || !out->csv_path || !out->xdmf_path) {
+  out->reserve_path = mpm_io_path_join(dir, ".granmpm-reserve");
+  if (!out->h5_path || !out->csv_path || !out->xdmf_path || !out->reserve_path) {
     output_free(out);
     return NULL;
   }
@@ -254,6 +285,22 @@ static void host_name(char *buf, size_t len)
   buf[len - 1] = '\0';
 }
 
+/* How a run stands: end_time, status and failure (why it failed), each with
+ * room for any value from the start, so that the end of a run rewrites them
+ * in place and needs no new space in the file (a full disk). */
+enum { END_TIME_ROOM = 32, STATUS_ROOM = 16, FAILURE_ROOM = MPM_ERR_MSG };
+
+static herr_t write_end(hid_t file, const char *end_time, const char *status,
+                        const char *failure)
+{
+  herr_t rc = mpm_io_h5_attr_string_room(file, "status", status, STATUS_ROOM);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string_room(file, "failure", failure, FAILURE_ROOM);
+  if (rc >= 0)
+    rc = mpm_io_h5_attr_string_room(file, "end_time", end_time, END_TIME_ROOM);
+  return rc;
+}
+
 /* Provenance of a new run: program, command line, host, threads, start. */
 static herr_t write_origin(hid_t file, const mpm_io_origin *o, const char *input)
 {
@@ -274,9 +321,7 @@ static herr_t write_origin(hid_t file, const mpm_io_origin *o, const char *input
   if (rc >= 0)
     rc = mpm_io_h5_attr_string(file, "start_time", now);
   if (rc >= 0)
-    rc = mpm_io_h5_attr_string(file, "end_time", "");
-  if (rc >= 0)
-    rc = mpm_io_h5_attr_string(file, "status", "running");
+    rc = write_end(file, "", "running", "");
   if (rc >= 0)
     rc = mpm_io_h5_attr_int(file, "resumed", 0);
   if (rc >= 0)
@@ -321,6 +366,8 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   }
   if (rc == MPM_OK && write_header(out, o, input, m) < 0)
     rc = mpm_io_h5_fail(err, q, "cannot write header of", out->h5_path);
+  if (rc == MPM_OK)
+    reserve_take(out);
   if (rc != MPM_OK) {
     output_free(out);
     return rc;
@@ -418,9 +465,7 @@ static herr_t record_resume(hid_t file, const mpm_io_origin *o)
   if (rc >= 0)
     rc = mpm_io_h5_attr_int(file, "resumed", resumed + 1);
   if (rc >= 0)
-    rc = mpm_io_h5_attr_string(file, "status", "running");
-  if (rc >= 0)
-    rc = mpm_io_h5_attr_string(file, "end_time", "");
+    rc = write_end(file, "", "running", "");
   free(old);
   free(log);
   return rc;
@@ -470,7 +515,11 @@ static int output_reopen(mpm_io_output *out, const mpm_io_origin *o, long nframe
       H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0)
     return mpm_io_h5_fail(err, q, "cannot update", out->h5_path);
   int rc = reopen_csv(out, nframes, err);
-  return rc == MPM_OK ? mpm_io_out_xdmf_rebuild(out, nframes, q, err) : rc;
+  if (rc == MPM_OK)
+    rc = mpm_io_out_xdmf_rebuild(out, nframes, q, err);
+  if (rc == MPM_OK)
+    reserve_take(out);
+  return rc;
 }
 
 int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_origin *origin,
@@ -493,16 +542,17 @@ int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_orig
   return rc;
 }
 
-int mpm_io_output_end(mpm_io_output *out, const char *status, mpm_err *err)
+int mpm_io_output_end(mpm_io_output *out, const char *status, const char *failure,
+                      mpm_err *err)
 {
   mpm_io_h5_quiet q;
   char now[32];
   if (!out)
     return MPM_OK;
   utc_now(now, sizeof now);
+  reserve_free(out);                             /* room to record the end on a full disk */
   mpm_io_h5_quiet_begin(&q);
-  int bad = mpm_io_h5_attr_string(out->file, "end_time", now) < 0 ||
-            mpm_io_h5_attr_string(out->file, "status", status) < 0 ||
+  int bad = write_end(out->file, now, status, failure) < 0 ||
             H5Fflush(out->file, H5F_SCOPE_LOCAL) < 0;
   int rc = bad ? mpm_io_h5_fail(err, &q, "cannot write the end of the run to", out->h5_path)
                : MPM_OK;

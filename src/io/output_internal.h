@@ -33,6 +33,7 @@ typedef struct field_spec {
 
 struct mpm_io_output {
   char *h5_path, *csv_path, *xdmf_path;
+  char *reserve_path; /* space held while the run writes, freed to record its end */
   hid_t file;       /* run.h5 */
   hid_t frames;     /* /frames */
   hid_t xdmf_group; /* /xdmf */

@@ -288,11 +288,11 @@ int mpm_scenario_fill(mpm_points *pts, const mpm_mesh *m, const mpm_fill_config 
 
 /* ---- counting without filling ---------------------------------------------- */
 
-/* Sub-cell centres of one row along x: i in [0, ni) at x0 + (i + 1/2) d / n,
- * at (y, z). */
+/* Sub-cell centres of one row along an axis: i in [0, ni) at x0 + (i + 1/2)
+ * d / n along it, the other coordinates those of base. */
 typedef struct row {
-  double x0, d, y, z;
-  int n, dim;
+  double x0, d, base[3];
+  int n, dim, axis;
   long ni;
   const mpm_fill_config *f;
 } row;
@@ -305,7 +305,8 @@ static double row_x(const row *r, long i)
 
 static int row_inside(const row *r, long i)
 {
-  const double x[3] = {row_x(r, i), r->y, r->z};
+  double x[3] = {r->base[0], r->base[1], r->base[2]};
+  x[r->axis] = row_x(r, i);
   return mpm_scenario_inside(r->f, r->dim, x);
 }
 
@@ -349,16 +350,16 @@ static int cmp_long(const void *a, const void *b)
  * where x passes a crossing xc ("x < xc" as in the fill), so the centres
  * before crossing k are a prefix [0, p_k) and the row is inside where an
  * odd number of prefixes hold it (and, for a prism, the row's z is in its
- * range). */
+ * range); its rows run along x. */
 static long row_count(const row *r)
 {
   const mpm_fill_config *f = r->f;
   if (f->shape == MPM_FILL_POLYGON) {
-    if (r->dim == 3 && !(r->z >= f->zmin && r->z <= f->zmax))
+    if (r->dim == 3 && !(r->base[2] >= f->zmin && r->base[2] <= f->zmax))
       return 0;
     double xc[MPM_MAX_POLY];
     long p[MPM_MAX_POLY], count = 0, prev = 0;
-    int k = crossings(f, r->y, xc);
+    int k = crossings(f, r->base[1], xc);
     for (int c = 0; c < k; c++)
       p[c] = first_at_or_after(r, xc[c]);   /* x_i < xc exactly for i < p */
     qsort(p, (size_t)k, sizeof *p, cmp_long);
@@ -369,9 +370,12 @@ static long row_count(const row *r)
     }
     return count;
   }
-  double centre = 0.5 * (f->xmin + f->xmax);
-  if (f->shape == MPM_FILL_DISC && !(r->dim == 3 && f->axis == 0))
-    centre = f->cx;
+  const double mins[3] = {f->xmin, f->ymin, f->zmin}, maxs[3] = {f->xmax, f->ymax, f->zmax};
+  const double centres[3] = {f->cx, f->cy, f->cz};
+  const int ax = r->axis;
+  double centre = 0.5 * (mins[ax] + maxs[ax]);            /* a box's, or along a cylinder */
+  if (f->shape == MPM_FILL_DISC && ax != (r->dim == 3 ? f->axis : 2))
+    centre = centres[ax];                                 /* across a disc or a cylinder */
   long ic = first_at_or_after(r, centre);
   long left = ic > 0 && row_inside(r, ic - 1)
                   ? first_change(r, 0, ic, 0)    /* outside ... inside up to ic */
@@ -382,21 +386,66 @@ static long row_count(const row *r)
   return right - left;
 }
 
+/* The gate of a 3D fill: an axis g and a range [lo, hi] such that a point is
+ * inside iff lo <= x_g <= hi and a test of its other two coordinates
+ * holds (a box: z; a prism: z; a cylinder: its axis). */
+static int gate(const mpm_fill_config *f, double *lo, double *hi)
+{
+  if (f->shape == MPM_FILL_DISC)
+    return disc_axis(f, 3, lo, hi);
+  *lo = f->zmin;
+  *hi = f->zmax;
+  return 2;
+}
+
+/* The 3D count as (sub-cells along the gate's axis whose centre passes it)
+ * x (the points of one slice across that axis at such a centre), the
+ * slice counted in rows: the rows along x (along y for a cylinder along x)
+ * of the slice, not of the whole box. The inside test of a point of such a
+ * slice does not depend on which passing centre it is at, so the product is
+ * the count of the fill exactly, at the cost of one slice: a 4 x 4000 x 4000
+ * mesh at 8 points a unit side was 1e9 rows. */
+static size_t count_3d(const mpm_fill_config *f, const mpm_mesh *m, const long i0[3],
+                       const long i1[3])
+{
+  double lo, hi;
+  const int g = gate(f, &lo, &hi), n = f->ppu;
+  long pass = 0, first = -1;
+  for (long k = i0[g]; k < i1[g]; k++) {            /* the gate's axis: a few thousand */
+    const double c = sub_centre(m->o[g], m->h[g], n, k);
+    if (c >= lo && c <= hi) {
+      pass++;
+      first = first < 0 ? k : first;
+    }
+  }
+  if (pass == 0)
+    return 0;
+  const int ax = g == 0 ? 1 : 0, across = 3 - g - ax;  /* rows along ax, one per index */
+  row r = {.x0 = m->o[ax], .d = m->h[ax], .n = n, .dim = 3, .axis = ax,
+           .ni = (long)m->n[ax] * n, .f = f};
+  r.base[g] = sub_centre(m->o[g], m->h[g], n, first);
+  size_t slice = 0;
+  for (long j = i0[across]; j < i1[across]; j++) {
+    r.base[across] = sub_centre(m->o[across], m->h[across], n, j);
+    slice += (size_t)row_count(&r);
+  }
+  return (size_t)pass * slice;
+}
+
 size_t mpm_scenario_count(const mpm_fill_config *f, const mpm_mesh *m)
 {
   const int n = f->ppu;
   if (n < 1 || check(f, m, NULL) != MPM_OK)
     return 0;
-  row r = {.x0 = m->x0, .d = m->dx, .n = n, .dim = m->dim, .ni = (long)m->nx * n, .f = f};
   long i0[3], i1[3];
   index_range(f, m, i0, i1);
+  if (m->dim == 3)
+    return count_3d(f, m, i0, i1);
+  row r = {.x0 = m->x0, .d = m->dx, .n = n, .dim = 2, .axis = 0, .ni = (long)m->nx * n, .f = f};
   size_t total = 0;
-  for (long k = i0[2]; k < i1[2]; k++) {
-    r.z = m->dim == 3 ? sub_centre(m->z0, m->dz, n, k) : 0.0;
-    for (long j = i0[1]; j < i1[1]; j++) {
-      r.y = sub_centre(m->y0, m->dy, n, j);
-      total += (size_t)row_count(&r);
-    }
+  for (long j = i0[1]; j < i1[1]; j++) {
+    r.base[1] = sub_centre(m->y0, m->dy, n, j);
+    total += (size_t)row_count(&r);
   }
   return total;
 }

@@ -1,8 +1,8 @@
 /* plan.c: a run's time step and substeps from its resolved input (the
  * stable step of the densest, fastest fill), and its size, before anything
  * is built: points (counted exactly, scenario/), nodes, steps, substeps, frames,
- * and estimates of the memory the run holds at its peak and of the bytes it
- * writes. The byte counts follow the allocations of step.c, the shape,
+ * and estimates of the memory the run holds at its peak, of the bytes it
+ * writes and of its run time. The byte counts follow the allocations of step.c, the shape,
  * nonlocal and density workspaces and io/output.c; the constants not
  * derived from them (the libraries' own memory, HDF5's metadata cache and
  * per-frame objects, the XDMF text of a frame) were measured, and the
@@ -155,6 +155,20 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
   return points * per_point + nodes * per_node + units * per_unit;
 }
 
+/* The run time on one thread: points x steps x (a particle-step + (n_sub -
+ * 1) particle-substeps), at rates of scripts/bench on the 2-core Xeon this
+ * is developed on (README, "Performance"): a plane particle-step at 4.7e6
+ * a second (the silo's 2.02e7 with the [DK15] scheme, scaled by the
+ * instructions of the default scheme, 1731 against 400 a particle-step;
+ * the slower of the plane figures), a 3D one at 1.0e6 (silo3d, mu(I) with
+ * uGIMP), a further substep at 7.9e6 (scripts/bench-diffusion: the NGF silo
+ * with the explicit diffusion at 405 substeps a step, field and update; a
+ * local model's substep, the update alone, is cheaper). Good to a factor of
+ * a few: enough to tell an hour from a month. */
+#define STEP_SECONDS_2D (1.0 / 4.7e6)
+#define STEP_SECONDS_3D (1.0 / 1.0e6)
+#define SUBSTEP_SECONDS (1.0 / 7.9e6)
+
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
 {
   memset(sz, 0, sizeof *sz);
@@ -175,6 +189,8 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   /* one frame at t = 0, at most one per step on the schedule, one at the end */
   sz->frames = 2.0 + fmin(sz->steps, floor(cfg->time.t_end / cfg->time.frame_dt));
   const double n = (double)sz->points, units = (double)m.nunits;
+  sz->sub_seconds = n * sz->steps * (sz->n_sub - 1.0) * SUBSTEP_SECONDS;
+  sz->seconds = n * sz->steps * (dim3 ? STEP_SECONDS_3D : STEP_SECONDS_2D) + sz->sub_seconds;
   const mpm_material_type *mt = mpm_material_lookup(cfg->material.model);
   const double store = point_store_bytes(m.dim, mt && mt->defgrad);
   sz->memory = BASE_BYTES + fmin(sz->frames * H5_CACHE_PER_FRAME, H5_CACHE_MAX) +

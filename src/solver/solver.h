@@ -151,6 +151,8 @@ typedef struct mpm_sim_size {
   double memory;                     /* memory the run holds at its peak [bytes], estimate */
   double output;                     /* bytes written: run.h5, run.xdmf, diagnostics.csv,
                                         checkpoint.h5 (with its temporary copy), estimate */
+  double seconds;                    /* run time on one thread, estimate (plan.c) */
+  double sub_seconds;                /* ... of it, the substeps beyond the first */
 } mpm_sim_size;
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
@@ -177,12 +179,24 @@ typedef void (*mpm_progress_fn)(void *ctx, const mpm_sim *s, double steps_per_s)
 int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err);
 
 /* The state of every point at time t, checked (health.c): the first
- * non-finite (or non-positive volume) field, stresses first, else the
+ * non-finite or absurd field (beyond 1e300 in magnitude, a volume not
+ * positive, |g| above mpm_sim_g_max), extents and stresses first, else the
  * fastest point moving more than a mesh unit per step, is MPM_ENONFINITE
  * naming the point id, the field, its value, the time and the likely cause
  * (the time step against the stable one, the NGF diffusion limit, or a
  * material parameter). MPM_OK when nothing is wrong. */
 int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err);
+
+/* The bound of |g| dt beyond which a fluidity is absurd (health.c), and
+ * the bound of |g| it makes at the run's step. */
+#define MPM_SIM_G_DT_MAX 1e3
+double mpm_sim_g_max(const mpm_sim *s);
+
+/* 1 if a field the step's update or move wrote is wrong at a point of
+ * [a, b) (a chunk just updated): the stresses, volume, plastic shear rate,
+ * and as the run has them g, F, Fp, convected extents, the affine matrix;
+ * then mpm_sim_check_state finds it. One pass that vectorises. */
+int mpm_sim_updated_bad(const mpm_sim *s, size_t a, size_t b);
 
 /* The cheap test run after every step: every velocity finite and below one
  * mesh unit per step; otherwise mpm_sim_check_state's report. */

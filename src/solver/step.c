@@ -262,8 +262,8 @@ static void chunk_L(chunk *ck, double *L[9])
 
 /* Step 6 for points [a, b): n substeps of length h of the update of model
  * mat (update_steady instead when steady) with L fixed; rho, lap, isp as in
- * mpm_material_batch. Returns the largest index of a point whose stress
- * became non-finite, or -1. */
+ * mpm_material_batch. Returns b - 1 when a field it or the move wrote went
+ * wrong at a point of the range (mpm_sim_updated_bad), else -1. */
 static long update_range(mpm_sim *s, const mpm_material_type *mat, int steady, size_t a, size_t b,
                          double *const L[9], const double *rho, const double *lap,
                          const double *isp, double h, int n)
@@ -284,16 +284,7 @@ static long update_range(mpm_sim *s, const mpm_material_type *mat, int steady, s
     mat->update_steady(&s->par, h, n, &bt);
   else
     mat->update(&s->par, h, n, &bt);
-  long bad = -1;                      /* a sum is non-finite iff a term is */
-  const double *s0 = P->sig[0], *s1 = P->sig[1], *s2 = P->sig[2], *s3 = P->sig[3];
-  for (size_t p = a; p < b; p++) {
-    double t = s0[p] + s1[p] + s2[p] + s3[p];
-    if (ns == 6)
-      t += P->sig[4][p] + P->sig[5][p];
-    if (!isfinite(t))
-      bad = (long)p;
-  }
-  return bad;
+  return mpm_sim_updated_bad(s, a, b) ? (long)b - 1 : -1;   /* while the chunk is at hand */
 }
 
 /* rho_{n+1} of points [a, b) for their update: the density computed for
@@ -317,8 +308,8 @@ static inline unsigned moved_scan(const mpm_sim *s, size_t a, size_t b)
 
 /* Steps 4-7 chunk by chunk for a local model (once the grid is known the
  * points are independent): grid-to-point, the update in n_sub substeps,
- * bookkeeping. Returns the largest index of a point whose stress became
- * non-finite, or -1. */
+ * bookkeeping. Returns an index >= 0 when a point's update went wrong
+ * (update_range), or -1. */
 static long point_phase(mpm_sim *s, const mpm_material_type *mat)
 {
   const size_t n = s->pts->n, nc = (n + CHUNK - 1) / CHUNK;
@@ -565,14 +556,18 @@ static int open_outlet(mpm_sim *s, mpm_err *err)
   return rc;
 }
 
-/* The end of a step, once every point was updated (bad: the largest index
- * of a point whose stress became non-finite, or -1): the report of a
+/* The end of a step, once every point was updated (bad >= 0: a field of
+ * some point went wrong in its update, update_range): the report of a
  * blow-up, the B-bar projection, the clock, the speed check and the
  * removal of the points that left. */
 static int step_end(mpm_sim *s, long bad, mpm_err *err)
 {
-  if (bad >= 0)                              /* a non-finite stress: what, where, why */
-    return mpm_sim_check_state(s, s->t + s->dt, err);
+  if (bad >= 0) {                            /* a wrong field: what, where, why */
+    const int rc = mpm_sim_check_state(s, s->t + s->dt, err);
+    return rc != MPM_OK ? rc : mpm_err_set(err, MPM_ENONFINITE, "step %ld, t = %.6g s: a point "
+                                           "field went wrong and was not found again",
+                                           s->step + 1, s->t + s->dt);
+  }
   if (s->usum)                               /* one mean stress per unit */
     mpm_sim_in_unit_project(s);
   s->t += s->dt;
