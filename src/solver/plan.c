@@ -160,13 +160,13 @@ static double workspace_bytes(const mpm_config *cfg, double points, double nodes
  * is developed on (README, "Performance"): a plane particle-step at 4.7e6
  * a second (the silo's 2.02e7 with the [DK15] scheme, scaled by the
  * instructions of the default scheme, 1731 against 400 a particle-step;
- * the slower of the plane figures), a 3D one at 1.0e6 (silo3d, mu(I) with
- * uGIMP), a further substep at 7.9e6 (scripts/bench-diffusion: the NGF silo
+ * the slower of the plane figures), a 3D one at 4.0e6 (silo3d with
+ * ngf_hyper, the slower of the 3D figures; with mu(I) 1.0e7), a further substep at 7.9e6 (scripts/bench-diffusion: the NGF silo
  * with the explicit diffusion at 405 substeps a step, field and update; a
  * local model's substep, the update alone, is cheaper). Good to a factor of
  * a few: enough to tell an hour from a month. */
 #define STEP_SECONDS_2D (1.0 / 4.7e6)
-#define STEP_SECONDS_3D (1.0 / 1.0e6)
+#define STEP_SECONDS_3D (1.0 / 4.0e6)
 #define SUBSTEP_SECONDS (1.0 / 7.9e6)
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
