@@ -27,4 +27,4 @@ set yrange [0:0.024]
 colours = "#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd"
 points = "9 7 5 13 11"
 plot ref u ($1 + 0.5):4 w l lw 2 lc rgb "black" t "1D reference (ngf1d)", \
-     for [i = 1:words(files)] word(files, i) u 1:3 every ::1 w p pt word(points, i) + 0 ps 0.6 lc rgb word(colours, i) t ttl_i(i)
+     for [i = 1:words(files)] word(files, i) u 1:3 every ::1 w p pt (word(points, i) + 0) ps 0.6 lc rgb word(colours, i) t ttl_i(i)
