@@ -105,8 +105,10 @@ check_bad long-line "granmpm: $tmp/long.conf:2: a line of 4194311 characters (al
 
 # A huge 3D fill is refused at once: the point count went through every row
 # of sub-cells of the box (4 x 4000 x 4000 units at 8 points a side: 1e9
-# rows, minutes), now through one slice across the fill's gate axis. Under
-# timeout, so that it cannot hang the suite.
+# rows, 36 s here), now through one slice across the fill's gate axis
+# (0.05 s). Under timeout, so that it cannot hang the suite; the bound of
+# 15 s leaves a noisy machine or a sanitizer build room while the row-by-row
+# count stays far beyond it.
 count=$((count + 1))
 start=$(date +%s)
 timeout 60 "$GRANMPM" check "$srcdir/inputs/silo3d.conf" --set mesh.nx=4 --set mesh.ny=4000 \
@@ -118,7 +120,7 @@ case "$st $(cat "$tmp/err")" in
   "2 granmpm: --set 'fill.grains.ppu=8': key 'fill.grains.ppu': the run needs about "*" bytes of memory (32768000000 points, 80040005 nodes), more than the "*) ;;
   *) fail "huge 3D fill: exit $st"; cat "$tmp/err" ;;
 esac
-[ "$took" -le 2 ] || fail "huge 3D fill: check took $took s"
+[ "$took" -le 15 ] || fail "huge 3D fill: check took $took s"
 
 # An output directory the run cannot write is refused by check as by run
 # (exit 2, before anything is written; check used to pass it and run failed
