@@ -229,7 +229,7 @@ HYPER_INLINE mpm_mat3 mul_scale_cols(const mpm_mat3 *f, const mpm_mat3 *v, const
 /* Pass 1 (vectorises): F_{n+1} = (I + dt L) F_n (advance; else F is
  * F_{n+1} already), J = det F_{n+1}; for the plastic step, the start of the
  * step: p_n, g_n, mu_n g_n and the gdot_p of a stress-free point,
- * sqrt(2 D0:D0) (mpm_material_mu_i_gdp's, with the same helpers). */
+ * sqrt(2 D0:D0) (mpm_material_free_gdp, as every model). */
 HYPER_INLINE void block_advance(double dt, const hyper_view *b, size_t n, hyper_block *s,
                                 int advance, int plastic)
 {
@@ -267,8 +267,7 @@ HYPER_INLINE void block_advance(double dt, const hyper_view *b, size_t n, hyper_
       s->gn[q] = g_n;
       s->pn[q] = p_n;
       s->mug[q] = was_dense ? g_n * mpm_sym3_tau(sn) / p_n : 0.0;  /* mu_n g_n */
-      const mpm_sym3 D0 = mpm_sym3_dev(mpm_mat3_sym(&l));
-      s->gfree[q] = sqrt(2.0 * mpm_sym3_ddot(D0, D0));             /* sqrt(2 D0:D0) */
+      s->gfree[q] = mpm_material_free_gdp(mpm_mat3_sym(&l));        /* sqrt(2 D0:D0) */
     }
   }
 }

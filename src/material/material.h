@@ -250,6 +250,15 @@ typedef struct mpm_material_type {
   mpm_material_update_fn update_steady_point;
 } mpm_material_type;
 
+/* gdot_p of a stress-free point in every model: its whole deviatoric rate
+ * is inelastic, sqrt(2 D0:D0) (the p -> 0+ limit of the dense update, so
+ * gdot_p is continuous across disconnection and reconnection). */
+static inline double mpm_material_free_gdp(mpm_sym3 D)
+{
+  const mpm_sym3 D0 = mpm_sym3_dev(D);
+  return sqrt(2.0 * mpm_sym3_ddot(D0, D0));
+}
+
 /* Jaumann trial stress of every hypoelastic model (MODEL.md section 4 step 2):
  * sigma_tr = sigma_n + dt (C:D + W sigma_n - sigma_n W), D = sym L, W = skw L. */
 static inline mpm_sym3 mpm_material_trial(const mpm_material_params *par, mpm_sym3 D,

@@ -36,18 +36,11 @@
 
 #include "core/points.h"
 
-/* gdot_p of a stress-free point: sqrt(2 D0:D0). */
-static inline double mu_i_free_gdp(mpm_sym3 D)
-{
-  mpm_sym3 D0 = mpm_sym3_dev(D);
-  return sqrt(2.0 * mpm_sym3_ddot(D0, D0));
-}
-
 /* Stress-free point: sigma = 0, gdot_p = sqrt(2 D0:D0). */
 static inline mpm_mpoint mu_i_disconnect(mpm_sym3 D, mpm_mpoint pt)
 {
   pt.sigma = mpm_sym3_zero();
-  pt.gdp = mu_i_free_gdp(D);
+  pt.gdp = mpm_material_free_gdp(D);
   pt.state = MPM_STATE_DISCONNECTED;
   return pt;
 }
@@ -56,7 +49,7 @@ double mpm_material_mu_i_gdp(const mpm_material_params *par, mpm_sym3 sigma, mpm
                              int state)
 {
   if (state == MPM_STATE_DISCONNECTED)
-    return mu_i_free_gdp(D);                                       /* sqrt(2 D0:D0) */
+    return mpm_material_free_gdp(D);                              /* sqrt(2 D0:D0) */
   double p = mpm_sym3_pressure(sigma), tau = mpm_sym3_tau(sigma);
   if (!(p > 0.0))
     return 0.0;

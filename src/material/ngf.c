@@ -157,10 +157,9 @@ double mpm_material_ngf_fluidity(const mpm_material_params *par, double dt, doub
 /* Stress-free point: sigma = 0, g = 0, gdot_p = sqrt(2 D0:D0) (as mu_i). */
 static inline mpm_mpoint ngf_disconnect(mpm_sym3 D, mpm_mpoint pt)
 {
-  mpm_sym3 D0 = mpm_sym3_dev(D);
   pt.sigma = mpm_sym3_zero();
   pt.g = 0.0;
-  pt.gdp = sqrt(2.0 * mpm_sym3_ddot(D0, D0));
+  pt.gdp = mpm_material_free_gdp(D);
   pt.state = MPM_STATE_DISCONNECTED;
   return pt;
 }
