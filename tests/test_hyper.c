@@ -472,6 +472,28 @@ static double ulp_error(double got, long double ref)
   return (double)(fabsl((long double)got - ref) / ulp);
 }
 
+/* The error of ln(1 + x) (of exp(x)) at x in ulp against the reference
+ * (long double when ext), kept in *worst with its x in *at when larger. */
+static void note_worst(double e, double x, double *worst, double *at)
+{
+  if (e > *worst) {
+    *worst = e;
+    *at = x;
+  }
+}
+
+static void note_log1p(double x, int ext, double *worst, double *at)
+{
+  const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
+  note_worst(ulp_error(mpm_material_hyper_log1p(x), ref), x, worst, at);
+}
+
+static void note_exp(double x, int ext, double *worst, double *at)
+{
+  const long double ref = ext ? expl((long double)x) : (long double)exp(x);
+  note_worst(ulp_error(mpm_material_hyper_exp_scalar(x), ref), x, worst, at);
+}
+
 /* The ln(1 + x) and exp(x) of the update (mpm_material_hyper_log1p,
  * _exp_scalar; branch-free, see hyper.c) against long double over dense
  * sweeps: ln(1 + x) for x = +-10^k, k from -320 to 300 in steps of 1e-3, for
@@ -491,53 +513,20 @@ START_TEST(t_log1p_exp)
   for (int sg = -1; sg <= 1; sg += 2)
     for (int k = -320000; k <= 300000; k++) {
       const double x = sg * pow(10.0, k * 1e-3);
-      if (!(x > -1.0))
-        continue;
-      const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
-      const double e = ulp_error(mpm_material_hyper_log1p(x), ref);
-      if (e > worst) {
-        worst = e;
-        at = x;
-      }
+      if (x > -1.0)
+        note_log1p(x, ext, &worst, &at);
     }
-  for (double k = 0.0; k <= 16.5; k += 1e-5) {
-    const double x = -1.0 + pow(10.0, -k);
-    const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
-    const double e = ulp_error(mpm_material_hyper_log1p(x), ref);
-    if (e > worst) {
-      worst = e;
-      at = x;
-    }
-  }
-  for (double x = -0.5; x <= 3.0; x += 0x1p-17) {
-    const long double ref = ext ? log1pl((long double)x) : (long double)log1p(x);
-    const double e = ulp_error(mpm_material_hyper_log1p(x), ref);
-    if (e > worst) {
-      worst = e;
-      at = x;
-    }
-  }
+  for (double k = 0.0; k <= 16.5; k += 1e-5)
+    note_log1p(-1.0 + pow(10.0, -k), ext, &worst, &at);
+  for (double x = -0.5; x <= 3.0; x += 0x1p-17)
+    note_log1p(x, ext, &worst, &at);
   ck_assert_msg(worst < tol, "ln(1 + x): %.3f ulp at x = %.17g", worst, at);
   worst = 0.0;
-  for (int k = -746000; k <= 710000; k++) {
-    const double x = k * 1e-3;
-    const long double ref = ext ? expl((long double)x) : (long double)exp(x);
-    const double e = ulp_error(mpm_material_hyper_exp_scalar(x), ref);
-    if (e > worst) {
-      worst = e;
-      at = x;
-    }
-  }
+  for (int k = -746000; k <= 710000; k++)
+    note_exp(k * 1e-3, ext, &worst, &at);
   for (int sg = -1; sg <= 1; sg += 2)
-    for (int k = -320000; k <= 2800; k++) {
-      const double x = sg * pow(10.0, k * 1e-3);
-      const long double ref = ext ? expl((long double)x) : (long double)exp(x);
-      const double e = ulp_error(mpm_material_hyper_exp_scalar(x), ref);
-      if (e > worst) {
-        worst = e;
-        at = x;
-      }
-    }
+    for (int k = -320000; k <= 2800; k++)
+      note_exp(sg * pow(10.0, k * 1e-3), ext, &worst, &at);
   ck_assert_msg(worst < tol, "exp(x): %.3f ulp at x = %.17g", worst, at);
   ck_assert(mpm_material_hyper_log1p(-1.0) == -INFINITY);
   ck_assert(isnan(mpm_material_hyper_log1p(-1.5)) && isnan(mpm_material_hyper_log1p(-INFINITY)));
