@@ -11,6 +11,7 @@
 #define MPM_PATH_MAX 1024
 #define MPM_MAX_FILLS 16
 #define MPM_MAX_POLY 64
+#define MPM_MAX_BODIES 8
 
 /* Boundary condition on one mesh edge (velocity part). */
 enum mpm_bc_kind {
@@ -72,6 +73,54 @@ typedef struct mpm_fill_config {
   double pressure;             /* isotropic initial pressure [Pa] (0: none) */
   char name[MPM_NAME_MAX];     /* title of the fill section ("fill NAME { ... }") */
 } mpm_fill_config;
+
+/* A rigid body (docs/input-reference.md, section body): a plane profile (a
+ * disc, a rectangle or a polygon) in the plane normal to its axis, turned by
+ * its angle about the axis through its centre and, in 3D, extruded along the
+ * axis; the material lies outside it (a blade, a wheel, an inner cylinder)
+ * or inside it (an outer cylinder's wall). */
+enum mpm_body_shape { MPM_BODY_DISC = 0, MPM_BODY_BOX, MPM_BODY_POLYGON };
+enum mpm_body_side { MPM_BODY_OUTSIDE = 0, MPM_BODY_INSIDE };
+enum mpm_body_contact { MPM_CONTACT_NOSLIP = 0, MPM_CONTACT_FRICTIONLESS, MPM_CONTACT_FRICTION };
+
+/* The velocity degrees of freedom of a body: x, y, z, and the rotation about
+ * its axis. */
+enum { MPM_BODY_VX = 0, MPM_BODY_VY, MPM_BODY_VZ, MPM_BODY_OMEGA, MPM_BODY_NDOF };
+
+typedef struct mpm_body_config {
+  int shape;                   /* enum mpm_body_shape */
+  int axis;                    /* 3D: the axis 0 x, 1 y, 2 z (plane: z); a polygon's
+                                  only along z */
+  double cx, cy, cz;           /* centre: the reference point of the profile and of
+                                  the rotation [m] */
+  double radius;               /* disc [m] */
+  double hx, hy;               /* box: half-sizes of the rectangle along the profile's
+                                  axes before the turn (axis z: x, y; x: y, z;
+                                  y: z, x) [m] */
+  int nvert;                   /* polygon: vertices relative to the centre [m] */
+  double px[MPM_MAX_POLY], py[MPM_MAX_POLY];
+  double angle;                /* initial turn about the axis [deg] */
+  double length;               /* 3D: extent along the axis, centred [m]; 0: through
+                                  the mesh */
+  int side;                    /* enum mpm_body_side: where the material is */
+  int contact;                 /* enum mpm_body_contact */
+  double friction;             /* Coulomb coefficient of MPM_CONTACT_FRICTION */
+  /* Motion of each degree of freedom (MPM_BODY_VX ... MPM_BODY_OMEGA):
+   * prescribed, its velocity [m/s] or angular velocity [rad/s] linear in time
+   * between the entries of the table t (one value: constant), or free. */
+  int ntable;                  /* entries of t (0: every value constant) */
+  double t[MPM_MAX_POLY];      /* increasing times [s] */
+  int nval[MPM_BODY_NDOF];     /* values given: 1 or ntable */
+  double val[MPM_BODY_NDOF][MPM_MAX_POLY];
+  int free[MPM_BODY_NDOF];     /* 1: integrated from the forces */
+  double mass;                 /* of a free body [kg; plane kg/m] */
+  double inertia;              /* about its axis [kg m^2; plane kg m^2/m] */
+  double force[3];             /* applied force [N; plane N/m] */
+  double torque;               /* applied torque about the axis [N m; plane N m/m] */
+  double damping;              /* linear damping rate of a free motion [1/s] */
+  int carve;                   /* 1: the fill's points inside the body are not made */
+  char name[MPM_NAME_MAX];     /* title of the section ("body NAME { ... }") */
+} mpm_body_config;
 
 typedef struct mpm_config {
   char source[MPM_PATH_MAX];   /* input file the values came from */
@@ -146,6 +195,9 @@ typedef struct mpm_config {
 
   int nfill;
   mpm_fill_config fill[MPM_MAX_FILLS];
+
+  int nbody;
+  mpm_body_config body[MPM_MAX_BODIES];
 
   struct {
     double ke;                 /* end the run when kinetic energy per unit mass
