@@ -13,7 +13,19 @@
 
 #include <stddef.h>
 
+#include "core/config.h"
 #include "core/points.h"
+
+/* A rigid body's state (bc/body.h): where it is, how it moves, what the
+ * material did to it over the last step. */
+typedef struct mpm_body_state {
+  double c[3];           /* centre [m] */
+  double theta;          /* turn about its axis [rad] */
+  double v[4];           /* velocity x, y, z [m/s] and about the axis [rad/s] */
+  double f[3], tq[3];    /* force [N; plane N/m] and torque about the centre [N m; plane
+                            N m/m] of the material on the body over the last step */
+  long npushed;          /* points put back on its surface so far */
+} mpm_body_state;
 
 typedef struct mpm_run_state {
   mpm_points *pts;       /* every stored field of every point, in order, and next_id */
@@ -28,6 +40,8 @@ typedef struct mpm_run_state {
   long frames;           /* frames written (the run driver's schedule) */
   long frame_next;       /* the next frame at frame_next * frame_dt */
   long check_next;       /* the next checkpoint at check_next * checkpoint_dt */
+  int nbody;             /* the input's bodies, in its order */
+  mpm_body_state body[MPM_MAX_BODIES];
   /* Kept by the program rather than the solver: the time and region mass of
    * every frame so far, for the flow-rate fit at the end of a run. */
   size_t nseries;

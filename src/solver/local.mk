@@ -1,7 +1,7 @@
 noinst_LTLIBRARIES += libmpm_solver.la
 libmpm_solver_la_SOURCES = src/solver/step.c src/solver/run.c src/solver/solver.h \
 	src/solver/solver_internal.h src/solver/remove.c src/solver/kernels.c src/solver/kernels.inc src/solver/separable.inc \
-	src/solver/units.c src/solver/health.c src/solver/plan.c src/solver/state.c
+	src/solver/units.c src/solver/health.c src/solver/plan.c src/solver/state.c src/solver/bodies.c
 
 check_PROGRAMS += tests/test_solver
 TESTS += tests/test_solver
@@ -28,3 +28,9 @@ TESTS += tests/test_solver_box
 tests_test_solver_box_SOURCES = tests/test_solver_box.c tests/sim_config.h
 tests_test_solver_box_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_solver_box_LDADD = $(tests_test_solver_LDADD)
+
+check_PROGRAMS += tests/test_bodies
+TESTS += tests/test_bodies
+tests_test_bodies_SOURCES = tests/test_bodies.c tests/sim_config.h
+tests_test_bodies_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
+tests_test_bodies_LDADD = $(tests_test_solver_LDADD)

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "bc/bc.h"
+#include "bc/body.h"
 #include "core/config.h"
 #include "core/error.h"
 #include "core/points.h"
@@ -99,6 +100,11 @@ typedef struct mpm_sim {
   long frames;                    /* frames emitted so far */
   long frame_next;                /* the next frame is due at frame_next * frame_dt */
   long check_next;                /* the next checkpoint at check_next * checkpoint_dt */
+
+  /* rigid bodies (bodies.c), the input's in its order */
+  int nbody;
+  mpm_body body[MPM_MAX_BODIES];
+  double *brow;                   /* [6 rows of nodes] per row: force and torque sums */
 } mpm_sim;
 
 /* Lanes of a nodal record in dimension dim: the 2 dim of mpm_sim.nq's
@@ -156,6 +162,21 @@ typedef struct mpm_sim_size {
 } mpm_sim_size;
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
+
+/* The rigid bodies of the input (bodies.c): set up after the fill (a body
+ * may not overlap a point of it unless it carves them out: MPM_EINPUT naming
+ * the body and the count); after the grid update each corrects its nodes
+ * and sums its force and torque (thread-count free); after the points have
+ * moved they are put back on its surface; at the end of the step it moves
+ * (a body whose centre leaves the mesh is MPM_EOUTSIDE naming it and the
+ * time). */
+int mpm_sim_bodies_setup(mpm_sim *s, mpm_err *err);
+void mpm_sim_bodies_contact(mpm_sim *s);
+void mpm_sim_bodies_points(mpm_sim *s);
+int mpm_sim_bodies_advance(mpm_sim *s, mpm_err *err);
+/* The bodies' state for output and checkpoints, and back (s->nbody of them). */
+void mpm_sim_bodies_state(const mpm_sim *s, mpm_body_state *st);
+void mpm_sim_bodies_set(mpm_sim *s, const mpm_body_state *st);
 
 /* Gravity vector at time t (linear ramp over t_ramp). */
 void mpm_sim_gravity(const mpm_sim *s, double t, double g[3]);

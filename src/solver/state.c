@@ -18,6 +18,8 @@ void mpm_sim_state_get(const mpm_sim *s, mpm_run_state *st)
   st->frames = s->frames;
   st->frame_next = s->frame_next;
   st->check_next = s->check_next;
+  st->nbody = s->nbody;
+  mpm_sim_bodies_state(s, st->body);
 }
 
 int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err)
@@ -40,6 +42,9 @@ int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err)
   if (s->pts->defgrad && !st->pts->defgrad)
     return mpm_err_set(err, MPM_EINPUT, "checkpoint: no deformation gradients, which model '%s' "
                        "needs", s->mat->name);
+  if (st->nbody != s->nbody)
+    return mpm_err_set(err, MPM_EINPUT, "checkpoint: %d bodies, the input gives %d", st->nbody,
+                       s->nbody);
   const int defgrad = s->pts->defgrad;
   int rc = mpm_points_copy(s->pts, st->pts);
   if (rc == MPM_OK)
@@ -54,6 +59,7 @@ int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err)
   s->frames = st->frames;
   s->frame_next = st->frame_next;
   s->check_next = st->check_next;
+  mpm_sim_bodies_set(s, st->body);
   s->stop = MPM_STOP_NONE;
   return MPM_OK;
 }

@@ -151,6 +151,8 @@ static int build(mpm_sim *s, mpm_err *err)
     rc = mpm_err_set(err, MPM_ENOMEM, "points: out of memory");
   for (int f = 0; rc == MPM_OK && f < cfg->nfill; f++)
     rc = mpm_scenario_fill(s->pts, &s->mesh, &cfg->fill[f], &s->par, cfg->gravity.gy, err);
+  if (rc == MPM_OK)
+    rc = mpm_sim_bodies_setup(s, err);
   if (rc == MPM_OK && (nodal_alloc(s) != MPM_OK || !(s->st = mpm_shape_stencil_alloc(0)) ||
                        !(s->bands = mpm_mesh_bands_alloc())))
     rc = mpm_err_set(err, MPM_ENOMEM, "simulation workspace: out of memory");
@@ -236,6 +238,7 @@ void mpm_sim_free(mpm_sim *s)
   free(s->scratch);
   free(s->nm);
   free(s->nq);
+  free(s->brow);
   free(s);
 }
 
@@ -570,6 +573,12 @@ static int step_end(mpm_sim *s, long bad, mpm_err *err)
   }
   if (s->usum)                               /* one mean stress per unit */
     mpm_sim_in_unit_project(s);
+  if (s->nbody) {                            /* points back out of the bodies, which move */
+    mpm_sim_bodies_points(s);
+    const int rc = mpm_sim_bodies_advance(s, err);
+    if (rc != MPM_OK)
+      return rc;
+  }
   s->t += s->dt;
   s->step++;
   const int rc = mpm_sim_check_speeds(s, s->t, err);
@@ -590,6 +599,8 @@ static int step(mpm_sim *s, mpm_err *err)
   if (s->usum && (rc = mpm_sim_in_unit_stress(s, err)) != MPM_OK)
     return rc;
   s->k->grid(s, b);
+  if (s->nbody)
+    mpm_sim_bodies_contact(s);
   const mpm_material_type *mat = seeding(s);
   long bad;
   if (mat->nonlocal) {

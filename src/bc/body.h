@@ -1,0 +1,95 @@
+/* body.h: moving rigid bodies, for a mesh of either dimension (docs/model.md,
+ * "Rigid bodies and contact").
+ *
+ * A body is a plane profile (disc, rectangle, polygon) in the plane normal
+ * to its axis, turned by an angle about the axis through its centre and, in
+ * 3D, extruded along the axis (over a length, or through the mesh). Its
+ * material side is outside the profile (a blade, a wheel, an inner
+ * cylinder) or inside it (an outer cylinder's wall). Its geometry is a
+ * signed distance phi(x), positive in the material, with the unit normal
+ * n = grad phi pointing into the material.
+ *
+ * The solver (solver/bodies.c) corrects the velocity of each node with mass
+ * and phi <= 0 after the grid update, relative to the body's velocity there
+ * (mpm_body_contact), sums the change of momentum into the body's force and
+ * torque, puts points that end inside the body back on its surface, and
+ * moves the body (mpm_body_advance): each degree of freedom (x, y, z, the
+ * turn about the axis) prescribed by a table of velocities or free. */
+#ifndef MPM_BC_BODY_H
+#define MPM_BC_BODY_H
+
+#include "core/config.h"
+#include "mesh/mesh.h"
+
+typedef struct mpm_body {
+  const mpm_body_config *cfg;  /* the input (not owned; outlives the body) */
+  int dim;                     /* 2 or 3 */
+  int e[3];                    /* the profile's axes e[0], e[1] and the body's axis e[2] */
+  double c[3];                 /* centre [m] */
+  double theta;                /* turn about the axis [rad] */
+  double ct, st;               /* cos and sin of theta (mpm_body_turned) */
+  double v[MPM_BODY_NDOF];     /* velocity of the step: x, y, z [m/s], omega [rad/s] */
+  double f[3], tq[3];          /* the material's force on the body over the last step
+                                  [N; plane N/m] and its torque about the centre
+                                  [N m; plane N m/m] (plane: tq[2] only) */
+  long npushed;                /* points put back on the surface, in all */
+} mpm_body;
+
+/* The name table of enum mpm_body_shape, _side and _contact: "disc", "box",
+ * "polygon"; "outside", "inside"; "noslip", "frictionless", "friction". */
+const char *mpm_body_shape_name(int shape);
+int mpm_body_shape_from_name(const char *name);
+const char *mpm_body_side_name(int side);
+int mpm_body_side_from_name(const char *name);
+const char *mpm_body_contact_name(int contact);
+int mpm_body_contact_from_name(const char *name);
+
+/* The body of cfg in dimension dim at t = 0: centre, turn, and the velocity
+ * of its tables at t = 0. */
+void mpm_body_init(mpm_body *b, const mpm_body_config *cfg, int dim);
+
+/* The prescribed velocity of degree of freedom k at time t: the table
+ * linearly interpolated, its end values outside it. */
+double mpm_body_table(const mpm_body_config *cfg, int k, double t);
+
+/* Signed distance of x to the body's surface, > 0 on the material side;
+ * n (may be NULL) the unit normal into the material (grad phi). */
+double mpm_body_phi(const mpm_body *b, const double x[3], double n[3]);
+
+/* The body's velocity at x: v + omega a x (x - c), a its axis. */
+void mpm_body_velocity_at(const mpm_body *b, const double x[3], double vb[3]);
+
+/* The contact rule on a node velocity v[D] (D = 2 or 3) relative to the
+ * body's vb at the node, n the normal into the material: with
+ * w = v - vb and w_n = w . n < 0 (approach, or pressing after the forces)
+ * noslip sets w = 0, frictionless removes w_n n, friction removes w_n n and
+ * shortens the tangential part by mu |w_n| (to zero when shorter). Returns 1
+ * if v changed; a separating node (w_n >= 0) is left alone. */
+int mpm_body_contact(const mpm_body_config *cfg, int D, const double vb[3], const double n[3],
+                     double v[3]);
+
+/* Set the velocity of the prescribed degrees of freedom for a step from t to
+ * t + dt (the tables at t + dt/2). */
+void mpm_body_prescribe(mpm_body *b, double t, double dt);
+
+/* The end of a step of dt: a free degree of freedom's velocity from the
+ * force (contact b->f, applied, gravity g on the mass, damping) and the
+ * torque about the axis; then the centre and the turn move by dt times the
+ * velocity (the new one of a free degree, that of the step otherwise). */
+void mpm_body_advance(mpm_body *b, double dt, const double g[3]);
+
+/* Set theta and its cosine and sine. */
+void mpm_body_turned(mpm_body *b, double theta);
+
+/* The torque about the axis (the component of tq along it). */
+double mpm_body_axial_torque(const mpm_body *b);
+
+/* Storage nodes lo[a] <= i < hi[a] that can lie inside the body (phi <= 0),
+ * a box of the mesh's stored nodes: the profile's bounding box, one unit
+ * wider; the whole mesh for a body whose material is inside. */
+void mpm_body_node_box(const mpm_body *b, const mpm_mesh *m, int lo[3], int hi[3]);
+
+/* 1 if the centre is inside the mesh (on a periodic axis: always). */
+int mpm_body_in_mesh(const mpm_body *b, const mpm_mesh *m);
+
+#endif

