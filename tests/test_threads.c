@@ -20,6 +20,10 @@
  * against walls, periodic in z, is bitwise the same on one and on two
  * threads (bands of unit layers along z), with every shape, under FLIP and
  * under APIC with the per-unit rules.
+ * Rigid bodies (a turning disc with friction, a free plate) in both
+ * dimensions: the point fields and every step's forces and torques on them
+ * bitwise the same on one and on two threads (the node rows' sums taken in
+ * row order).
  * Every comparison first makes sure the threads were there: a parallel
  * region right before the run counts the threads that ran it (dynamic
  * adjustment off), and a comparison needs two or more. When the runtime
@@ -295,6 +299,88 @@ START_TEST(t_box_thread_count)
 }
 END_TEST
 
+/* The column (plane, or 4 units along z) flowing past a turning disc with
+ * friction and onto a free plate: the point fields and every step's force
+ * and torque on both bodies after 150 steps on nthreads threads. */
+static double *run_bodies(int i, int nthreads, size_t *len, int *team)
+{
+  *team = use_threads(nthreads);
+  mpm_config c;
+  sim_config_column(&c, "ugimp", i ? 4 : 0, "mu_i");
+  c.fill[0].ymin = 0.0101;
+  c.nbody = 2;
+  mpm_body_config *b = c.body;
+  memset(b, 0, 2 * sizeof *b);
+  for (int k = 0; k < 2; k++) {
+    for (int d = 0; d < MPM_BODY_NDOF; d++)
+      b[k].nval[d] = 1;
+    b[k].axis = 2;
+    b[k].cz = 0.02;
+  }
+  strcpy(b[0].name, "disc");
+  b[0].shape = MPM_BODY_DISC;
+  b[0].cx = 0.06;                               /* beside the column's foot */
+  b[0].cy = 0.018;
+  b[0].radius = 0.008;
+  b[0].val[MPM_BODY_OMEGA][0] = 3.0;
+  b[0].contact = MPM_CONTACT_FRICTION;
+  b[0].friction = 0.4;
+  strcpy(b[1].name, "plate");
+  b[1].shape = MPM_BODY_BOX;
+  b[1].cx = 0.03;
+  b[1].cy = 0.0055;                             /* up to y = 0.0101: the nodes at 0.01 */
+  b[1].hx = 0.03;
+  b[1].hy = 0.0046;
+  b[1].free[MPM_BODY_VY] = b[1].free[MPM_BODY_OMEGA] = 1;
+  b[1].mass = 0.5;
+  b[1].inertia = 1e-4;
+  b[1].damping = 20.0;
+  b[1].force[1] = 0.5 * 9.8;                    /* floating until the column lands */
+  mpm_sim *s = NULL;
+  mpm_err err = {0};
+  ck_assert_msg(mpm_sim_create(&s, &c, &err) == MPM_OK, "%s", err.msg);
+  enum { NSTEP = 150 };
+  double forces[NSTEP][2][6];
+  for (int k = 0; k < NSTEP; k++) {
+    ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "step %d: %s", k, err.msg);
+    for (int j = 0; j < 2; j++)
+      for (int d = 0; d < 3; d++) {
+        forces[k][j][d] = s->body[j].f[d];
+        forces[k][j][3 + d] = s->body[j].tq[d];
+      }
+  }
+  double touched[2] = {0.0, 0.0};
+  for (int k = 0; k < NSTEP; k++)
+    for (int j = 0; j < 2; j++)
+      touched[j] = fmax(touched[j], hypot(forces[k][j][0], forces[k][j][1]));
+  ck_assert_msg(touched[0] > 0.0 && touched[1] > 0.0, "disc %g, plate %g N/m", touched[0],
+                touched[1]);
+  const mpm_points *P = s->pts;
+  const double *f[] = {P->x, P->y, P->vx, P->vy, P->sxx, P->syy, P->sxy};
+  const size_t nf = sizeof f / sizeof f[0], n = P->n, nb = sizeof forces / sizeof(double);
+  double *out = malloc((nf * n + nb) * sizeof *out);
+  ck_assert_ptr_nonnull(out);
+  for (size_t k = 0; k < nf; k++)
+    memcpy(out + k * n, f[k], n * sizeof *out);
+  memcpy(out + nf * n, forces, sizeof forces);
+  *len = nf * n + nb;
+  mpm_sim_free(s);
+  return out;
+}
+
+START_TEST(t_bodies_thread_count)
+{
+  size_t na, nb;
+  int ta, tb;
+  double *a = run_bodies(_i, 1, &na, &ta);
+  double *b = run_bodies(_i, 2, &nb, &tb);
+  ck_assert_uint_eq(na, nb);
+  expect_same(a, b, na, 2, tb, _i ? "bodies, boxes" : "bodies, plane");
+  free(a);
+  free(b);
+}
+END_TEST
+
 int main(void)
 {
   const int team = threads_apart(2);
@@ -321,6 +407,7 @@ int main(void)
   tcase_add_test(tc, t_ngf_centre_thread_count);
   tcase_add_test(tc, t_density_thread_count);
   tcase_add_loop_test(tc, t_box_thread_count, 0, 6);
+  tcase_add_loop_test(tc, t_bodies_thread_count, 0, 2);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

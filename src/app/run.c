@@ -75,6 +75,16 @@ static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
   d.mass_region = mpm_sim_region_mass(s);
   if (!keep_frame(c, d.t, d.mass_region))
     return mpm_err_set(err, MPM_ENOMEM, "frame %ld: out of memory", s->frames);
+  if (s->nbody > 0) {
+    mpm_body_state b[MPM_MAX_BODIES];
+    const char *names[MPM_MAX_BODIES];
+    mpm_sim_bodies_state(s, b);
+    for (int k = 0; k < s->nbody; k++)
+      names[k] = s->cfg.body[k].name;
+    const int rc = mpm_io_output_bodies(c->out, s->t, s->nbody, names, b, err);
+    if (rc != MPM_OK)
+      return rc;
+  }
   return mpm_io_output_frame(c->out, s->pts, &d, err);
 }
 

@@ -10,6 +10,9 @@
  *                    and MPM_POINT_STATE_FIELDS that the store's dimension
  *                    has, by its output name), full precision
  *   /series/t, /series/mass  time and region mass of every frame so far
+ *   /bodies/state, /bodies/pushed  with bodies: per body, in the input's order,
+ *                    c[3], theta, v[4], f[3], tq[3] (14 values) and the count
+ *                    of points put back on it (mpm_body_state)
  *
  * The file is assembled in memory (HDF5's core driver, no backing store),
  * then written with plain writes to checkpoint.h5.tmp in the same directory,
@@ -84,6 +87,75 @@ static hid_t scalar_type(int kind)
 
 /* ---- writing --------------------------------------------------------------- */
 
+static void *read_values(hid_t g, const char *name, hid_t type, size_t size, size_t n);
+
+/* The bodies' state: BODY_VALUES doubles and a count per body. */
+enum { BODY_VALUES = 14 };
+
+static void body_values(mpm_body_state *b, double *v, int put)
+{
+  double *const at[] = {&b->c[0], &b->c[1], &b->c[2], &b->theta, &b->v[0], &b->v[1], &b->v[2],
+                        &b->v[3], &b->f[0], &b->f[1], &b->f[2], &b->tq[0], &b->tq[1], &b->tq[2]};
+  _Static_assert(sizeof at / sizeof at[0] == BODY_VALUES, "one slot per value");
+  for (int k = 0; k < BODY_VALUES; k++) {
+    if (put)
+      *at[k] = v[k];
+    else
+      v[k] = *at[k];
+  }
+}
+
+static herr_t write_bodies(hid_t file, const mpm_run_state *st)
+{
+  double v[MPM_MAX_BODIES * BODY_VALUES];
+  long pushed[MPM_MAX_BODIES];
+  for (int k = 0; k < st->nbody; k++) {
+    mpm_body_state b = st->body[k];
+    body_values(&b, v + BODY_VALUES * k, 0);
+    pushed[k] = b.npushed;
+  }
+  hid_t g = H5Gcreate2(file, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t rc = g < 0 ? -1 : 0;
+  if (rc >= 0)
+    rc = mpm_io_h5_write_array(g, "state", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                               (size_t)(BODY_VALUES * st->nbody), v, NULL,
+                               "per body: c[3], theta, v[4], f[3], tq[3]");
+  if (rc >= 0)
+    rc = mpm_io_h5_write_array(g, "pushed", H5T_STD_I64LE, H5T_NATIVE_LONG, (size_t)st->nbody,
+                               pushed, NULL, "points put back on each body");
+  mpm_io_h5_close(g);
+  return rc;
+}
+
+/* The bodies of a checkpoint (none when it has no /bodies). */
+static int read_bodies(hid_t file, mpm_run_state *st, const char *path, mpm_err *err)
+{
+  st->nbody = 0;
+  if (H5Lexists(file, "bodies", H5P_DEFAULT) <= 0)
+    return MPM_OK;
+  hid_t g = H5Gopen2(file, "bodies", H5P_DEFAULT);
+  const long long n = g < 0 ? -1 : mpm_io_h5_array_length(g, "pushed");
+  double *v = NULL;
+  long *pushed = NULL;
+  if (n >= 0 && n <= MPM_MAX_BODIES) {
+    v = read_values(g, "state", H5T_NATIVE_DOUBLE, sizeof *v, (size_t)(BODY_VALUES * n));
+    pushed = read_values(g, "pushed", H5T_NATIVE_LONG, sizeof *pushed, (size_t)n);
+  }
+  mpm_io_h5_close(g);
+  int rc = MPM_OK;
+  if (!v || !pushed)
+    rc = mpm_err_set(err, MPM_EIO, "'%s': cannot read the bodies' state", path);
+  for (long long k = 0; rc == MPM_OK && k < n; k++) {
+    body_values(&st->body[k], v + BODY_VALUES * k, 1);
+    st->body[k].npushed = pushed[k];
+  }
+  if (rc == MPM_OK)
+    st->nbody = (int)n;
+  free(v);
+  free(pushed);
+  return rc;
+}
+
 static herr_t write_state(hid_t file, const mpm_run_state *st, const char *input,
                           const char *written_by)
 {
@@ -121,7 +193,7 @@ static herr_t write_state(hid_t file, const mpm_run_state *st, const char *input
                                st->series_m, "kg/m", "mass in the region at each frame");
   rc = g < 0 ? -1 : rc;
   mpm_io_h5_close(g);
-  return rc;
+  return rc < 0 || st->nbody == 0 ? rc : write_bodies(file, st);
 }
 
 /* The checkpoint as an HDF5 file image in memory (*image, *len; free it). */
@@ -332,7 +404,9 @@ static int read_checkpoint(hid_t file, mpm_io_checkpoint *ck, const char *path, 
   if (!ck->input || ck->input[n - 1] != '\0')
     return mpm_err_set(err, MPM_EIO, "'%s': no resolved input", path);
   int rc = read_points(file, &ck->state, path, err);
-  return rc == MPM_OK ? read_series(file, &ck->state, path, err) : rc;
+  if (rc == MPM_OK)
+    rc = read_series(file, &ck->state, path, err);
+  return rc == MPM_OK ? read_bodies(file, &ck->state, path, err) : rc;
 }
 
 /* What to read of an open checkpoint: all of it into ck, or its time and

@@ -101,6 +101,16 @@ int mpm_io_output_occupied(const char *dir, const char **what);
  * dimension is the run's (MPM_EINVAL otherwise). */
 int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_diag *d, mpm_err *err);
 
+/* The n rigid bodies of the frame about to be written (call before
+ * mpm_io_output_frame; nothing for n = 0): a row per body in bodies.csv
+ * (frame, t, body, x, y, z, angle, vx, vy, vz, omega, fx, fy, fz, tx, ty,
+ * tz, pushed; created with its header on the first call) and the dataset
+ * /bodies/NNNNNN of run.h5 (n x 15 values, the columns after `body`;
+ * /bodies names the bodies and columns in attributes). names[k] is body k's
+ * title. */
+int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const *names,
+                         const mpm_body_state *b, mpm_err *err);
+
 /* Write run.xdmf and close everything; accepts NULL. */
 int mpm_io_output_close(mpm_io_output *out, mpm_err *err);
 

@@ -1,6 +1,6 @@
 noinst_LTLIBRARIES += libmpm_io.la
 # The run output: output.c, with run.xdmf in xdmf.c (output_internal.h).
-OUTPUT_PARTS = src/io/output.c src/io/xdmf.c src/io/output_internal.h
+OUTPUT_PARTS = src/io/output.c src/io/xdmf.c src/io/output_internal.h src/io/bodies_out.c
 libmpm_io_la_SOURCES = src/io/input.c $(OUTPUT_PARTS) src/io/extract.c src/io/frame.c \
 	src/io/io.h src/io/h5err.c src/io/h5err.h src/io/checkpoint.c
 libmpm_io_la_SOURCES += src/io/history.c src/io/history.h src/io/text.c src/io/text.h

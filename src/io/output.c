@@ -172,6 +172,9 @@ static void output_free(mpm_io_output *out)
     fclose(out->csv);
   if (out->xdmf)
     fclose(out->xdmf);
+  if (out->bcsv)
+    fclose(out->bcsv);
+  free(out->bcsv_path);
   free(out->h5_path);
   free(out->csv_path);
   free(out->xdmf_path);
@@ -193,7 +196,9 @@ static mpm_io_output *output_alloc(const char *dir)
   out->csv_path = mpm_io_path_join(dir, "diagnostics.csv");
   out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
   out->reserve_path = mpm_io_path_join(dir, ".granmpm-reserve");
-  if (!out->h5_path || !out->csv_path || !out->xdmf_path || !out->reserve_path) {
+  out->bcsv_path = mpm_io_path_join(dir, "bodies.csv");
+  if (!out->h5_path || !out->csv_path || !out->xdmf_path || !out->reserve_path ||
+      !out->bcsv_path) {
     output_free(out);
     return NULL;
   }
@@ -516,6 +521,8 @@ static int output_reopen(mpm_io_output *out, const mpm_io_origin *o, long nframe
     return mpm_io_h5_fail(err, q, "cannot update", out->h5_path);
   int rc = reopen_csv(out, nframes, err);
   if (rc == MPM_OK)
+    rc = mpm_io_out_bodies_reopen(out, nframes, err);
+  if (rc == MPM_OK)
     rc = mpm_io_out_xdmf_rebuild(out, nframes, q, err);
   if (rc == MPM_OK)
     reserve_take(out);
@@ -701,6 +708,7 @@ int mpm_io_output_close(mpm_io_output *out, mpm_err *err)
   mpm_io_h5_quiet_end(&q);
   rc = close_text(&out->csv, out->csv_path, rc, err);
   rc = close_text(&out->xdmf, out->xdmf_path, rc, err);
+  rc = close_text(&out->bcsv, out->bcsv_path, rc, err);
   output_free(out);
   return rc;
 }

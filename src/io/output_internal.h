@@ -39,6 +39,8 @@ struct mpm_io_output {
   hid_t xdmf_group; /* /xdmf */
   FILE *csv;
   FILE *xdmf;
+  char *bcsv_path;  /* bodies.csv ... */
+  FILE *bcsv;       /* ... open once a frame had bodies (bodies_out.c) */
   long xdmf_tail_pos; /* offset of the closing tags in run.xdmf */
   int nframes;
   int dim;           /* of the run's point stores: 2, or 3 (a mesh of boxes) */
@@ -61,6 +63,10 @@ static inline int mpm_io_out_open_text(FILE **f, const char *path, const char *t
     return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
   return MPM_OK;
 }
+
+/* A resumed run's bodies after its first nframes frames: later /bodies
+ * datasets dropped, bodies.csv (if any) cut and open for appending. */
+int mpm_io_out_bodies_reopen(mpm_io_output *out, long nframes, mpm_err *err);
 
 /* run.xdmf as an empty temporal collection (out->xdmf, its tail offset). */
 int mpm_io_out_xdmf_open(mpm_io_output *out, mpm_err *err);

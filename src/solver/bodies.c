@@ -39,6 +39,24 @@ static size_t overlap(const mpm_sim *s, const mpm_body *b, unsigned char *keep)
   return n;
 }
 
+/* The mesh nodes inside body b (phi <= tol). */
+static long nodes_inside(const mpm_sim *s, const mpm_body *b)
+{
+  const mpm_mesh *m = &s->mesh;
+  const double tol = 1e-9 * fmin(m->h[0], m->h[1]);
+  int lo[3], hi[3];
+  long n = 0;
+  mpm_body_node_box(b, m, lo, hi);
+  for (int k = lo[2]; k < hi[2]; k++)
+    for (int j = lo[1]; j < hi[1]; j++)
+      for (int i = lo[0]; i < hi[0]; i++) {
+        double x[3];
+        mpm_mesh_node_pos(m, i, j, k, x);
+        n += mpm_body_phi(b, x, NULL) <= tol;
+      }
+  return n;
+}
+
 int mpm_sim_bodies_setup(mpm_sim *s, mpm_err *err)
 {
   const mpm_config *cfg = &s->cfg;
@@ -60,6 +78,12 @@ int mpm_sim_bodies_setup(mpm_sim *s, mpm_err *err)
     const mpm_body *b = &s->body[k];
     if (!mpm_body_in_mesh(b, &s->mesh)) {
       rc = mpm_err_set(err, MPM_EINPUT, "body '%s': its centre lies outside the mesh at t = 0",
+                       b->cfg->name);
+      break;
+    }
+    if (nodes_inside(s, b) == 0) {
+      rc = mpm_err_set(err, MPM_EINPUT, "body '%s' holds no node of the mesh at t = 0: the "
+                       "material would pass through it (allowed: a body at least a unit thick)",
                        b->cfg->name);
       break;
     }

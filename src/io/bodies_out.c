@@ -1,0 +1,123 @@
+/* bodies_out.c: the rigid bodies of a run in its output (io.h,
+ * mpm_io_output_bodies): per frame one row per body in DIR/bodies.csv and a
+ * dataset /bodies/NNNNNN of run.h5 (one line of BODY_COLUMNS values per
+ * body, in the input's order; the group's attributes name the bodies and
+ * the columns). A resumed run cuts bodies.csv after the rows of its first
+ * nframes frames and drops the later datasets (mpm_io_out_bodies_reopen). */
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "io/output_internal.h"
+
+static const char *const columns[] = {"x", "y", "z", "angle", "vx", "vy", "vz", "omega",
+                                      "fx", "fy", "fz", "tx", "ty", "tz", "pushed"};
+enum { BODY_COLUMNS = sizeof columns / sizeof columns[0] };
+
+static const char header[] = "frame,t,body,x,y,z,angle,vx,vy,vz,omega,fx,fy,fz,tx,ty,tz,pushed\n";
+
+static void row_of(const mpm_body_state *b, double v[BODY_COLUMNS])
+{
+  const double r[BODY_COLUMNS] = {b->c[0], b->c[1], b->c[2], b->theta, b->v[0], b->v[1], b->v[2],
+                                  b->v[3], b->f[0], b->f[1], b->f[2], b->tq[0], b->tq[1], b->tq[2],
+                                  (double)b->npushed};
+  memcpy(v, r, sizeof r);
+}
+
+/* /bodies with its attributes, created on the first frame. */
+static hid_t bodies_group(mpm_io_output *out, int n, const char *const *names)
+{
+  if (H5Lexists(out->file, "bodies", H5P_DEFAULT) > 0)
+    return H5Gopen2(out->file, "bodies", H5P_DEFAULT);
+  hid_t g = H5Gcreate2(out->file, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  char list[MPM_MAX_BODIES * (MPM_NAME_MAX + 1) + 1] = "", cols[256] = "";
+  for (int k = 0; k < n; k++)
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? "," : "", names[k]);
+  for (int k = 0; k < BODY_COLUMNS; k++)
+    snprintf(cols + strlen(cols), sizeof cols - strlen(cols), "%s%s", k ? "," : "", columns[k]);
+  if (g >= 0 && (mpm_io_h5_attr_string(g, "names", list) < 0 ||
+                 mpm_io_h5_attr_string(g, "columns", cols) < 0 ||
+                 mpm_io_h5_attr_string(g, "units", "m, rad, m/s, rad/s, N (plane N/m), N m "
+                                       "(plane N m/m), points") < 0)) {
+    mpm_io_h5_close(g);
+    return H5I_INVALID_HID;
+  }
+  return g;
+}
+
+int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const *names,
+                         const mpm_body_state *b, mpm_err *err)
+{
+  if (!out || n < 0 || n > MPM_MAX_BODIES || (n > 0 && (!names || !b)))
+    return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_bodies: invalid arguments");
+  if (n == 0)
+    return MPM_OK;
+  if (!out->bcsv) {                          /* the first frame of a new run */
+    const int rc = mpm_io_out_open_text(&out->bcsv, out->bcsv_path, header, err);
+    if (rc != MPM_OK)
+      return rc;
+  }
+  double v[MPM_MAX_BODIES * BODY_COLUMNS];
+  for (int k = 0; k < n; k++) {
+    double *r = v + (size_t)BODY_COLUMNS * (size_t)k;
+    row_of(&b[k], r);
+    fprintf(out->bcsv, "%d,%.10g,%s", out->nframes, t, names[k]);
+    for (int c = 0; c < BODY_COLUMNS; c++)
+      fprintf(out->bcsv, ",%.10g", r[c]);
+    fputc('\n', out->bcsv);
+  }
+  if (ferror(out->bcsv) || fflush(out->bcsv) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->bcsv_path, strerror(errno));
+  mpm_io_h5_quiet q;
+  mpm_io_h5_quiet_begin(&q);
+  char name[32];
+  snprintf(name, sizeof name, "%06d", out->nframes);
+  hid_t g = bodies_group(out, n, names);
+  const hsize_t dims[2] = {(hsize_t)n, BODY_COLUMNS};
+  hid_t sp = g >= 0 ? H5Screate_simple(2, dims, NULL) : H5I_INVALID_HID;
+  hid_t d = sp >= 0 ? H5Dcreate2(g, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT,
+                                 H5P_DEFAULT)
+                    : H5I_INVALID_HID;
+  int rc = d >= 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0 &&
+                   mpm_io_h5_attr_double(d, "time", t) >= 0
+               ? MPM_OK
+               : mpm_io_h5_fail(err, &q, "cannot write the bodies of a frame to", out->h5_path);
+  mpm_io_h5_close(d);
+  mpm_io_h5_close(sp);
+  mpm_io_h5_close(g);
+  mpm_io_h5_quiet_end(&q);
+  return rc;
+}
+
+int mpm_io_out_bodies_reopen(mpm_io_output *out, long nframes, mpm_err *err)
+{
+  char name[32];
+  if (H5Lexists(out->file, "bodies", H5P_DEFAULT) > 0) {
+    hid_t g = H5Gopen2(out->file, "bodies", H5P_DEFAULT);
+    for (long k = nframes; g >= 0; k++) {
+      snprintf(name, sizeof name, "%06ld", k);
+      if (H5Lexists(g, name, H5P_DEFAULT) <= 0 || H5Ldelete(g, name, H5P_DEFAULT) < 0)
+        break;
+    }
+    mpm_io_h5_close(g);
+  }
+  const char *path = out->bcsv_path;
+  int rc = MPM_OK;
+  out->bcsv = fopen(path, "r+");
+  if (out->bcsv) {                           /* keep the header and the rows of frame < nframes */
+    char line[1024];
+    long keep = 0;
+    int first = 1;
+    while (fgets(line, sizeof line, out->bcsv)) {
+      if (!first && strtol(line, NULL, 10) >= nframes)
+        break;
+      first = 0;
+      keep = ftell(out->bcsv);
+    }
+    if (keep < 0 || fflush(out->bcsv) != 0 || ftruncate(fileno(out->bcsv), keep) != 0 ||
+        fseek(out->bcsv, 0, SEEK_END) != 0)
+      rc = mpm_err_set(err, MPM_EIO, "cannot cut '%s': %s", path, strerror(errno));
+  } else if (errno != ENOENT) {
+    rc = mpm_err_set(err, MPM_EIO, "cannot open '%s': %s", path, strerror(errno));
+  }
+  return rc;
+}
