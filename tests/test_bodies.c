@@ -9,8 +9,8 @@
  *   square plate in 3D.
  * - A column at rest on a body plate sees on average its weight.
  * - A body overlapping the fill is refused, naming it and the count; with
- *   carve the points inside are left out and none stays inside; a plate
- *   between two rows of nodes (none inside it) is refused.
+ *   carve the points inside are left out and none stays inside; a small disc
+ *   more than half a unit from every node is refused.
  * - A free body resting on nothing falls as the closed form of its scheme.
  * - Points never end inside a body: a plate pushed 1.5 mm into a layer,
  *   which pushes back. */
@@ -139,12 +139,14 @@ START_TEST(overlap_refused_or_carved)
   mpm_err err = {0};
   ck_assert(mpm_sim_create(&s, &c, &err) == MPM_EINPUT);
   ck_assert_msg(strstr(err.msg, "body 'plate' overlaps 16 points"), "%s", err.msg);
-  c.body[0].cy = 0.0155;                                     /* between node rows: nothing holds */
-  c.body[0].hy = 0.004;
+  mpm_body_config plate = c.body[0];
+  c.body[0].shape = MPM_BODY_DISC;                           /* 6 mm from every node */
+  c.body[0].cx = 0.055;
+  c.body[0].cy = 0.095;
+  c.body[0].radius = 0.001;
   ck_assert(mpm_sim_create(&s, &c, &err) == MPM_EINPUT);
   ck_assert_msg(strstr(err.msg, "body 'plate' holds no node of the mesh"), "%s", err.msg);
-  c.body[0].cy = 0.015;
-  c.body[0].hy = 0.005;
+  c.body[0] = plate;
   c.body[0].carve = 1;
   s = make(&c);
   ck_assert_uint_eq(s->pts->n, 8 * 12 - 16);

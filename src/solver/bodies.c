@@ -1,8 +1,9 @@
 /* bodies.c: the rigid bodies of a run in the step (bc/body.h; docs/model.md,
  * "Rigid bodies and contact"), for either dimension.
  *
- * After the grid update each node with mass and phi(x_i) <= 0 of a body (to
- * 1e-9 of a unit: a node on the surface is in it) has
+ * After the grid update each node with mass and phi(x_i) <= h/2 of a body
+ * (h the shortest unit side: the nodes inside it and those less than half a
+ * unit outside, see reach()) has
  * its velocity corrected by the contact rule relative to the body's
  * velocity there (components held by a fixed wall stay held), and its
  * acceleration takes the jump, a_i += (v_i' - v_i)/dt, so that FLIP carries
@@ -39,11 +40,25 @@ static size_t overlap(const mpm_sim *s, const mpm_body *b, unsigned char *keep)
   return n;
 }
 
-/* The mesh nodes inside body b (phi <= tol). */
+/* The reach of a body: it holds the nodes with phi <= half the shortest
+ * unit side. A node nearer the surface than that, outside it, would have
+ * most of its support inside the body, where there is no material: the
+ * pressure of the thin layer between it and the surface pushes it towards
+ * the body with a force that grows as the layer thins, and that layer
+ * would be squeezed without bound. */
+static double reach(const mpm_mesh *m)
+{
+  double h = fmin(m->h[0], m->h[1]);
+  if (m->dim == 3)
+    h = fmin(h, m->h[2]);
+  return 0.5 * h;
+}
+
+/* The mesh nodes that body b holds (phi <= reach). */
 static long nodes_inside(const mpm_sim *s, const mpm_body *b)
 {
   const mpm_mesh *m = &s->mesh;
-  const double tol = 1e-9 * fmin(m->h[0], m->h[1]);
+  const double tol = reach(m);
   int lo[3], hi[3];
   long n = 0;
   mpm_body_node_box(b, m, lo, hi);
@@ -83,8 +98,8 @@ int mpm_sim_bodies_setup(mpm_sim *s, mpm_err *err)
     }
     if (nodes_inside(s, b) == 0) {
       rc = mpm_err_set(err, MPM_EINPUT, "body '%s' holds no node of the mesh at t = 0: the "
-                       "material would pass through it (allowed: a body at least a unit thick)",
-                       b->cfg->name);
+                       "material would pass through it (allowed: a body within half a unit of "
+                       "a node)", b->cfg->name);
       break;
     }
     const size_t n = overlap(s, b, b->cfg->carve ? keep : NULL);
@@ -106,7 +121,7 @@ static void contact_rows(mpm_sim *s, mpm_body *b, const int lo[3], const int hi[
   const int D = s->dim, lanes = mpm_sim_node_lanes(D);
   const long ny = hi[1] - lo[1], nrow = ny * (hi[2] - lo[2]);
   const double idt = 1.0 / s->dt;
-  const double tol = 1e-9 * fmin(m->h[0], m->h[1]);   /* a node on the surface is in it */
+  const double tol = reach(m);
 #pragma omp parallel for schedule(static)
   for (long r = 0; r < nrow; r++) {
     const int j = lo[1] + (int)(r % ny), kz = lo[2] + (int)(r / ny);
