@@ -18,9 +18,9 @@
 #define MAX_NODES 1e8  /* (nx + 1)(ny + 1) */
 #define GEOM_TOL 1e-9  /* fills may overshoot the mesh by this many units */
 
-static int is_set(const in_ctx *c, int key, int fill)
+static int is_set(const in_ctx *c, int key, int item)
 {
-  const loc *l = &c->at[fill < 0 ? 0 : fill][key];
+  const loc *l = &c->at[item < 0 ? 0 : item][key];
   return l->line > 0 || l->ovr > 0;
 }
 
@@ -33,15 +33,16 @@ static int later(loc a, loc b)
 }
 
 /* Where to report a relation between keys a and b: the one set last. */
-static where blame(const in_ctx *c, const mpm_config *cfg, int fill, int a, int b)
+static where blame(const in_ctx *c, const mpm_config *cfg, int item, int a, int b)
 {
-  const loc *la = &c->at[fill < 0 ? 0 : fill][a], *lb = &c->at[fill < 0 ? 0 : fill][b];
+  const loc *la = &c->at[item < 0 ? 0 : item][a], *lb = &c->at[item < 0 ? 0 : item][b];
   int k = later(*lb, *la) ? b : a;
+  const int t = mpm_io_in_titled_of(mpm_io_in_keys[k].sec);
   where w = {.at = k == a ? *la : *lb,
              .sec = mpm_io_in_keys[k].sec,
              .key = k,
-             .fill = fill,
-             .title = fill >= 0 ? cfg->fill[fill].name : NULL};
+             .item = item,
+             .title = item >= 0 && t >= 0 ? mpm_io_in_title(cfg, t, item) : NULL};
   return w;
 }
 
@@ -67,10 +68,10 @@ static mesh_axis axis_of(const mpm_config *cfg, int a)
 static int check_required(in_ctx *c)
 {
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_io_in_keys[k].sec == S_FILL || !(mpm_io_in_keys[k].flags & KF_REQUIRED) ||
-        is_set(c, k, -1))
+    if (mpm_io_in_titled_of(mpm_io_in_keys[k].sec) >= 0 ||
+        !(mpm_io_in_keys[k].flags & KF_REQUIRED) || is_set(c, k, -1))
       continue;
-    where w = {.sec = mpm_io_in_keys[k].sec, .key = k, .fill = -1};
+    where w = {.sec = mpm_io_in_keys[k].sec, .key = k, .item = -1};
     return mpm_io_in_fail_key(c, &w, "required, not set (allowed: %s)",
                               mpm_io_in_allowed_text(&mpm_io_in_keys[k]).s);
   }
@@ -310,7 +311,7 @@ static int check_fill_keys(in_ctx *c, const mpm_config *cfg, int i)
     const key_def *kd = &mpm_io_in_keys[k];
     if (kd->sec != S_FILL || !kd->shapes)
       continue;
-    where w = {.at = c->at[i][k], .sec = S_FILL, .key = k, .fill = i, .title = f->name};
+    where w = {.at = c->at[i][k], .sec = S_FILL, .key = k, .item = i, .title = f->name};
     if (!(kd->shapes & form) && is_set(c, k, i))
       return mpm_io_in_fail_key(c, &w, "not used by shape %s (allowed keys for %s: %s)", name.s,
                                 name.s, mpm_io_in_key_list(S_FILL, form).s);
@@ -407,7 +408,7 @@ static int check_polygon(in_ctx *c, mpm_config *cfg, int i)
 {
   mpm_fill_config *f = &cfg->fill[i];
   int kx = key_index(S_FILL, "x"), ky = key_index(S_FILL, "y");
-  int nx = c->nlist[i][0], ny = c->nlist[i][1];
+  int nx = c->nlist[i][kx], ny = c->nlist[i][ky];
   where w = blame(c, cfg, i, ky, kx);
   if (nx != ny)
     return mpm_io_in_fail_key(
@@ -446,7 +447,7 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
       *(double *)(void *)((char *)f + mpm_io_in_keys[k].off) = cfg->material.rho_c;
   int kd = key_index(S_FILL, "density");
   if (is_set(c, kd, i) && f->density > cfg->material.rho_s) {
-    where w = {.at = c->at[i][kd], .sec = S_FILL, .key = kd, .fill = i, .title = f->name};
+    where w = {.at = c->at[i][kd], .sec = S_FILL, .key = kd, .item = i, .title = f->name};
     return mpm_io_in_fail_key(c, &w,
                               "density = %s > material.rho_s = %s (allowed: density <= rho_s)",
                               mpm_io_in_num(f->density).s, mpm_io_in_num(cfg->material.rho_s).s);
@@ -456,7 +457,7 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
    * spring apart into tension and disconnect. */
   int kl = key_index(S_FILL, "lithostatic");
   if (f->lithostatic && cfg->gravity.t_ramp > 0.0) {
-    where w = {.at = c->at[i][kl], .sec = S_FILL, .key = kl, .fill = i, .title = f->name};
+    where w = {.at = c->at[i][kl], .sec = S_FILL, .key = kl, .item = i, .title = f->name};
     return mpm_io_in_fail_key(c, &w,
                               "lithostatic = true with gravity.t_ramp = %s s: the pre-stress "
                               "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
@@ -465,7 +466,7 @@ static int check_fill(in_ctx *c, mpm_config *cfg, int i)
   }
   int kk = key_index(S_FILL, "k0");
   if (!f->lithostatic && f->k0 > 0.0) {
-    where w = {.at = c->at[i][kk], .sec = S_FILL, .key = kk, .fill = i, .title = f->name};
+    where w = {.at = c->at[i][kk], .sec = S_FILL, .key = kk, .item = i, .title = f->name};
     return mpm_io_in_fail_key(c, &w,
                               "k0 = %s without lithostatic = true: the lateral stress ratio "
                               "belongs to the lithostatic pre-stress (allowed: lithostatic = "
@@ -504,7 +505,7 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
     if (mpm_io_in_find_key(S_MATERIAL, key) >= 0)
       k = mpm_io_in_find_key(S_MATERIAL, key);
   }
-  where w = {.at = c->at[0][k], .sec = S_MATERIAL, .key = k, .fill = -1};
+  where w = {.at = c->at[0][k], .sec = S_MATERIAL, .key = k, .item = -1};
   if (named)
     return mpm_io_in_fail_at(c, &w, "%s", e.msg);
   return mpm_io_in_fail_key(c, &w, "model \"%s\": %s", mpm_io_in_show(cfg->material.model).s,
@@ -632,7 +633,7 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
 static int check_wall(in_ctx *c, mpm_config *cfg)
 {
   const int kx = key_index(S_WALL, "x"), ky = key_index(S_WALL, "y");
-  const int nx = c->wall_nlist[0], ny = c->wall_nlist[1];
+  const int nx = c->nlist[0][kx], ny = c->nlist[0][ky];
   where w = blame(c, cfg, -1, ky, kx);
   if (nx != ny)
     return mpm_io_in_fail_key(
@@ -671,6 +672,24 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
   return MPM_OK;
 }
 
+/* A plane run: the 3D keys (but mesh.nz) set in a plain section, or in item
+ * i of titled section t (t < 0: the plain sections). */
+static int check_plane_keys(in_ctx *c, const mpm_config *cfg, int t, int i)
+{
+  const int knz = key_index(S_MESH, "nz");
+  for (int k = 0; k < NKEYS; k++) {
+    const int sec = mpm_io_in_keys[k].sec;
+    if (!(mpm_io_in_keys[k].flags & KF_3D) || k == knz || mpm_io_in_titled_of(sec) != t ||
+        !is_set(c, k, i))
+      continue;
+    where w = {.at = c->at[i < 0 ? 0 : i][k], .sec = sec, .key = k, .item = i,
+               .title = t >= 0 ? mpm_io_in_title(cfg, t, i) : NULL};
+    return mpm_io_in_fail_key(c, &w, "a key of 3D runs, set in a plane one (allowed: with "
+                              "mesh.nz > 0 only)");
+  }
+  return MPM_OK;
+}
+
 /* A 3D run (mesh.nz > 0): the keys it needs (the z range of every fill
  * but a cylinder along x or y) and what is plane by nature (triangles); a
  * plane run: no 3D key set. */
@@ -678,16 +697,12 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
 {
   const int knz = key_index(S_MESH, "nz");
   if (cfg->mesh.nz == 0) {
-    for (int f = -1; f < cfg->nfill; f++)
-      for (int k = 0; k < NKEYS; k++) {
-        if (!(mpm_io_in_keys[k].flags & KF_3D) || k == knz ||
-            (mpm_io_in_keys[k].sec == S_FILL) != (f >= 0) || !is_set(c, k, f))
-          continue;
-        where w = {.at = c->at[f < 0 ? 0 : f][k], .sec = mpm_io_in_keys[k].sec, .key = k,
-                   .fill = f, .title = f >= 0 ? cfg->fill[f].name : NULL};
-        return mpm_io_in_fail_key(c, &w, "a key of 3D runs, set in a plane one (allowed: with "
-                                  "mesh.nz > 0 only)");
-      }
+    if (check_plane_keys(c, cfg, -1, -1) != MPM_OK)
+      return MPM_EINPUT;
+    for (int t = 0; t < NTITLED; t++)
+      for (int i = 0; i < mpm_io_in_count_of(cfg, t); i++)
+        if (check_plane_keys(c, cfg, t, i) != MPM_OK)
+          return MPM_EINPUT;
     return MPM_OK;
   }
   const int kdz = key_index(S_MESH, "dz");
@@ -725,7 +740,7 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
       continue;  /* a cylinder along x or y: its span is its own (check_disc) */
     if (!is_set(c, kz0, f) || !is_set(c, kz1, f)) {
       const int km = is_set(c, kz0, f) ? kz1 : kz0;
-      where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .fill = f, .title = fc->name};
+      where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .item = f, .title = fc->name};
       return mpm_io_in_fail_key(c, &w, "required in a 3D run, not set (allowed: %s ... %s m)",
                                 mpm_io_in_approx(cfg->mesh.z0).s, mpm_io_in_approx(z1).s);
     }
@@ -745,7 +760,7 @@ int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
   if (check_required(c) != MPM_OK)
     return MPM_EINPUT;
   if (cfg->nfill == 0) {
-    where w = {.sec = S_FILL, .key = -1, .fill = -1};
+    where w = {.sec = S_FILL, .key = -1, .item = -1};
     return mpm_io_in_fail_at(
         c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')", MPM_MAX_FILLS);
   }

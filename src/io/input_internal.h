@@ -4,10 +4,16 @@
  * of the fully resolved input (docs/input-reference.md).
  *
  * One table, mpm_io_in_keys[], lists every key with its section, type, default,
- * allowed range, unit and offset into mpm_config (or mpm_fill_config for fill
- * keys). Defaults, parsing, overrides, the required-key check and the writer
- * are all driven by it; tests/test_input.c checks the reference page against
- * it.
+ * allowed range, unit and offset into mpm_config (or, for the keys of a
+ * titled section, into its record: mpm_fill_config). Defaults, parsing,
+ * overrides, the required-key check and the writer are all driven by it;
+ * tests/test_input.c checks the reference page against it.
+ *
+ * A titled section ("fill NAME { ... }") is repeated, each item a record of
+ * an array of mpm_config; a second table, mpm_io_in_titled[], gives each
+ * titled section its array, count and maximum, so that one mechanism
+ * parses, overrides, checks and writes them all. Keys set in item i are
+ * recorded in row i of in_ctx.at (row 0 also holds the plain sections').
  *
  * libconfuse does the syntax (sections, titles, lists, quoting, comments,
  * ${ENV} substitution). Every key is a user-defined (CFGT_PTR) option whose
@@ -82,6 +88,23 @@ enum key_flag {
                        left out of its resolved input (mesh.nz itself too when 0) */
 };
 
+/* The titled sections, in the order of enum section. */
+enum titled { T_FILL, NTITLED };
+
+typedef struct titled_def {
+  unsigned char sec;  /* enum section */
+  int max;            /* items allowed */
+  size_t count_off;   /* int: the number of items, in mpm_config */
+  size_t array_off;   /* the first record, in mpm_config */
+  size_t size;        /* one record */
+  size_t name_off;    /* char[MPM_NAME_MAX]: the title, in the record */
+} titled_def;
+
+/* The rows of in_ctx.at: the items of the largest titled section. */
+#define MAX_ITEMS MPM_MAX_FILLS
+
+extern const titled_def mpm_io_in_titled[NTITLED];
+
 /* The forms of fill that use a key (0: every form): in a plane run the
  * shape (rectangle, disc, polygon); in a 3D run the shape and its extent: a
  * box, a prism along z, or a cylinder along x, y or z (a disc and its
@@ -99,7 +122,8 @@ enum key_flag {
 typedef struct key_def {
   const char *name;
   unsigned char sec, type, kind, flags, shapes;
-  size_t off;         /* into mpm_config, or mpm_fill_config for fill keys */
+  size_t off;         /* into mpm_config, or the record of a titled section */
+  size_t noff;        /* a list: its int count of values, in the same record */
   double def, lo, hi; /* numeric default and range (list: range of each value) */
   const char *sdef;   /* default of names and paths */
   const char *unit;   /* "-": dimensionless */
@@ -116,6 +140,16 @@ int mpm_io_in_name_value(int kind, const char *s);
 int mpm_io_in_find_section(const char *name);
 int mpm_io_in_find_key(int sec, const char *name);
 int mpm_io_in_fill_form(const mpm_fill_config *f, int dim3);
+int mpm_io_in_item_form(int t, const void *rec, int dim3);
+
+/* Titled sections: the entry of section sec in mpm_io_in_titled (-1: a
+ * plain section), the number of items, item i's record and its title. */
+int mpm_io_in_titled_of(int sec);
+int *mpm_io_in_count(mpm_config *cfg, int t);
+int mpm_io_in_count_of(const mpm_config *cfg, int t);
+void *mpm_io_in_item(mpm_config *cfg, int t, int i);
+const void *mpm_io_in_item_of(const mpm_config *cfg, int t, int i);
+const char *mpm_io_in_title(const mpm_config *cfg, int t, int i);
 
 /* --------------------------------------------------------- message pieces */
 
@@ -146,11 +180,12 @@ typedef struct loc {
   int ovr;
 } loc;
 
-/* What an error is about. key < 0: a section as a whole; fill < 0: no fill. */
+/* What an error is about. key < 0: a section as a whole; item < 0: no item
+ * of a titled section, else its index in that section. */
 typedef struct where {
   loc at;
-  int sec, key, fill;
-  const char *title;  /* fill title in the key name; NULL: "fill.key" */
+  int sec, key, item;
+  const char *title;  /* item title in the key name; NULL: "fill.key" */
 } where;
 
 enum { SCAN_DEPTH = 64, MAX_BRACES = 128 };
@@ -163,15 +198,15 @@ typedef struct in_ctx {
   int failed;                    /* an error is recorded: keep the first */
   int eof_line;                  /* last line of the file */
   int sec_line[NSEC];            /* line of the section, 0: absent */
-  int fill_line[MPM_MAX_FILLS];
+  int item_line[NTITLED][MAX_ITEMS];
   int sec_open[NSEC];            /* opening lines found by the comment scan */
-  int fill_open[MPM_MAX_FILLS + 1];
+  int item_open[NTITLED][MAX_ITEMS + 1];
   int nbrace;                    /* top-level '{' seen by the comment scan */
   size_t brace_pos[MAX_BRACES];
   int brace_line[MAX_BRACES];
-  loc at[MPM_MAX_FILLS][NKEYS];  /* where each key was set (row 0: non-fill keys) */
-  int nlist[MPM_MAX_FILLS][2];   /* number of polygon x and y values */
-  int wall_nlist[2];             /* the same for the wall polygon */
+  loc at[MAX_ITEMS][NKEYS];      /* where each key was set: row i for item i of a
+                                    titled section, row 0 also for plain sections */
+  int nlist[MAX_ITEMS][NKEYS];   /* the number of values of each list key (rows as at) */
   cfg_opt_t opts[NSEC + 1][NKEYS + 2];  /* libconfuse options: sections, root last */
 } in_ctx;
 

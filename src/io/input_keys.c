@@ -32,7 +32,7 @@ const char *const mpm_io_in_sec_names[NSEC] = {"mesh",     "time", "gravity", "m
 #define NAMED(s, t, n, o, k, d) {.name = n, .sec = s, .type = t, .off = o, .kind = k, .sdef = d}
 #define GEOM(t, n, o, l, h, f, sh) \
   {.name = n, .sec = S_FILL, .type = t, .off = o, .lo = l, .hi = h, \
-   .flags = KF_REQUIRED | (f), .shapes = sh, .unit = "m"}
+   .flags = KF_REQUIRED | (f), .shapes = sh, .unit = "m", .noff = F_(nvert)}
 
 const key_def mpm_io_in_keys[] = {
     NUM(S_MESH, KT_INT, "nx", C_(mesh.nx), 0, 1, 100000, KF_REQUIRED, "-"),
@@ -154,6 +154,7 @@ const key_def mpm_io_in_keys[] = {
      .sec = S_WALL,
      .type = KT_LIST,
      .off = C_(wall.px),
+     .noff = C_(wall.nvert),
      .lo = -1e9,
      .hi = 1e9,
      .unit = "m"},
@@ -161,6 +162,7 @@ const key_def mpm_io_in_keys[] = {
      .sec = S_WALL,
      .type = KT_LIST,
      .off = C_(wall.py),
+     .noff = C_(wall.nvert),
      .lo = -1e9,
      .hi = 1e9,
      .unit = "m"},
@@ -182,6 +184,50 @@ const key_def mpm_io_in_keys[] = {
 
 _Static_assert(sizeof mpm_io_in_keys / sizeof mpm_io_in_keys[0] == NKEYS,
                "NKEYS (input_internal.h) must count the rows of mpm_io_in_keys");
+
+/* ------------------------------------------------------ titled sections */
+
+const titled_def mpm_io_in_titled[NTITLED] = {
+  [T_FILL] = {.sec = S_FILL, .max = MPM_MAX_FILLS, .count_off = C_(nfill), .array_off = C_(fill),
+              .size = sizeof(mpm_fill_config), .name_off = F_(name)},
+};
+
+_Static_assert(MAX_ITEMS >= MPM_MAX_FILLS, "MAX_ITEMS must hold every titled section's items");
+
+int mpm_io_in_titled_of(int sec)
+{
+  for (int t = 0; t < NTITLED; t++)
+    if (mpm_io_in_titled[t].sec == sec)
+      return t;
+  return -1;
+}
+
+int *mpm_io_in_count(mpm_config *cfg, int t)
+{
+  return (int *)(void *)((char *)cfg + mpm_io_in_titled[t].count_off);
+}
+
+int mpm_io_in_count_of(const mpm_config *cfg, int t)
+{
+  return *(const int *)(const void *)((const char *)cfg + mpm_io_in_titled[t].count_off);
+}
+
+void *mpm_io_in_item(mpm_config *cfg, int t, int i)
+{
+  const titled_def *td = &mpm_io_in_titled[t];
+  return (char *)cfg + td->array_off + (size_t)i * td->size;
+}
+
+const void *mpm_io_in_item_of(const mpm_config *cfg, int t, int i)
+{
+  const titled_def *td = &mpm_io_in_titled[t];
+  return (const char *)cfg + td->array_off + (size_t)i * td->size;
+}
+
+const char *mpm_io_in_title(const mpm_config *cfg, int t, int i)
+{
+  return (const char *)mpm_io_in_item_of(cfg, t, i) + mpm_io_in_titled[t].name_off;
+}
 
 /* ------------------------------------------------------------- name tables */
 
@@ -312,6 +358,16 @@ int mpm_io_in_fill_form(const mpm_fill_config *f, int dim3)
     if (!dim3)
       return SH_DISC;
     return f->axis >= 0 && f->axis <= 2 ? SH_CYL_X << f->axis : 0;
+  default: return 0;
+  }
+}
+
+/* The form of item rec of titled section t (one bit of key_def.shapes), 0
+ * for a section without forms. */
+int mpm_io_in_item_form(int t, const void *rec, int dim3)
+{
+  switch (t) {
+  case T_FILL: return mpm_io_in_fill_form(rec, dim3);
   default: return 0;
   }
 }

@@ -1,5 +1,5 @@
 /* input_value.c: one key's value, from its text (a file or a --set) to its
- * place in mpm_config or mpm_fill_config: integers, reals, booleans, names
+ * place in mpm_config or an item's record: integers, reals, booleans, names
  * of a table, paths and polygon lists, each parsed whole and checked against
  * the key's range, with the place it was set on recorded; and the defaults of
  * the key table. */
@@ -11,9 +11,9 @@
 
 #include "io/input_internal.h"
 
-static loc *loc_of(in_ctx *c, int key, int fill)
+static loc *loc_of(in_ctx *c, int key, int item)
 {
-  return &c->at[fill < 0 ? 0 : fill][key];
+  return &c->at[item < 0 ? 0 : item][key];
 }
 
 static int starts_blank(const char *s)
@@ -155,7 +155,8 @@ static int store_path(in_ctx *c, const where *w, const char *s, char *out)
   return MPM_OK;
 }
 
-/* Parse s as the value of key w->key into rec (mpm_config or mpm_fill_config). */
+/* Parse s as the value of key w->key into rec (mpm_config, or the record of
+ * item w->item of a titled section). */
 int mpm_io_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
 {
   const key_def *kd = &mpm_io_in_keys[w->key];
@@ -171,7 +172,7 @@ int mpm_io_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
   default: break;
   }
   if (rc == MPM_OK)
-    *loc_of(c, w->key, w->fill) = w->at;
+    *loc_of(c, w->key, w->item) = w->at;
   return rc;
 }
 
@@ -194,8 +195,8 @@ int mpm_io_in_store_list(in_ctx *c, void *rec, const where *w, const char *const
     if (store_real(c, &e, vals[i], &arr[i]) != MPM_OK)
       return MPM_EINPUT;
   }
-  (w->fill < 0 ? c->wall_nlist : c->nlist[w->fill])[strcmp(kd->name, "x") == 0 ? 0 : 1] = n;
-  *loc_of(c, w->key, w->fill) = n > 0 ? locs[0] : w->at;
+  c->nlist[w->item < 0 ? 0 : w->item][w->key] = n;
+  *loc_of(c, w->key, w->item) = n > 0 ? locs[0] : w->at;
   return MPM_OK;
 }
 
