@@ -35,7 +35,9 @@
  *     input_parse.c     reading the file, libconfuse glue, collecting values
  *     input_value.c     typed values: parse, range-check and store one key
  *     input_override.c  --set section.key=value
- *     input_check.c     cross-field checks, derived defaults
+ *     input_check.c     cross-field checks, derived defaults; what the checks of
+ *                       the titled sections share (keys of a form, polygons)
+ *     input_fill.c      the checks of a fill
  *     input_write.c     the fully resolved input, as an input file
  * Functions and tables shared between them are declared here and named mpm_io_in_*;
  * everything else in them is static. The mpm_io_in_* names are hidden: they link the
@@ -234,6 +236,24 @@ int mpm_io_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg);
 int mpm_io_in_valid_title(const char *t);
 int mpm_io_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
 int mpm_io_in_validate(in_ctx *c, mpm_config *cfg);
+
+/* ------------------------------------------------------ checks, shared */
+
+#define GEOM_TOL 1e-9  /* a region may overshoot the mesh by this many units */
+
+/* The mesh along axis a (0 x, 1 y, 2 z): origin, unit size, units. */
+typedef struct mesh_axis {
+  double o, d;
+  int n;
+} mesh_axis;
+
+mesh_axis mpm_io_in_mesh_axis(const mpm_config *cfg, int a);
+int mpm_io_in_is_set(const in_ctx *c, int key, int item);
+where mpm_io_in_blame(const in_ctx *c, const mpm_config *cfg, int item, int a, int b);
+int mpm_io_in_check_form_keys(in_ctx *c, const mpm_config *cfg, int t, int i);
+int mpm_io_in_check_vertices(in_ctx *c, const mpm_config *cfg, int i, int kx, int ky,
+                             const double *px, const double *py, double box[4]);
+int mpm_io_in_check_fill(in_ctx *c, mpm_config *cfg, int i);
 
 #pragma GCC visibility pop
 
