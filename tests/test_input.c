@@ -457,9 +457,11 @@ static const bad_set bad_sets[] = {
   {"time.dt=nan", "--set 'time.dt=nan': key 'time.dt': value nan out of range (allowed: 0, or 1e-12 ... 1e6 s)"},
   {"mesh.nx", "--set 'mesh.nx': expected section.key=value"},
   {"nx=3", "--set 'nx=3': 'nx' is not section.key (allowed sections: mesh, time, gravity, "
-           "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
+           "material, boundary, fill, body, stop, output, outlet, wall, remove, region, "
+           "absorb)"},
   {"meshes.nx=3", "--set 'meshes.nx=3': unknown section 'meshes' (allowed: mesh, time, gravity, "
-                  "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
+                  "material, boundary, fill, body, stop, output, outlet, wall, remove, region, "
+                  "absorb)"},
   {"mesh.nxx=3", "--set 'mesh.nxx=3': unknown key 'mesh.nxx' (allowed keys in 'mesh': nx, ny, "
                  "x0, y0, dx, dy, nz, z0, dz, topology, diagonal, mirror_x, shape, "
                  "dilatation)"},

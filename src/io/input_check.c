@@ -3,7 +3,7 @@
  * periodic edges in pairs, outlet, wall, region, the keys of 3D runs), the
  * defaults that follow other keys (t_seed, stop.t_min, gravity from an
  * angle), and the model's own parameter check; the items of the titled
- * sections are checked by input_fill.c (and the like) with the helpers
+ * sections are checked by input_fill.c and input_body.c with the helpers
  * shared here: the keys of an item's form, a polygon's vertices. A relation
  * between two keys is reported at the one set last. */
 #include <math.h>
@@ -667,6 +667,9 @@ int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
   resolve_stop(c, cfg);
   for (int i = 0; i < cfg->nfill; i++)
     if (mpm_io_in_check_fill(c, cfg, i) != MPM_OK)
+      return MPM_EINPUT;
+  for (int i = 0; i < cfg->nbody; i++)
+    if (mpm_io_in_check_body(c, cfg, i) != MPM_OK)
       return MPM_EINPUT;
   return check_model(c, cfg);
 }

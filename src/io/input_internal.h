@@ -5,15 +5,16 @@
  *
  * One table, mpm_io_in_keys[], lists every key with its section, type, default,
  * allowed range, unit and offset into mpm_config (or, for the keys of a
- * titled section, into its record: mpm_fill_config). Defaults, parsing,
+ * titled section, into its record: mpm_fill_config, mpm_body_config). Defaults, parsing,
  * overrides, the required-key check and the writer are all driven by it;
  * tests/test_input.c checks the reference page against it.
  *
- * A titled section ("fill NAME { ... }") is repeated, each item a record of
- * an array of mpm_config; a second table, mpm_io_in_titled[], gives each
- * titled section its array, count and maximum, so that one mechanism
- * parses, overrides, checks and writes them all. Keys set in item i are
- * recorded in row i of in_ctx.at (row 0 also holds the plain sections').
+ * A titled section ("fill NAME { ... }", "body NAME { ... }") is repeated,
+ * each item a record of an array of mpm_config; a second table,
+ * mpm_io_in_titled[], gives each titled section its array, count and
+ * maximum, so that one mechanism parses, overrides, checks and writes them
+ * all. Keys set in item i are recorded in row i of in_ctx.at (row 0 also
+ * holds the plain sections').
  *
  * libconfuse does the syntax (sections, titles, lists, quoting, comments,
  * ${ENV} substitution). Every key is a user-defined (CFGT_PTR) option whose
@@ -38,6 +39,7 @@
  *     input_check.c     cross-field checks, derived defaults; what the checks of
  *                       the titled sections share (keys of a form, polygons)
  *     input_fill.c      the checks of a fill
+ *     input_body.c      the checks of a rigid body
  *     input_write.c     the fully resolved input, as an input file
  * Functions and tables shared between them are declared here and named mpm_io_in_*;
  * everything else in them is static. The mpm_io_in_* names are hidden: they link the
@@ -58,7 +60,7 @@
 /* ------------------------------------------------------------ the key table */
 
 enum section {
-  S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_STOP, S_OUTPUT,
+  S_MESH, S_TIME, S_GRAVITY, S_MATERIAL, S_BOUNDARY, S_FILL, S_BODY, S_STOP, S_OUTPUT,
   S_OUTLET, S_WALL, S_REMOVE, S_REGION, S_ABSORB, NSEC
 };
 
@@ -69,14 +71,14 @@ enum key_type {
   KT_NAME,  /* char[MPM_NAME_MAX], one of a name table */
   KT_ENUM,  /* int, the index of a name in a name table */
   KT_PATH,  /* char[MPM_PATH_MAX] */
-  KT_LIST   /* double[MPM_MAX_POLY], polygon coordinates */
+  KT_LIST   /* double[MPM_MAX_POLY]: polygon coordinates, a body's times and velocities */
 };
 
 enum name_kind {
   NK_NONE, NK_TOPOLOGY, NK_DIAGONAL, NK_SHAPE, NK_MODEL, NK_BC, NK_FILL_SHAPE, NK_NGF_FORM,
   NK_NGF_P_SAMPLE, NK_NGF_G_AVERAGE, NK_DENSITY, NK_EDGE, NK_DILATATION, NK_TRANSFER, NK_DIFFUSION,
   NK_G_WALL, NK_G_SAMPLE, NK_G_MASS, NK_WALL_ACC, NK_OUTLET_SHAPE,
-  NK_OUTLET_ENDS, NK_FILL_AXIS
+  NK_OUTLET_ENDS, NK_FILL_AXIS, NK_BODY_SHAPE, NK_BODY_SIDE, NK_BODY_CONTACT
 };
 
 enum key_flag {
@@ -86,12 +88,13 @@ enum key_flag {
   KF_RHO_C = 8,     /* default: material.rho_c */
   KF_T0X10 = 16,    /* default: 10 material.t0 */
   KF_ZERO_OFF = 32, /* 0 ("off", "from another key") or a value in the range */
-  KF_3D = 64        /* a key of 3D runs (mesh.nz > 0): refused in a plane run, and
+  KF_3D = 64,       /* a key of 3D runs (mesh.nz > 0): refused in a plane run, and
                        left out of its resolved input (mesh.nz itself too when 0) */
+  KF_RISING = 128   /* a list of strictly increasing values */
 };
 
 /* The titled sections, in the order of enum section. */
-enum titled { T_FILL, NTITLED };
+enum titled { T_FILL, T_BODY, NTITLED };
 
 typedef struct titled_def {
   unsigned char sec;  /* enum section */
@@ -103,7 +106,7 @@ typedef struct titled_def {
 } titled_def;
 
 /* The rows of in_ctx.at: the items of the largest titled section. */
-#define MAX_ITEMS MPM_MAX_FILLS
+#define MAX_ITEMS (MPM_MAX_FILLS > MPM_MAX_BODIES ? MPM_MAX_FILLS : MPM_MAX_BODIES)
 
 extern const titled_def mpm_io_in_titled[NTITLED];
 
@@ -121,6 +124,12 @@ extern const titled_def mpm_io_in_titled[NTITLED];
 #define SH_CYL_Z (SH_POLY << 5)
 #define SH_CYL (SH_CYL_X | SH_CYL_Y | SH_CYL_Z)
 
+/* The shapes of body that use a key (0: every shape), one bit each, in a
+ * plane or a 3D run alike: mpm_io_in_body_form. */
+#define BS_DISC (1 << MPM_BODY_DISC)
+#define BS_BOX (1 << MPM_BODY_BOX)
+#define BS_POLY (1 << MPM_BODY_POLYGON)
+
 typedef struct key_def {
   const char *name;
   unsigned char sec, type, kind, flags, shapes;
@@ -132,7 +141,7 @@ typedef struct key_def {
 } key_def;
 
 /* The number of rows of mpm_io_in_keys; input_keys.c asserts that it is right. */
-#define NKEYS 107
+#define NKEYS 139
 
 extern const key_def mpm_io_in_keys[];
 extern const char *const mpm_io_in_sec_names[NSEC];
@@ -142,6 +151,7 @@ int mpm_io_in_name_value(int kind, const char *s);
 int mpm_io_in_find_section(const char *name);
 int mpm_io_in_find_key(int sec, const char *name);
 int mpm_io_in_fill_form(const mpm_fill_config *f, int dim3);
+int mpm_io_in_body_form(const mpm_body_config *b);
 int mpm_io_in_item_form(int t, const void *rec, int dim3);
 
 /* Titled sections: the entry of section sec in mpm_io_in_titled (-1: a
@@ -254,6 +264,7 @@ int mpm_io_in_check_form_keys(in_ctx *c, const mpm_config *cfg, int t, int i);
 int mpm_io_in_check_vertices(in_ctx *c, const mpm_config *cfg, int i, int kx, int ky,
                              const double *px, const double *py, double box[4]);
 int mpm_io_in_check_fill(in_ctx *c, mpm_config *cfg, int i);
+int mpm_io_in_check_body(in_ctx *c, mpm_config *cfg, int i);
 
 #pragma GCC visibility pop
 
