@@ -358,6 +358,77 @@ START_TEST(t_every_key)
   ck_assert_double_eq(p->px[3], 0);
   ck_assert_int_eq(p->ppu, 1);
   ck_assert_double_eq(p->density, 1550);  /* rho_c of this file */
+
+  /* the bodies: a disc with every plane key, a box and a polygon */
+  ck_assert_int_eq(c.nbody, 3);
+  const mpm_body_config *w = &c.body[0], *b = &c.body[1], *g = &c.body[2];
+  ck_assert_str_eq(w->name, "wheel");
+  ck_assert_int_eq(w->shape, MPM_BODY_DISC);
+  ck_assert_int_eq(w->axis, 2);  /* a plane body lies along z */
+  ck_assert_double_eq(w->cx, 0.2);
+  ck_assert_double_eq(w->cy, 1.1);
+  ck_assert_double_eq(w->cz, 0);
+  ck_assert_double_eq(w->radius, 0.1);
+  ck_assert_double_eq(w->angle, 15);
+  ck_assert_double_eq(w->length, 0);
+  ck_assert_int_eq(w->side, MPM_BODY_INSIDE);
+  ck_assert_int_eq(w->contact, MPM_CONTACT_FRICTION);
+  ck_assert_double_eq(w->friction, 0.3);
+  ck_assert_int_eq(w->ntable, 3);
+  const double t[] = {0, 0.5, 1.5}, vx[] = {0, 0.1, 0.25}, om[] = {1, 2, -3};
+  for (int i = 0; i < 3; i++) {
+    ck_assert_double_eq(w->t[i], t[i]);
+    ck_assert_double_eq(w->val[MPM_BODY_VX][i], vx[i]);
+    ck_assert_double_eq(w->val[MPM_BODY_OMEGA][i], om[i]);
+  }
+  ck_assert_double_eq(w->t[3], 0);
+  const int nval[MPM_BODY_NDOF] = {3, 1, 1, 3};
+  for (int k = 0; k < MPM_BODY_NDOF; k++)
+    ck_assert_int_eq(w->nval[k], nval[k]);
+  ck_assert_double_eq(w->val[MPM_BODY_VY][0], 0.5);
+  ck_assert_double_eq(w->val[MPM_BODY_VZ][0], 0);  /* not given: the one value 0 */
+  ck_assert_int_eq(w->free[MPM_BODY_VX], 1);
+  ck_assert_int_eq(w->free[MPM_BODY_VY], 1);
+  ck_assert_int_eq(w->free[MPM_BODY_VZ], 0);
+  ck_assert_int_eq(w->free[MPM_BODY_OMEGA], 1);
+  ck_assert_double_eq(w->mass, 2.5);
+  ck_assert_double_eq(w->inertia, 0.0125);
+  ck_assert_double_eq(w->force[0], 1.5);
+  ck_assert_double_eq(w->force[1], -2);
+  ck_assert_double_eq(w->force[2], 0);
+  ck_assert_double_eq(w->torque, 0.25);
+  ck_assert_double_eq(w->damping, 0.5);
+  ck_assert_int_eq(w->carve, 1);
+  ck_assert_int_eq(w->nvert, 0);
+
+  ck_assert_str_eq(b->name, "blade");
+  ck_assert_int_eq(b->shape, MPM_BODY_BOX);
+  ck_assert_double_eq(b->cx, -0.2);
+  ck_assert_double_eq(b->cy, 1.2);
+  ck_assert_double_eq(b->hx, 0.02);
+  ck_assert_double_eq(b->hy, 0.15);
+  ck_assert_double_eq(b->radius, 0);
+  ck_assert_double_eq(b->angle, -30);
+  ck_assert_int_eq(b->contact, MPM_CONTACT_FRICTIONLESS);
+  ck_assert_int_eq(b->ntable, 0);
+  for (int k = 0; k < MPM_BODY_NDOF; k++) {
+    ck_assert_int_eq(b->nval[k], 1);
+    ck_assert_double_eq(b->val[k][0], 0);
+    ck_assert_int_eq(b->free[k], 0);
+  }
+
+  ck_assert_str_eq(g->name, "plough");
+  ck_assert_int_eq(g->shape, MPM_BODY_POLYGON);
+  ck_assert_int_eq(g->nvert, 3);
+  const double gx[] = {0, 0.1, 0}, gy[] = {0, 0, 0.2};
+  for (int i = 0; i < 3; i++) {
+    ck_assert_double_eq(g->px[i], gx[i]);
+    ck_assert_double_eq(g->py[i], gy[i]);
+  }
+  ck_assert_int_eq(g->nval[MPM_BODY_VX], 1);
+  ck_assert_double_eq(g->val[MPM_BODY_VX][0], -0.5);
+  ck_assert_int_eq(g->side, MPM_BODY_OUTSIDE);
+  ck_assert_int_eq(g->carve, 0);
 }
 END_TEST
 
@@ -867,6 +938,16 @@ static const char *fill_for(const char *key)
   return "block";
 }
 
+/* The body of full.conf that uses a body key. */
+static const char *body_for(const char *key)
+{
+  if (!strcmp(key, "hx") || !strcmp(key, "hy"))
+    return "blade";
+  if (!strcmp(key, "x") || !strcmp(key, "y"))
+    return "plough";
+  return "wheel";
+}
+
 /* A value outside what the key allows, and the message body it gives. */
 static void bad_value(const doc_row *r, char *val, size_t vcap, char *body, size_t bcap)
 {
@@ -900,6 +981,8 @@ static void check_doc_allowed(const doc_row *r)
   ck_assert_ptr_nonnull(dot);
   if (!strncmp(r->key, "fill.", 5))
     snprintf(key, sizeof key, "fill.%s.%s", fill_for(dot + 1), dot + 1);
+  else if (!strncmp(r->key, "body.", 5))
+    snprintf(key, sizeof key, "body.%s.%s", body_for(dot + 1), dot + 1);
   else
     snprintf(key, sizeof key, "%s", r->key);
   bad_value(r, val, sizeof val, body, sizeof body);
@@ -945,9 +1028,10 @@ static int written_key(const char *text, const char *key, char *out, size_t cap)
  * The resolved input leaves out the form of gravity that was not used, so
  * gravity.angle and gravity.g are read from polar_text (minimal.conf with
  * gravity given as an angle). A default written as another key's name
- * ("material.rho_c") is that key's resolved value. */
+ * ("material.rho_c") is that key's resolved value. A body's defaults are
+ * read from text_body, whose first body has only its required keys. */
 static void check_doc_default(const doc_row *r, const char *text, const char *polar_text,
-                              const char *text3, const char *text_cyl)
+                              const char *text3, const char *text_cyl, const char *text_body)
 {
   char value[128], other[128];
   if (!strncmp(r->def, "required", 8))
@@ -959,11 +1043,12 @@ static void check_doc_default(const doc_row *r, const char *text, const char *po
   }
   /* the keys of 3D runs are written only in a 3D input's resolved text, a
    * cylinder's axis only for a cylinder (the first of text_cyl has the
-   * default) */
+   * default), a body's only in an input with a body (text_body, 3D) */
   ck_assert_msg(written_key(text, r->key, value, sizeof value) ||
                 written_key(polar_text, r->key, value, sizeof value) ||
                 written_key(text3, r->key, value, sizeof value) ||
-                written_key(text_cyl, r->key, value, sizeof value), "%s not written", r->key);
+                written_key(text_cyl, r->key, value, sizeof value) ||
+                written_key(text_body, r->key, value, sizeof value), "%s not written", r->key);
   const char *want = r->def;
   if (isalpha((unsigned char)want[0]) && strchr(want, '.') &&
       written_key(text, want, other, sizeof other))
@@ -997,6 +1082,8 @@ START_TEST(t_reference)
   char *text3 = written(&c);
   load_ok(GOOD "cylinders.conf", NULL, 0, &c);
   char *text_cyl = written(&c);
+  load_ok(GOOD "bodies3d.conf", NULL, 0, &c);
+  char *text_body = written(&c);
   char line[1024], listed[4096] = " ";
   doc_row r;
   int rows = 0;
@@ -1005,15 +1092,15 @@ START_TEST(t_reference)
       continue;
     rows++;
     check_doc_allowed(&r);
-    check_doc_default(&r, min_text, polar_text, text3, text_cyl);
+    check_doc_default(&r, min_text, polar_text, text3, text_cyl, text_body);
     strncat(listed, strchr(r.key, '.') + 1, sizeof listed - strlen(listed) - 2);
     strcat(listed, " ");
   }
   fclose(f);
-  ck_assert_int_ge(rows, 40);
+  ck_assert_int_ge(rows, 130);
   /* every key the writer knows is documented, the 3D ones too */
-  const char *texts[] = {full_text, text3, text_cyl};
-  for (int k = 0; k < 3; k++)
+  const char *texts[] = {full_text, text3, text_cyl, text_body};
+  for (int k = 0; k < 4; k++)
     for (const char *p = texts[k]; (p = strstr(p, "\n  ")); p++) {
       char key[64], pat[70];
       sscanf(p + 3, "%63s", key);
@@ -1022,6 +1109,7 @@ START_TEST(t_reference)
     }
   free(text3);
   free(text_cyl);
+  free(text_body);
   free(min_text);
   free(polar_text);
   free(full_text);
