@@ -660,6 +660,8 @@ START_TEST(t_round_trip_values)
     "material.E=123456789.123",
     "material.nu=-0.99999999999999989", "fill.vx=1e-310", "fill.vy=9999.999999999998",
     "output.dir=it's a \"dir\" with ${HOME} and \\ in it",
+    "body.wheel.angle=-0.0", "body.wheel.t={0, 1e-300, 0.30000000000000004}",
+    "body.wheel.omega={1e-310, -9999.999999999998, 0.1}", "body.plough.x={-1e-9, 0.1, 0}",
   };
   round_trip(GOOD "full.conf", sets, (int)(sizeof sets / sizeof sets[0]));
   mpm_config c;
@@ -830,6 +832,16 @@ START_TEST(t_body_defaults)
     ck_assert_msg(!strstr(b, lacks[k]), "body with '%s':\n%s", lacks[k], b);
   free(b);
   free(text);
+  /* a check made after the load names a body's key where it was set, or
+   * where its section opens */
+  mpm_io_input *in = NULL;
+  ck_assert_int_eq(mpm_io_input_open_text(&in, "bodies.conf", BASE DISC, NULL, 0, &c, &err),
+                   MPM_OK);
+  ck_assert_int_eq(mpm_io_input_fail(in, &c, "body.w.radius", &err, "too small"), MPM_EINPUT);
+  ck_assert_str_eq(err.msg, "bodies.conf:19: key 'body.w.radius': too small");
+  ck_assert_int_eq(mpm_io_input_fail(in, &c, "body.w.mass", &err, "too light"), MPM_EINPUT);
+  ck_assert_str_eq(err.msg, "bodies.conf:16: key 'body.w.mass': too light");
+  mpm_io_input_free(in);
 }
 END_TEST
 
