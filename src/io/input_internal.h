@@ -36,10 +36,11 @@
  *     input_parse.c     reading the file, libconfuse glue, collecting values
  *     input_value.c     typed values: parse, range-check and store one key
  *     input_override.c  --set section.key=value
- *     input_check.c     cross-field checks, derived defaults; what the checks of
- *                       the titled sections share (keys of a form, polygons)
+ *     input_check.c     cross-field checks, derived defaults
  *     input_fill.c      the checks of a fill
  *     input_body.c      the checks of a rigid body
+ *     input_shared.c    what the checks share: where a key was set, which of two
+ *                       keys to name, the keys of an item's form, polygons
  *     input_write.c     the fully resolved input, as an input file
  * Functions and tables shared between them are declared here and named mpm_io_in_*;
  * everything else in them is static. The mpm_io_in_* names are hidden: they link the
@@ -247,7 +248,7 @@ int mpm_io_in_valid_title(const char *t);
 int mpm_io_in_apply_overrides(in_ctx *c, mpm_config *cfg, int n);
 int mpm_io_in_validate(in_ctx *c, mpm_config *cfg);
 
-/* ------------------------------------------------------ checks, shared */
+/* -------------------------------------------------- the checks' helpers */
 
 #define GEOM_TOL 1e-9  /* a region may overshoot the mesh by this many units */
 
@@ -263,6 +264,8 @@ where mpm_io_in_blame(const in_ctx *c, const mpm_config *cfg, int item, int a, i
 int mpm_io_in_check_form_keys(in_ctx *c, const mpm_config *cfg, int t, int i);
 int mpm_io_in_check_vertices(in_ctx *c, const mpm_config *cfg, int i, int kx, int ky,
                              const double *px, const double *py, double box[4]);
+
+/* The checks of item i of a titled section (called by mpm_io_in_validate). */
 int mpm_io_in_check_fill(in_ctx *c, mpm_config *cfg, int i);
 int mpm_io_in_check_body(in_ctx *c, mpm_config *cfg, int i);
 

@@ -19,7 +19,7 @@ tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LI
 # concern; src/io/input_internal.h says which file holds what.
 INPUT_PARTS = src/io/input_internal.h src/io/input_keys.c src/io/input_text.c \
 	src/io/input_parse.c src/io/input_value.c src/io/input_override.c src/io/input_check.c \
-	src/io/input_fill.c src/io/input_body.c src/io/input_write.c
+	src/io/input_shared.c src/io/input_fill.c src/io/input_body.c src/io/input_write.c
 libmpm_io_la_SOURCES += $(INPUT_PARTS)
 
 # test_input compiles the input parser directly, so it needs libconfuse and the
