@@ -1,7 +1,8 @@
 /* input_override.c: the --set arguments, "section.key=value", applied in
  * order after the file: in a titled section "fill.KEY=value" sets a key in
- * every fill, "fill.TITLE.KEY=value" in one; a list is "{1, 2, 3}" or "1, 2, 3"; one
- * pair of quotes around a value is dropped. Errors name the argument. */
+ * every fill, "fill.TITLE.KEY=value" in one (bodies alike); a list is
+ * "{1, 2, 3}" or "1, 2, 3"; one pair of quotes around a value is dropped.
+ * Errors name the argument. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,7 +77,8 @@ static text item_titles(const mpm_config *cfg, int t)
   return s;
 }
 
-/* A key of titled section t: "fill.KEY" sets it in every fill, "fill.TITLE.KEY" in one. */
+/* A key of titled section t: "fill.KEY" sets it in every fill,
+ * "fill.TITLE.KEY" in one. */
 static int override_item(in_ctx *c, mpm_config *cfg, int t, where *w, char *rest, char *v)
 {
   const char *sec = mpm_io_in_sec_names[w->sec];
