@@ -2,7 +2,8 @@
  * --set overrides, write -> load round trips, one exact message for every
  * class of bad input (each file in tests/inputs/bad carries its message on an
  * "# expect:" line; one ending in "..." is a prefix, for lists of names that
- * other modules own), and docs/input-reference.md against the reader. */
+ * other modules own), and docs/input-reference.md against the reader. The
+ * body sections in detail: test_input_body.c. */
 #define _POSIX_C_SOURCE 200809L
 #include <check.h>
 #include <ctype.h>
@@ -19,82 +20,13 @@
 #include "io/io.h"
 #include "material/density.h"
 
-#ifndef TEST_SRCDIR
-#define TEST_SRCDIR "."
-#endif
 #define TMP_DIR "test_input.tmp"
-#define CASE TMP_DIR "/case.conf"
-#define GOOD TEST_SRCDIR "/tests/inputs/good/"
+#include "input_case.h"
+
 #define BAD_GLOB TEST_SRCDIR "/tests/inputs/bad/*.conf"
 #define DOCS TEST_SRCDIR "/docs/input-reference.md"
 
-/* A valid case of 15 lines; text appended to it starts on line 16. */
-#define BASE            \
-  "mesh {\n"            \
-  "  nx = 10\n"         \
-  "  ny = 10\n"         \
-  "  dx = 0.1\n"        \
-  "  dy = 0.1\n"        \
-  "}\n"                 \
-  "time {\n"            \
-  "  t_end = 1\n"       \
-  "}\n"                 \
-  "fill a {\n"          \
-  "  xmin = 0\n"        \
-  "  xmax = 0.5\n"      \
-  "  ymin = 0\n"        \
-  "  ymax = 0.5\n"      \
-  "}\n"
-
 /* ------------------------------------------------------------------ helpers */
-
-static void write_bytes(const char *path, const char *text, size_t len)
-{
-  mkdir(TMP_DIR, 0777);
-  FILE *f = fopen(path, "wb");
-  ck_assert_ptr_nonnull(f);
-  ck_assert_uint_eq(fwrite(text, 1, len, f), len);
-  ck_assert_int_eq(fclose(f), 0);
-}
-
-/* Write text to CASE and load it with the given overrides. */
-static int load_text(const char *text, const char *const *sets, int nsets, mpm_config *cfg,
-                     mpm_err *err)
-{
-  write_bytes(CASE, text, strlen(text));
-  return mpm_io_input_load(CASE, sets, nsets, cfg, err);
-}
-
-static void load_ok(const char *path, const char *const *sets, int nsets, mpm_config *cfg)
-{
-  mpm_err err = {0};
-  int rc = mpm_io_input_load(path, sets, nsets, cfg, &err);
-  ck_assert_msg(rc == MPM_OK, "%s: %s", path, err.msg);
-  ck_assert_int_eq(err.code, MPM_OK);
-}
-
-static void expect_error(const char *text, const char *set, const char *msg)
-{
-  mpm_config cfg;
-  mpm_err err = {0};
-  const char *sets[1] = {set};
-  int rc = load_text(text, sets, set ? 1 : 0, &cfg, &err);
-  ck_assert_int_eq(rc, MPM_EINPUT);
-  ck_assert_int_eq(err.code, MPM_EINPUT);
-  ck_assert_str_eq(err.msg, msg);
-}
-
-/* cfg written with mpm_io_input_write into a string (caller frees). */
-static char *written(const mpm_config *cfg)
-{
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = open_memstream(&buf, &len);
-  ck_assert_ptr_nonnull(f);
-  ck_assert_int_eq(mpm_io_input_write(f, cfg), MPM_OK);
-  ck_assert_int_eq(fclose(f), 0);
-  return buf;
-}
 
 /* Load path (+ overrides), write, load the written text: the same config. */
 static void round_trip(const char *path, const char *const *sets, int nsets)
@@ -358,6 +290,77 @@ START_TEST(t_every_key)
   ck_assert_double_eq(p->px[3], 0);
   ck_assert_int_eq(p->ppu, 1);
   ck_assert_double_eq(p->density, 1550);  /* rho_c of this file */
+
+  /* the bodies: a disc with every plane key, a box and a polygon */
+  ck_assert_int_eq(c.nbody, 3);
+  const mpm_body_config *w = &c.body[0], *b = &c.body[1], *g = &c.body[2];
+  ck_assert_str_eq(w->name, "wheel");
+  ck_assert_int_eq(w->shape, MPM_BODY_DISC);
+  ck_assert_int_eq(w->axis, 2);  /* a plane body lies along z */
+  ck_assert_double_eq(w->cx, 0.2);
+  ck_assert_double_eq(w->cy, 1.1);
+  ck_assert_double_eq(w->cz, 0);
+  ck_assert_double_eq(w->radius, 0.1);
+  ck_assert_double_eq(w->angle, 15);
+  ck_assert_double_eq(w->length, 0);
+  ck_assert_int_eq(w->side, MPM_BODY_INSIDE);
+  ck_assert_int_eq(w->contact, MPM_CONTACT_FRICTION);
+  ck_assert_double_eq(w->friction, 0.3);
+  ck_assert_int_eq(w->ntable, 3);
+  const double t[] = {0, 0.5, 1.5}, vx[] = {0, 0.1, 0.25}, om[] = {1, 2, -3};
+  for (int i = 0; i < 3; i++) {
+    ck_assert_double_eq(w->t[i], t[i]);
+    ck_assert_double_eq(w->val[MPM_BODY_VX][i], vx[i]);
+    ck_assert_double_eq(w->val[MPM_BODY_OMEGA][i], om[i]);
+  }
+  ck_assert_double_eq(w->t[3], 0);
+  const int nval[MPM_BODY_NDOF] = {3, 1, 1, 3};
+  for (int k = 0; k < MPM_BODY_NDOF; k++)
+    ck_assert_int_eq(w->nval[k], nval[k]);
+  ck_assert_double_eq(w->val[MPM_BODY_VY][0], 0.5);
+  ck_assert_double_eq(w->val[MPM_BODY_VZ][0], 0);  /* not given: the one value 0 */
+  ck_assert_int_eq(w->free[MPM_BODY_VX], 1);
+  ck_assert_int_eq(w->free[MPM_BODY_VY], 1);
+  ck_assert_int_eq(w->free[MPM_BODY_VZ], 0);
+  ck_assert_int_eq(w->free[MPM_BODY_OMEGA], 1);
+  ck_assert_double_eq(w->mass, 2.5);
+  ck_assert_double_eq(w->inertia, 0.0125);
+  ck_assert_double_eq(w->force[0], 1.5);
+  ck_assert_double_eq(w->force[1], -2);
+  ck_assert_double_eq(w->force[2], 0);
+  ck_assert_double_eq(w->torque, 0.25);
+  ck_assert_double_eq(w->damping, 0.5);
+  ck_assert_int_eq(w->carve, 1);
+  ck_assert_int_eq(w->nvert, 0);
+
+  ck_assert_str_eq(b->name, "blade");
+  ck_assert_int_eq(b->shape, MPM_BODY_BOX);
+  ck_assert_double_eq(b->cx, -0.2);
+  ck_assert_double_eq(b->cy, 1.2);
+  ck_assert_double_eq(b->hx, 0.02);
+  ck_assert_double_eq(b->hy, 0.15);
+  ck_assert_double_eq(b->radius, 0);
+  ck_assert_double_eq(b->angle, -30);
+  ck_assert_int_eq(b->contact, MPM_CONTACT_FRICTIONLESS);
+  ck_assert_int_eq(b->ntable, 0);
+  for (int k = 0; k < MPM_BODY_NDOF; k++) {
+    ck_assert_int_eq(b->nval[k], 1);
+    ck_assert_double_eq(b->val[k][0], 0);
+    ck_assert_int_eq(b->free[k], 0);
+  }
+
+  ck_assert_str_eq(g->name, "plough");
+  ck_assert_int_eq(g->shape, MPM_BODY_POLYGON);
+  ck_assert_int_eq(g->nvert, 3);
+  const double gx[] = {0, 0.1, 0}, gy[] = {0, 0, 0.2};
+  for (int i = 0; i < 3; i++) {
+    ck_assert_double_eq(g->px[i], gx[i]);
+    ck_assert_double_eq(g->py[i], gy[i]);
+  }
+  ck_assert_int_eq(g->nval[MPM_BODY_VX], 1);
+  ck_assert_double_eq(g->val[MPM_BODY_VX][0], -0.5);
+  ck_assert_int_eq(g->side, MPM_BODY_OUTSIDE);
+  ck_assert_int_eq(g->carve, 0);
 }
 END_TEST
 
@@ -457,9 +460,11 @@ static const bad_set bad_sets[] = {
   {"time.dt=nan", "--set 'time.dt=nan': key 'time.dt': value nan out of range (allowed: 0, or 1e-12 ... 1e6 s)"},
   {"mesh.nx", "--set 'mesh.nx': expected section.key=value"},
   {"nx=3", "--set 'nx=3': 'nx' is not section.key (allowed sections: mesh, time, gravity, "
-           "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
+           "material, boundary, fill, body, stop, output, outlet, wall, remove, region, "
+           "absorb)"},
   {"meshes.nx=3", "--set 'meshes.nx=3': unknown section 'meshes' (allowed: mesh, time, gravity, "
-                  "material, boundary, fill, stop, output, outlet, wall, remove, region, absorb)"},
+                  "material, boundary, fill, body, stop, output, outlet, wall, remove, region, "
+                  "absorb)"},
   {"mesh.nxx=3", "--set 'mesh.nxx=3': unknown key 'mesh.nxx' (allowed keys in 'mesh': nx, ny, "
                  "x0, y0, dx, dy, nz, z0, dz, topology, diagonal, mirror_x, shape, "
                  "dilatation)"},
@@ -539,9 +544,10 @@ END_TEST
 START_TEST(t_round_trip_files)
 {
   const char *files[] = {GOOD "minimal.conf", GOOD "full.conf", GOOD "syntax.conf",
-                         GOOD "cylinders.conf", TEST_SRCDIR "/inputs/V1-elastic-column.conf"};
+                         GOOD "cylinders.conf", GOOD "bodies3d.conf",
+                         TEST_SRCDIR "/inputs/V1-elastic-column.conf"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
-    if (i < 4 || access(files[i], R_OK) == 0)
+    if (i < 5 || access(files[i], R_OK) == 0)
       round_trip(files[i], NULL, 0);
 }
 END_TEST
@@ -557,6 +563,8 @@ START_TEST(t_round_trip_values)
     "material.E=123456789.123",
     "material.nu=-0.99999999999999989", "fill.vx=1e-310", "fill.vy=9999.999999999998",
     "output.dir=it's a \"dir\" with ${HOME} and \\ in it",
+    "body.wheel.angle=-0.0", "body.wheel.t={0, 1e-300, 0.30000000000000004}",
+    "body.wheel.omega={1e-310, -9999.999999999998, 0.1}", "body.plough.x={-1e-9, 0.1, 0}",
   };
   round_trip(GOOD "full.conf", sets, (int)(sizeof sets / sizeof sets[0]));
   mpm_config c;
@@ -565,18 +573,6 @@ START_TEST(t_round_trip_values)
   ck_assert(signbit(c.gravity.gx));
 }
 END_TEST
-
-/* The text of section "fill TITLE" in a resolved input (caller frees). */
-static char *fill_text(const char *text, const char *title)
-{
-  char head[64];
-  snprintf(head, sizeof head, "fill %s {\n", title);
-  const char *s = strstr(text, head);
-  ck_assert_msg(s != NULL, "no fill '%s' in:\n%s", title, text);
-  const char *e = strstr(s, "\n}\n");
-  ck_assert_ptr_nonnull(e);
-  return strndup(s, (size_t)(e - s + 1));
-}
 
 /* 3D cylinders (cylinders.conf): a disc without fill.axis lies along z, as
  * before the key existed; along x its circle is (cy, cz) and it spans xmin
@@ -627,7 +623,7 @@ START_TEST(t_cylinders)
                                    {"\n  cx =", "\n  zmin =", "\n  zmax =", "\n  ymin ="},
                                    {"\n  cy =", "\n  zmin =", "\n  xmin =", "\n  xmax ="}};
   for (int i = 0; i < 3; i++) {
-    char *f = fill_text(text, c.fill[i].name);
+    char *f = item_text(text, "fill", c.fill[i].name);
     for (int k = 0; k < 3; k++)
       ck_assert_msg(strstr(f, has[i][k]), "fill %s without '%s':\n%s", c.fill[i].name,
                     has[i][k], f);
@@ -865,6 +861,16 @@ static const char *fill_for(const char *key)
   return "block";
 }
 
+/* The body of full.conf that uses a body key. */
+static const char *body_for(const char *key)
+{
+  if (!strcmp(key, "hx") || !strcmp(key, "hy"))
+    return "blade";
+  if (!strcmp(key, "x") || !strcmp(key, "y"))
+    return "plough";
+  return "wheel";
+}
+
 /* A value outside what the key allows, and the message body it gives. */
 static void bad_value(const doc_row *r, char *val, size_t vcap, char *body, size_t bcap)
 {
@@ -898,6 +904,8 @@ static void check_doc_allowed(const doc_row *r)
   ck_assert_ptr_nonnull(dot);
   if (!strncmp(r->key, "fill.", 5))
     snprintf(key, sizeof key, "fill.%s.%s", fill_for(dot + 1), dot + 1);
+  else if (!strncmp(r->key, "body.", 5))
+    snprintf(key, sizeof key, "body.%s.%s", body_for(dot + 1), dot + 1);
   else
     snprintf(key, sizeof key, "%s", r->key);
   bad_value(r, val, sizeof val, body, sizeof body);
@@ -943,9 +951,10 @@ static int written_key(const char *text, const char *key, char *out, size_t cap)
  * The resolved input leaves out the form of gravity that was not used, so
  * gravity.angle and gravity.g are read from polar_text (minimal.conf with
  * gravity given as an angle). A default written as another key's name
- * ("material.rho_c") is that key's resolved value. */
+ * ("material.rho_c") is that key's resolved value. A body's defaults are
+ * read from text_body, whose first body has only its required keys. */
 static void check_doc_default(const doc_row *r, const char *text, const char *polar_text,
-                              const char *text3, const char *text_cyl)
+                              const char *text3, const char *text_cyl, const char *text_body)
 {
   char value[128], other[128];
   if (!strncmp(r->def, "required", 8))
@@ -957,11 +966,12 @@ static void check_doc_default(const doc_row *r, const char *text, const char *po
   }
   /* the keys of 3D runs are written only in a 3D input's resolved text, a
    * cylinder's axis only for a cylinder (the first of text_cyl has the
-   * default) */
+   * default), a body's only in an input with a body (text_body, 3D) */
   ck_assert_msg(written_key(text, r->key, value, sizeof value) ||
                 written_key(polar_text, r->key, value, sizeof value) ||
                 written_key(text3, r->key, value, sizeof value) ||
-                written_key(text_cyl, r->key, value, sizeof value), "%s not written", r->key);
+                written_key(text_cyl, r->key, value, sizeof value) ||
+                written_key(text_body, r->key, value, sizeof value), "%s not written", r->key);
   const char *want = r->def;
   if (isalpha((unsigned char)want[0]) && strchr(want, '.') &&
       written_key(text, want, other, sizeof other))
@@ -995,6 +1005,8 @@ START_TEST(t_reference)
   char *text3 = written(&c);
   load_ok(GOOD "cylinders.conf", NULL, 0, &c);
   char *text_cyl = written(&c);
+  load_ok(GOOD "bodies3d.conf", NULL, 0, &c);
+  char *text_body = written(&c);
   char line[1024], listed[4096] = " ";
   doc_row r;
   int rows = 0;
@@ -1003,15 +1015,15 @@ START_TEST(t_reference)
       continue;
     rows++;
     check_doc_allowed(&r);
-    check_doc_default(&r, min_text, polar_text, text3, text_cyl);
+    check_doc_default(&r, min_text, polar_text, text3, text_cyl, text_body);
     strncat(listed, strchr(r.key, '.') + 1, sizeof listed - strlen(listed) - 2);
     strcat(listed, " ");
   }
   fclose(f);
-  ck_assert_int_ge(rows, 40);
+  ck_assert_int_ge(rows, 130);
   /* every key the writer knows is documented, the 3D ones too */
-  const char *texts[] = {full_text, text3, text_cyl};
-  for (int k = 0; k < 3; k++)
+  const char *texts[] = {full_text, text3, text_cyl, text_body};
+  for (int k = 0; k < 4; k++)
     for (const char *p = texts[k]; (p = strstr(p, "\n  ")); p++) {
       char key[64], pat[70];
       sscanf(p + 3, "%63s", key);
@@ -1020,6 +1032,7 @@ START_TEST(t_reference)
     }
   free(text3);
   free(text_cyl);
+  free(text_body);
   free(min_text);
   free(polar_text);
   free(full_text);

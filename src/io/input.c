@@ -14,7 +14,7 @@ void mpm_io_input_defaults(mpm_config *cfg)
 {
   memset(cfg, 0, sizeof *cfg);
   for (int k = 0; k < NKEYS; k++)
-    if (mpm_io_in_keys[k].sec != S_FILL)
+    if (mpm_io_in_titled_of(mpm_io_in_keys[k].sec) < 0)
       mpm_io_in_store_default(cfg, &mpm_io_in_keys[k]);
   for (int k = 0; k < NKEYS; k++)  /* defaults that follow another key */
     if (mpm_io_in_keys[k].flags & KF_T0X10)
@@ -122,8 +122,8 @@ int mpm_io_input_load(const char *path, const char *const *overrides, int noverr
   return rc;
 }
 
-/* "section.key" or "fill.TITLE.key" of cfg as a place in the key table;
- * 0 when it names no key. */
+/* "section.key" or "fill.TITLE.key" (any titled section) of cfg as a place
+ * in the key table; 0 when it names no key. */
 static int find_place(const mpm_config *cfg, const char *name, where *w)
 {
   char buf[3 * MPM_NAME_MAX + 8];
@@ -133,18 +133,19 @@ static int find_place(const mpm_config *cfg, const char *name, where *w)
     return 0;
   *dot = '\0';
   w->sec = mpm_io_in_find_section(buf);
-  w->fill = -1;
+  w->item = -1;
   w->title = NULL;
-  if (w->sec == S_FILL) {
+  const int t = w->sec >= 0 ? mpm_io_in_titled_of(w->sec) : -1;
+  if (t >= 0) {
     if (last == dot)
       return 0;
     *last = '\0';
-    for (int i = 0; i < cfg->nfill; i++)
-      if (strcmp(cfg->fill[i].name, dot + 1) == 0)
-        w->fill = i;
-    if (w->fill < 0)
+    for (int i = 0; i < mpm_io_in_count_of(cfg, t); i++)
+      if (strcmp(mpm_io_in_title(cfg, t, i), dot + 1) == 0)
+        w->item = i;
+    if (w->item < 0)
       return 0;
-    w->title = cfg->fill[w->fill].name;
+    w->title = mpm_io_in_title(cfg, t, w->item);
   } else if (w->sec < 0 || last != dot) {
     return 0;
   }
@@ -155,7 +156,7 @@ static int find_place(const mpm_config *cfg, const char *name, where *w)
 int mpm_io_input_fail(mpm_io_input *in, const mpm_config *cfg, const char *key, mpm_err *err,
                       const char *fmt, ...)
 {
-  where w = {.sec = -1, .key = -1, .fill = -1};
+  where w = {.sec = -1, .key = -1, .item = -1};
   char body[MPM_ERR_MSG];
   va_list ap;
   va_start(ap, fmt);
@@ -164,7 +165,7 @@ int mpm_io_input_fail(mpm_io_input *in, const mpm_config *cfg, const char *key, 
   if (!in || !cfg || !find_place(cfg, key, &w))
     return mpm_err_set(err, MPM_EINPUT, "%s: key '%s': %s", cfg ? cfg->source : "?", key, body);
   in_ctx *c = in->c;
-  w.at = c->at[w.fill < 0 ? 0 : w.fill][w.key];
+  w.at = c->at[w.item < 0 ? 0 : w.item][w.key];
   c->err = err;
   c->failed = 0;
   return mpm_io_in_fail_key(c, &w, "%s", body);

@@ -1,10 +1,10 @@
 /* input_check.c: the relations between keys that no single range can state
  * (mesh size, time, gravity given one way, material parameters in order,
- * periodic edges in pairs, each fill inside the mesh with its form's keys
- * (its shape, and in 3D a cylinder's axis),
- * outlet, wall, region), the defaults that follow other keys (t_seed, fill
- * density, stop.t_min, gravity from an angle), and the model's own parameter
- * check. A relation between two keys is reported at the one set last. */
+ * periodic edges in pairs, outlet, wall, region, the keys of 3D runs), the
+ * defaults that follow other keys (t_seed, stop.t_min, gravity from an
+ * angle), and the model's own parameter check; the items of the titled
+ * sections are checked by input_fill.c and input_body.c. A relation between
+ * two keys is reported at the one set last (input_shared.c). */
 #include <math.h>
 #include <string.h>
 
@@ -16,61 +16,19 @@
 #include "shape/shape.h"
 
 #define MAX_NODES 1e8  /* (nx + 1)(ny + 1) */
-#define GEOM_TOL 1e-9  /* fills may overshoot the mesh by this many units */
-
-static int is_set(const in_ctx *c, int key, int fill)
-{
-  const loc *l = &c->at[fill < 0 ? 0 : fill][key];
-  return l->line > 0 || l->ovr > 0;
-}
-
-/* 1 if a was set after b (a --set counts after the file). */
-static int later(loc a, loc b)
-{
-  if (a.ovr != b.ovr)
-    return a.ovr > b.ovr;
-  return a.line > b.line;
-}
-
-/* Where to report a relation between keys a and b: the one set last. */
-static where blame(const in_ctx *c, const mpm_config *cfg, int fill, int a, int b)
-{
-  const loc *la = &c->at[fill < 0 ? 0 : fill][a], *lb = &c->at[fill < 0 ? 0 : fill][b];
-  int k = later(*lb, *la) ? b : a;
-  where w = {.at = k == a ? *la : *lb,
-             .sec = mpm_io_in_keys[k].sec,
-             .key = k,
-             .fill = fill,
-             .title = fill >= 0 ? cfg->fill[fill].name : NULL};
-  return w;
-}
 
 static int key_index(int sec, const char *name)
 {
   return mpm_io_in_find_key(sec, name);  /* the table is fixed: names used here exist */
 }
 
-/* The mesh along axis a (0 x, 1 y, 2 z): origin, unit size, units. */
-typedef struct mesh_axis {
-  double o, d;
-  int n;
-} mesh_axis;
-
-static mesh_axis axis_of(const mpm_config *cfg, int a)
-{
-  const double d[3] = {cfg->mesh.dx, cfg->mesh.dy, cfg->mesh.dz};
-  const double o[3] = {cfg->mesh.x0, cfg->mesh.y0, cfg->mesh.z0};
-  const int n[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
-  return (mesh_axis){o[a], d[a], n[a]};
-}
-
 static int check_required(in_ctx *c)
 {
   for (int k = 0; k < NKEYS; k++) {
-    if (mpm_io_in_keys[k].sec == S_FILL || !(mpm_io_in_keys[k].flags & KF_REQUIRED) ||
-        is_set(c, k, -1))
+    if (mpm_io_in_titled_of(mpm_io_in_keys[k].sec) >= 0 ||
+        !(mpm_io_in_keys[k].flags & KF_REQUIRED) || mpm_io_in_is_set(c, k, -1))
       continue;
-    where w = {.sec = mpm_io_in_keys[k].sec, .key = k, .fill = -1};
+    where w = {.sec = mpm_io_in_keys[k].sec, .key = k, .item = -1};
     return mpm_io_in_fail_key(c, &w, "required, not set (allowed: %s)",
                               mpm_io_in_allowed_text(&mpm_io_in_keys[k]).s);
   }
@@ -106,18 +64,18 @@ static int apic_short_axis(const mpm_config *cfg)
 static void resolve_scheme(in_ctx *c, mpm_config *cfg)
 {
   const int plane = cfg->mesh.nz == 0, q4 = strcmp(cfg->mesh.topology, "q4") == 0;
-  if (!is_set(c, key_index(S_MESH, "dilatation"), -1) && plane && !q4)
+  if (!mpm_io_in_is_set(c, key_index(S_MESH, "dilatation"), -1) && plane && !q4)
     cfg->mesh.dilatation = MPM_DILATATION_UNIT;  /* the Q1/P0 element is the units' */
   /* no affine transfer on a periodic axis too short for it; and a FLIP
    * share given alone asks for the blend */
-  if (!is_set(c, key_index(S_TIME, "transfer"), -1) &&
-      (apic_short_axis(cfg) >= 0 || is_set(c, key_index(S_TIME, "flip"), -1)))
+  if (!mpm_io_in_is_set(c, key_index(S_TIME, "transfer"), -1) &&
+      (apic_short_axis(cfg) >= 0 || mpm_io_in_is_set(c, key_index(S_TIME, "flip"), -1)))
     cfg->time.transfer = MPM_TRANSFER_FLIP;
   /* delta weights keep a lone point's affine velocity whole: under a
    * per-unit rule a stress-free point then swells and is thrown out of the
    * mesh at cfl 0.5 (docs/input-reference.md, time.cfl) */
   const mpm_shape_type *shape = mpm_shape_lookup(cfg->mesh.shape);
-  if (!is_set(c, key_index(S_TIME, "cfl"), -1) && shape && shape->at_point &&
+  if (!mpm_io_in_is_set(c, key_index(S_TIME, "cfl"), -1) && shape && shape->at_point &&
       cfg->time.transfer == MPM_TRANSFER_APIC &&
       (cfg->mesh.dilatation != MPM_DILATATION_POINT ||
        cfg->material.state_density == MPM_DENSITY_UNIT))
@@ -128,7 +86,7 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
 {
   double nodes = (cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0);
   if (nodes > MAX_NODES) {
-    where w = blame(c, cfg, -1, key_index(S_MESH, "nx"), key_index(S_MESH, "ny"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_MESH, "nx"), key_index(S_MESH, "ny"));
     return mpm_io_in_fail_key(c, &w, "%d x %d units make %s nodes (allowed: (nx+1)(ny+1) <= %s)",
                               cfg->mesh.nx, cfg->mesh.ny, mpm_io_in_num(nodes).s,
                               mpm_io_in_num(MAX_NODES).s);
@@ -143,7 +101,7 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
     for (int a = 0; a < 3; a++)
       if (per[a] && n[a] < 2) {
         const int k = key_index(S_MESH, name[a]);
-        where w = blame(c, cfg, -1, k, k);
+        where w = mpm_io_in_blame(c, cfg, -1, k, k);
         return mpm_io_in_fail_key(c, &w, "%s = 1 on a periodic axis of a 3D run (allowed: at "
                                   "least 2; a plane run may have 1)", name[a]);
       }
@@ -153,7 +111,7 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
   if (cfg->mesh.dilatation == MPM_DILATATION_ELEMENT && cfg->mesh.nz == 0 &&
       strcmp(cfg->mesh.topology, "q4") != 0) {
     const int k = key_index(S_MESH, "dilatation");
-    where w = blame(c, cfg, -1, k, key_index(S_MESH, "topology"));
+    where w = mpm_io_in_blame(c, cfg, -1, k, key_index(S_MESH, "topology"));
     return mpm_io_in_fail_key(c, &w, "dilatation = \"element\" on triangles (allowed: topology "
                               "\"q4\" or a 3D run; \"unit\" or \"point\" otherwise)");
   }
@@ -161,7 +119,8 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
   if (cfg->time.transfer == MPM_TRANSFER_APIC && axis >= 0) {
     const char *const nname[3] = {"nx", "ny", "nz"};
     const int nunits[3] = {cfg->mesh.nx, cfg->mesh.ny, cfg->mesh.nz};
-    where w = blame(c, cfg, -1, key_index(S_TIME, "transfer"), key_index(S_MESH, nname[axis]));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_TIME, "transfer"),
+                              key_index(S_MESH, nname[axis]));
     return mpm_io_in_fail_key(c, &w, "transfer = \"apic\" with shape = \"%s\" on a periodic "
                               "axis of %d units (allowed: at least %d)", cfg->mesh.shape,
                               nunits[axis], apic_axis_need(cfg));
@@ -169,7 +128,8 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
   double x1 = cfg->mesh.x0 + cfg->mesh.nx * cfg->mesh.dx, tol = GEOM_TOL * cfg->mesh.dx;
   double m = cfg->mesh.mirror_x;
   if (strcmp(cfg->mesh.diagonal, "mirror") == 0 && (m < cfg->mesh.x0 - tol || m > x1 + tol)) {
-    where w = blame(c, cfg, -1, key_index(S_MESH, "mirror_x"), key_index(S_MESH, "diagonal"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_MESH, "mirror_x"),
+                              key_index(S_MESH, "diagonal"));
     return mpm_io_in_fail_key(c, &w, "mirror_x = %s lies outside the mesh (allowed: %s ... %s m)",
                               mpm_io_in_num(m).s, mpm_io_in_approx(cfg->mesh.x0).s,
                               mpm_io_in_approx(x1).s);
@@ -180,7 +140,8 @@ static int check_mesh(in_ctx *c, const mpm_config *cfg)
 static int check_time(in_ctx *c, const mpm_config *cfg)
 {
   if (cfg->time.frame_dt > cfg->time.t_end) {
-    where w = blame(c, cfg, -1, key_index(S_TIME, "frame_dt"), key_index(S_TIME, "t_end"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_TIME, "frame_dt"),
+                              key_index(S_TIME, "t_end"));
     return mpm_io_in_fail_key(c, &w, "frame_dt = %s > t_end = %s (allowed: frame_dt <= t_end)",
                               mpm_io_in_num(cfg->time.frame_dt).s,
                               mpm_io_in_num(cfg->time.t_end).s);
@@ -195,13 +156,13 @@ static int check_gravity(in_ctx *c, mpm_config *cfg)
 {
   const int ka = key_index(S_GRAVITY, "angle"), kg = key_index(S_GRAVITY, "g");
   const int kx = key_index(S_GRAVITY, "gx"), ky = key_index(S_GRAVITY, "gy");
-  const int polar = is_set(c, ka, -1) ? ka : is_set(c, kg, -1) ? kg : -1;
-  const int cart = is_set(c, kx, -1) ? kx : is_set(c, ky, -1) ? ky : -1;
+  const int polar = mpm_io_in_is_set(c, ka, -1) ? ka : mpm_io_in_is_set(c, kg, -1) ? kg : -1;
+  const int cart = mpm_io_in_is_set(c, kx, -1) ? kx : mpm_io_in_is_set(c, ky, -1) ? ky : -1;
   cfg->gravity.use_angle = polar >= 0;
   if (polar < 0)
     return MPM_OK;
   if (cart >= 0) {
-    where w = blame(c, cfg, -1, polar, cart);
+    where w = mpm_io_in_blame(c, cfg, -1, polar, cart);
     return mpm_io_in_fail_key(c, &w,
                               "gravity given both as gx, gy and as angle, g "
                               "(allowed: one of the two)");
@@ -216,30 +177,32 @@ static int check_gravity(in_ctx *c, mpm_config *cfg)
  * otherwise: material loaded from rest has no kinetic energy at first. */
 static void resolve_stop(in_ctx *c, mpm_config *cfg)
 {
-  if (!is_set(c, key_index(S_STOP, "t_min"), -1))
+  if (!mpm_io_in_is_set(c, key_index(S_STOP, "t_min"), -1))
     cfg->stop.t_min = cfg->gravity.t_ramp;
 }
 
 static int check_material(in_ctx *c, mpm_config *cfg)
 {
   for (int k = 0; k < NKEYS; k++)  /* NGF seeding time: 10 t0 unless given ([DK-silo] 6) */
-    if ((mpm_io_in_keys[k].flags & KF_T0X10) && !is_set(c, k, -1))
+    if ((mpm_io_in_keys[k].flags & KF_T0X10) && !mpm_io_in_is_set(c, k, -1))
       *(double *)(void *)((char *)cfg + mpm_io_in_keys[k].off) = 10.0 * cfg->material.t0;
   if (cfg->material.rho_c > cfg->material.rho_s) {
-    where w = blame(c, cfg, -1, key_index(S_MATERIAL, "rho_c"), key_index(S_MATERIAL, "rho_s"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_MATERIAL, "rho_c"),
+                              key_index(S_MATERIAL, "rho_s"));
     return mpm_io_in_fail_key(c, &w, "rho_c = %s > rho_s = %s (allowed: rho_c <= rho_s)",
                               mpm_io_in_num(cfg->material.rho_c).s,
                               mpm_io_in_num(cfg->material.rho_s).s);
   }
   const int kn = key_index(S_MATERIAL, "n_sub"), kd = key_index(S_MATERIAL, "dt_sub");
   if (cfg->material.n_sub > 1 && cfg->material.dt_sub > 0.0) {  /* two ways to say it */
-    where w = blame(c, cfg, -1, kd, kn);
+    where w = mpm_io_in_blame(c, cfg, -1, kd, kn);
     return mpm_io_in_fail_key(c, &w,
                               "n_sub = %d with dt_sub = %s s (allowed: n_sub = 1 or dt_sub = 0)",
                               cfg->material.n_sub, mpm_io_in_num(cfg->material.dt_sub).s);
   }
   if (cfg->material.mu_s >= cfg->material.mu_2) {
-    where w = blame(c, cfg, -1, key_index(S_MATERIAL, "mu_s"), key_index(S_MATERIAL, "mu_2"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_MATERIAL, "mu_s"),
+                              key_index(S_MATERIAL, "mu_2"));
     return mpm_io_in_fail_key(c, &w, "mu_s = %s >= mu_2 = %s (allowed: mu_s < mu_2)",
                               mpm_io_in_num(cfg->material.mu_s).s,
                               mpm_io_in_num(cfg->material.mu_2).s);
@@ -248,7 +211,8 @@ static int check_material(in_ctx *c, mpm_config *cfg)
    * mu = mu_s + b I of the hs21 form; the dk form has no steady fluidity at
    * mu >= mu_2. */
   if (cfg->material.diffusion == MPM_DIFFUSION_STEADY && cfg->material.form != MPM_NGF_HS21) {
-    where w = blame(c, cfg, -1, key_index(S_MATERIAL, "form"), key_index(S_MATERIAL, "diffusion"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_MATERIAL, "form"),
+                              key_index(S_MATERIAL, "diffusion"));
     return mpm_io_in_fail_key(c, &w,
                               "diffusion = \"steady\" with form = \"%s\": the steady equation "
                               "of [D-thesis] has the linear local law (allowed: form = \"hs21\", "
@@ -264,7 +228,7 @@ static int check_periodic_pair(in_ctx *c, const mpm_config *cfg, const char *a, 
   int pa = ka == MPM_BC_PERIODIC, pb = kb == MPM_BC_PERIODIC;
   if (pa == pb)
     return MPM_OK;
-  where w = blame(c, cfg, -1, key_index(S_BOUNDARY, a), key_index(S_BOUNDARY, b));
+  where w = mpm_io_in_blame(c, cfg, -1, key_index(S_BOUNDARY, a), key_index(S_BOUNDARY, b));
   return mpm_io_in_fail_key(
       c, &w, "%s = \"%s\" but %s = \"%s\" (allowed: %s and %s both \"periodic\" or neither)", a,
       mpm_bc_kind_name(ka), b, mpm_bc_kind_name(kb), a, b);
@@ -275,212 +239,6 @@ static int check_boundary(in_ctx *c, const mpm_config *cfg)
   if (check_periodic_pair(c, cfg, "left", "right", cfg->bc.left, cfg->bc.right) != MPM_OK)
     return MPM_EINPUT;
   return check_periodic_pair(c, cfg, "bottom", "top", cfg->bc.bottom, cfg->bc.top);
-}
-
-/* The fill's form as messages name it: "disc" with axis "x" for a cylinder,
- * the shape alone otherwise. */
-static text form_name(const mpm_config *cfg, const mpm_fill_config *f)
-{
-  text t = {{0}};
-  mpm_io_in_addf(&t, "\"%s\"", mpm_io_in_name_at(NK_FILL_SHAPE, f->shape));
-  if (mpm_io_in_fill_form(f, cfg->mesh.nz > 0) & SH_CYL)
-    mpm_io_in_addf(&t, " with axis \"%s\"", mpm_io_in_name_at(NK_FILL_AXIS, f->axis));
-  return t;
-}
-
-/* The axis (0 x, 1 y, 2 z) that fill key k spans (xmin ... zmax), or -1. */
-static int span_axis(int k)
-{
-  const char *const span[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
-  for (int a = 0; a < 3; a++)
-    if (k == key_index(S_FILL, span[a][0]) || k == key_index(S_FILL, span[a][1]))
-      return a;
-  return -1;
-}
-
-/* Keys of another form (a plane shape; in 3D also a box, a prism or a
- * cylinder along another axis) must not be set; the form's own required
- * keys must. A cylinder's missing span key names the mesh along its axis. */
-static int check_fill_keys(in_ctx *c, const mpm_config *cfg, int i)
-{
-  const mpm_fill_config *f = &cfg->fill[i];
-  const int form = mpm_io_in_fill_form(f, cfg->mesh.nz > 0);
-  const text name = form_name(cfg, f);
-  for (int k = 0; k < NKEYS; k++) {
-    const key_def *kd = &mpm_io_in_keys[k];
-    if (kd->sec != S_FILL || !kd->shapes)
-      continue;
-    where w = {.at = c->at[i][k], .sec = S_FILL, .key = k, .fill = i, .title = f->name};
-    if (!(kd->shapes & form) && is_set(c, k, i))
-      return mpm_io_in_fail_key(c, &w, "not used by shape %s (allowed keys for %s: %s)", name.s,
-                                name.s, mpm_io_in_key_list(S_FILL, form).s);
-    if (!(kd->shapes & form) || !(kd->flags & KF_REQUIRED) || is_set(c, k, i))
-      continue;
-    const int a = span_axis(k);
-    if ((form & SH_CYL) && a >= 0) {
-      const mesh_axis ax = axis_of(cfg, a);
-      return mpm_io_in_fail_key(c, &w, "required for shape %s, not set (allowed: %s ... %s m)",
-                                name.s, mpm_io_in_approx(ax.o).s,
-                                mpm_io_in_approx(ax.o + ax.n * ax.d).s);
-    }
-    return mpm_io_in_fail_key(c, &w, "required for shape %s, not set (allowed: %s)", name.s,
-                              mpm_io_in_allowed_text(kd).s);
-  }
-  return MPM_OK;
-}
-
-/* The fill's extent lo ... hi along axis a (0 x, 1 y, 2 z), from keys ka
- * and kb, inside the mesh. */
-static int check_span(in_ctx *c, const mpm_config *cfg, int i, int ka, int kb, double lo,
-                      double hi, int a)
-{
-  const mesh_axis ax = axis_of(cfg, a);
-  const double m0 = ax.o, m1 = m0 + ax.n * ax.d, tol = GEOM_TOL * ax.d;
-  if (lo >= m0 - tol && hi <= m1 + tol)
-    return MPM_OK;
-  where w = blame(c, cfg, i, ka, kb);
-  return mpm_io_in_fail_key(c, &w,
-                            "the fill spans %c %s ... %s, outside the mesh (allowed: %s ... %s m)",
-                            "xyz"[a], mpm_io_in_approx(lo).s, mpm_io_in_approx(hi).s,
-                            mpm_io_in_approx(m0).s, mpm_io_in_approx(m1).s);
-}
-
-/* xmin < xmax (a = 0) or ymin < ymax (a = 1). */
-static int check_order(in_ctx *c, const mpm_config *cfg, int i, int a)
-{
-  const mpm_fill_config *f = &cfg->fill[i];
-  const char *lo_key = a ? "ymin" : "xmin", *hi_key = a ? "ymax" : "xmax";
-  const double lo = a ? f->ymin : f->xmin, hi = a ? f->ymax : f->xmax;
-  if (lo < hi)
-    return MPM_OK;
-  where w = blame(c, cfg, i, key_index(S_FILL, hi_key), key_index(S_FILL, lo_key));
-  return mpm_io_in_fail_key(c, &w, "%s = %s >= %s = %s (allowed: %s < %s)", lo_key,
-                            mpm_io_in_num(lo).s, hi_key, mpm_io_in_num(hi).s, lo_key, hi_key);
-}
-
-static int check_rectangle(in_ctx *c, const mpm_config *cfg, int i)
-{
-  const mpm_fill_config *f = &cfg->fill[i];
-  int kx0 = key_index(S_FILL, "xmin"), kx1 = key_index(S_FILL, "xmax");
-  int ky0 = key_index(S_FILL, "ymin"), ky1 = key_index(S_FILL, "ymax");
-  if (check_order(c, cfg, i, 0) != MPM_OK || check_order(c, cfg, i, 1) != MPM_OK)
-    return MPM_EINPUT;
-  if (check_span(c, cfg, i, kx1, kx0, f->xmin, f->xmax, 0) != MPM_OK)
-    return MPM_EINPUT;
-  return check_span(c, cfg, i, ky1, ky0, f->ymin, f->ymax, 1);
-}
-
-/* A disc: its circle inside the mesh, across its axis (z in the plane; in
- * 3D fill.axis). A cylinder along x or y also spans xmin < xmax or ymin <
- * ymax inside the mesh; the z range of one along z is every 3D fill's
- * (check_dimension). */
-static int check_disc(in_ctx *c, const mpm_config *cfg, int i)
-{
-  const mpm_fill_config *f = &cfg->fill[i];
-  const int a = cfg->mesh.nz > 0 ? f->axis : 2;
-  const int kr = key_index(S_FILL, "radius");
-  const int kc[3] = {key_index(S_FILL, "cx"), key_index(S_FILL, "cy"), key_index(S_FILL, "cz")};
-  const double centre[3] = {f->cx, f->cy, f->cz};
-  for (int d = 0; d < 3; d++)
-    if (d != a && check_span(c, cfg, i, kc[d], kr, centre[d] - f->radius,
-                             centre[d] + f->radius, d) != MPM_OK)
-      return MPM_EINPUT;
-  if (a == 2)
-    return MPM_OK;
-  if (check_order(c, cfg, i, a) != MPM_OK)
-    return MPM_EINPUT;
-  const int klo = key_index(S_FILL, a ? "ymin" : "xmin");
-  const int khi = key_index(S_FILL, a ? "ymax" : "xmax");
-  return check_span(c, cfg, i, khi, klo, a ? f->ymin : f->xmin, a ? f->ymax : f->xmax, a);
-}
-
-static void bounds(const double *v, int n, double *lo, double *hi)
-{
-  *lo = *hi = v[0];
-  for (int j = 1; j < n; j++) {
-    *lo = v[j] < *lo ? v[j] : *lo;
-    *hi = v[j] > *hi ? v[j] : *hi;
-  }
-}
-
-static int check_polygon(in_ctx *c, mpm_config *cfg, int i)
-{
-  mpm_fill_config *f = &cfg->fill[i];
-  int kx = key_index(S_FILL, "x"), ky = key_index(S_FILL, "y");
-  int nx = c->nlist[i][0], ny = c->nlist[i][1];
-  where w = blame(c, cfg, i, ky, kx);
-  if (nx != ny)
-    return mpm_io_in_fail_key(
-        c, &w, "x has %d values, y has %d (allowed: as many x values as y values)", nx, ny);
-  if (nx < 3)
-    return mpm_io_in_fail_key(c, &w, "%d vertices (allowed: 3 ... %d vertices)", nx, MPM_MAX_POLY);
-  f->nvert = nx;
-  double area = 0, x0, x1, y0, y1;
-  for (int a = 0, b = nx - 1; a < nx; b = a++)
-    area += f->px[b] * f->py[a] - f->px[a] * f->py[b];  /* 2A = sum x_b y_a - x_a y_b */
-  bounds(f->px, nx, &x0, &x1);
-  bounds(f->py, nx, &y0, &y1);
-  if (!(fabs(area) > 1e-12 * (x1 - x0) * (y1 - y0)))
-    return mpm_io_in_fail_key(
-        c, &w, "the polygon encloses no area (allowed: 3 ... %d vertices around a region)",
-        MPM_MAX_POLY);
-  if (check_span(c, cfg, i, kx, ky, x0, x1, 0) != MPM_OK)
-    return MPM_EINPUT;
-  return check_span(c, cfg, i, ky, kx, y0, y1, 1);
-}
-
-static int check_fill(in_ctx *c, mpm_config *cfg, int i)
-{
-  mpm_fill_config *f = &cfg->fill[i];
-  int rc = check_fill_keys(c, cfg, i);
-  if (rc == MPM_OK && f->shape == MPM_FILL_RECTANGLE)
-    rc = check_rectangle(c, cfg, i);
-  else if (rc == MPM_OK && f->shape == MPM_FILL_DISC)
-    rc = check_disc(c, cfg, i);
-  else if (rc == MPM_OK)
-    rc = check_polygon(c, cfg, i);
-  if (rc != MPM_OK)
-    return rc;
-  for (int k = 0; k < NKEYS; k++)  /* defaults taken from the material */
-    if ((mpm_io_in_keys[k].flags & KF_RHO_C) && !is_set(c, k, i))
-      *(double *)(void *)((char *)f + mpm_io_in_keys[k].off) = cfg->material.rho_c;
-  int kd = key_index(S_FILL, "density");
-  if (is_set(c, kd, i) && f->density > cfg->material.rho_s) {
-    where w = {.at = c->at[i][kd], .sec = S_FILL, .key = kd, .fill = i, .title = f->name};
-    return mpm_io_in_fail_key(c, &w,
-                              "density = %s > material.rho_s = %s (allowed: density <= rho_s)",
-                              mpm_io_in_num(f->density).s, mpm_io_in_num(cfg->material.rho_s).s);
-  }
-  /* The pre-stress is the weight under the full gravity, which a ramp only
-   * reaches at t_ramp: at t = 0 nothing would hold it, and the fill would
-   * spring apart into tension and disconnect. */
-  int kl = key_index(S_FILL, "lithostatic");
-  if (f->lithostatic && cfg->gravity.t_ramp > 0.0) {
-    where w = {.at = c->at[i][kl], .sec = S_FILL, .key = kl, .fill = i, .title = f->name};
-    return mpm_io_in_fail_key(c, &w,
-                              "lithostatic = true with gravity.t_ramp = %s s: the pre-stress "
-                              "needs the full gravity from t = 0 (allowed: gravity.t_ramp = 0, or "
-                              "lithostatic = false)",
-                              mpm_io_in_num(cfg->gravity.t_ramp).s);
-  }
-  int kk = key_index(S_FILL, "k0");
-  if (!f->lithostatic && f->k0 > 0.0) {
-    where w = {.at = c->at[i][kk], .sec = S_FILL, .key = kk, .fill = i, .title = f->name};
-    return mpm_io_in_fail_key(c, &w,
-                              "k0 = %s without lithostatic = true: the lateral stress ratio "
-                              "belongs to the lithostatic pre-stress (allowed: lithostatic = "
-                              "true, or no k0)",
-                              mpm_io_in_num(f->k0).s);
-  }
-  int kp = key_index(S_FILL, "pressure");
-  if (f->lithostatic && f->pressure > 0.0) {
-    where w = blame(c, cfg, i, kp, kl);
-    return mpm_io_in_fail_key(c, &w,
-                              "lithostatic = true with pressure = %s Pa: two initial stresses "
-                              "(allowed: one of them)",
-                              mpm_io_in_num(f->pressure).s);
-  }
-  return MPM_OK;
 }
 
 /* The model's own parameter check; its message names the key. */
@@ -504,7 +262,7 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
     if (mpm_io_in_find_key(S_MATERIAL, key) >= 0)
       k = mpm_io_in_find_key(S_MATERIAL, key);
   }
-  where w = {.at = c->at[0][k], .sec = S_MATERIAL, .key = k, .fill = -1};
+  where w = {.at = c->at[0][k], .sec = S_MATERIAL, .key = k, .item = -1};
   if (named)
     return mpm_io_in_fail_at(c, &w, "%s", e.msg);
   return mpm_io_in_fail_key(c, &w, "model \"%s\": %s", mpm_io_in_show(cfg->material.model).s,
@@ -516,17 +274,17 @@ static int check_model(in_ctx *c, const mpm_config *cfg)
 static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int klo, int khi,
                              double lo, double hi)
 {
-  const mesh_axis ax = axis_of(cfg, a);
+  const mesh_axis ax = mpm_io_in_mesh_axis(cfg, a);
   const double m0 = ax.o, m1 = m0 + ax.n * ax.d, tol = GEOM_TOL * ax.d;
   if (!(hi > lo)) {
-    where w = blame(c, cfg, -1, khi, klo);
+    where w = mpm_io_in_blame(c, cfg, -1, khi, klo);
     return mpm_io_in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)",
                               mpm_io_in_keys[khi].name, mpm_io_in_num(hi).s,
                               mpm_io_in_keys[klo].name, mpm_io_in_num(lo).s,
                               mpm_io_in_keys[khi].name, mpm_io_in_keys[klo].name);
   }
   if (lo < m0 - tol || hi > m1 + tol) {
-    where w = blame(c, cfg, -1, khi, klo);
+    where w = mpm_io_in_blame(c, cfg, -1, khi, klo);
     return mpm_io_in_fail_key(
         c, &w, "the outlet spans %c %s ... %s, outside the %s %s (allowed: %s ... %s m)",
         "xyz"[a], mpm_io_in_approx(lo).s, mpm_io_in_approx(hi).s, mpm_io_in_name_at(NK_EDGE, e),
@@ -541,7 +299,7 @@ static int check_outlet_span(in_ctx *c, const mpm_config *cfg, int e, int a, int
 static int check_held_ends(in_ctx *c, const mpm_config *cfg, int a, double from, double to,
                            int kt)
 {
-  const mesh_axis ax = axis_of(cfg, a);
+  const mesh_axis ax = mpm_io_in_mesh_axis(cfg, a);
   const int lo_kind[3] = {cfg->bc.left, cfg->bc.bottom, cfg->bc.front};
   const int hi_kind[3] = {cfg->bc.right, cfg->bc.top, cfg->bc.back};
   const double tol = GEOM_TOL * ax.d;
@@ -551,7 +309,7 @@ static int check_held_ends(in_ctx *c, const mpm_config *cfg, int a, double from,
   const double first = ax.o + (floor((from - ax.o) / ax.d + GEOM_TOL) + 1.0) * ax.d;
   if (first < to - tol)
     return MPM_OK;
-  where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
+  where w = mpm_io_in_blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt);
   return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free between the held ends "
                             "at %s and %s m (allowed: a node strictly between from and to, "
                             "or ends = \"free\")", mpm_io_in_approx(from).s,
@@ -569,12 +327,12 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   const int ke = key_index(S_OUTLET, "edge"), kc = key_index(S_OUTLET, "closed");
   const int dim3 = cfg->mesh.nz > 0;
   if (cfg->outlet.closed != MPM_BC_NOSLIP && cfg->outlet.closed != MPM_BC_FRICTIONLESS) {
-    where w = blame(c, cfg, -1, kc, kc);
+    where w = mpm_io_in_blame(c, cfg, -1, kc, kc);
     return mpm_io_in_fail_key(c, &w, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
                               mpm_bc_kind_name(cfg->outlet.closed));
   }
   if (!dim3 && (e == MPM_OUTLET_FRONT || e == MPM_OUTLET_BACK)) {
-    where w = blame(c, cfg, -1, ke, ke);
+    where w = mpm_io_in_blame(c, cfg, -1, ke, ke);
     return mpm_io_in_fail_key(c, &w, "\"%s\" is a face of 3D runs (allowed in a plane run: "
                               "\"none\", \"left\", \"right\", \"bottom\", \"top\")",
                               mpm_io_in_name_at(NK_EDGE, e));
@@ -582,7 +340,7 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
   const int kinds[] = {0, cfg->bc.left, cfg->bc.right, cfg->bc.bottom, cfg->bc.top,
                        cfg->bc.front, cfg->bc.back};
   if (kinds[e] == MPM_BC_PERIODIC) {
-    where w = blame(c, cfg, -1, ke, ke);
+    where w = mpm_io_in_blame(c, cfg, -1, ke, ke);
     return mpm_io_in_fail_key(c, &w, "\"%s\" is periodic (allowed: a non-periodic %s)",
                               mpm_io_in_name_at(NK_EDGE, e), dim3 ? "face" : "edge");
   }
@@ -605,21 +363,21 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
     return MPM_EINPUT;
   const double w0 = cfg->outlet.to - cfg->outlet.from, w1 = cfg->outlet.to2 - cfg->outlet.from2;
   if (cfg->outlet.shape == MPM_OUTLET_DISC && fabs(w0 - w1) > 1e-9 * (w0 > w1 ? w0 : w1)) {
-    where w = blame(c, cfg, -1, key_index(S_OUTLET, "shape"), kt2);
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_OUTLET, "shape"), kt2);
     return mpm_io_in_fail_key(c, &w, "shape = \"disc\" on %s x %s m (allowed: a square, "
                               "to - from = to2 - from2: the disc is the inscribed one)",
                               mpm_io_in_approx(w0).s, mpm_io_in_approx(w1).s);
   }
   if (cfg->outlet.ends == MPM_OUTLET_ENDS_FIXED && cfg->outlet.shape == MPM_OUTLET_DISC) {
     /* a node strictly inside the disc: the one nearest its centre */
-    const mesh_axis x0 = axis_of(cfg, a0), x1 = axis_of(cfg, a1);
+    const mesh_axis x0 = mpm_io_in_mesh_axis(cfg, a0), x1 = mpm_io_in_mesh_axis(cfg, a1);
     const double c0 = 0.5 * (cfg->outlet.from + cfg->outlet.to);
     const double c1 = 0.5 * (cfg->outlet.from2 + cfg->outlet.to2);
     const double r = 0.5 * (cfg->outlet.to - cfg->outlet.from);
     const double d0 = x0.o + round((c0 - x0.o) / x0.d) * x0.d - c0;
     const double d1 = x1.o + round((c1 - x1.o) / x1.d) * x1.d - c1;
     if (!(hypot(d0, d1) < r - GEOM_TOL * fmin(x0.d, x1.d))) {
-      where w = blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt2);
+      where w = mpm_io_in_blame(c, cfg, -1, key_index(S_OUTLET, "ends"), kt2);
       return mpm_io_in_fail_key(c, &w, "\"fixed\" leaves no node free inside the disc of "
                                 "radius %s m (allowed: a node strictly inside it, or ends = "
                                 "\"free\")", mpm_io_in_approx(r).s);
@@ -632,8 +390,8 @@ static int check_outlet(in_ctx *c, const mpm_config *cfg)
 static int check_wall(in_ctx *c, mpm_config *cfg)
 {
   const int kx = key_index(S_WALL, "x"), ky = key_index(S_WALL, "y");
-  const int nx = c->wall_nlist[0], ny = c->wall_nlist[1];
-  where w = blame(c, cfg, -1, ky, kx);
+  const int nx = c->nlist[0][kx], ny = c->nlist[0][ky];
+  where w = mpm_io_in_blame(c, cfg, -1, ky, kx);
   if (nx != ny)
     return mpm_io_in_fail_key(
         c, &w, "x has %d values, y has %d (allowed: as many x values as y values)", nx, ny);
@@ -643,7 +401,7 @@ static int check_wall(in_ctx *c, mpm_config *cfg)
   cfg->wall.nvert = nx;
   const int kk = key_index(S_WALL, "kind");
   if (cfg->wall.kind != MPM_BC_NOSLIP && cfg->wall.kind != MPM_BC_FRICTIONLESS) {
-    where wk = blame(c, cfg, -1, kk, kk);
+    where wk = mpm_io_in_blame(c, cfg, -1, kk, kk);
     return mpm_io_in_fail_key(c, &wk, "\"%s\" (allowed: \"noslip\", \"frictionless\")",
                               mpm_bc_kind_name(cfg->wall.kind));
   }
@@ -657,16 +415,35 @@ static int check_region(in_ctx *c, const mpm_config *cfg)
   const double v[][2] = {{cfg->region.xmax, cfg->region.xmin}, {cfg->region.ymax, cfg->region.ymin}};
   for (int i = 0; i < 2; i++)
     if (!(v[i][0] > v[i][1])) {
-      where w = blame(c, cfg, -1, key_index(S_REGION, pairs[i][0]), key_index(S_REGION, pairs[i][1]));
+      where w = mpm_io_in_blame(c, cfg, -1, key_index(S_REGION, pairs[i][0]),
+                                key_index(S_REGION, pairs[i][1]));
       return mpm_io_in_fail_key(c, &w, "%s = %s <= %s = %s (allowed: %s > %s)", pairs[i][0],
                                 mpm_io_in_num(v[i][0]).s, pairs[i][1], mpm_io_in_num(v[i][1]).s,
                                 pairs[i][0], pairs[i][1]);
     }
   if (cfg->region.m_hi > 0.0 && !(cfg->region.m_hi > cfg->region.m_lo)) {
-    where w = blame(c, cfg, -1, key_index(S_REGION, "m_hi"), key_index(S_REGION, "m_lo"));
+    where w = mpm_io_in_blame(c, cfg, -1, key_index(S_REGION, "m_hi"), key_index(S_REGION, "m_lo"));
     return mpm_io_in_fail_key(c, &w,
                               "m_hi = %s <= m_lo = %s (allowed: m_hi > m_lo, or m_hi = 0: no fit)",
                               mpm_io_in_num(cfg->region.m_hi).s, mpm_io_in_num(cfg->region.m_lo).s);
+  }
+  return MPM_OK;
+}
+
+/* A plane run: the 3D keys (but mesh.nz) set in a plain section, or in item
+ * i of titled section t (t < 0: the plain sections). */
+static int check_plane_keys(in_ctx *c, const mpm_config *cfg, int t, int i)
+{
+  const int knz = key_index(S_MESH, "nz");
+  for (int k = 0; k < NKEYS; k++) {
+    const int sec = mpm_io_in_keys[k].sec;
+    if (!(mpm_io_in_keys[k].flags & KF_3D) || k == knz || mpm_io_in_titled_of(sec) != t ||
+        !mpm_io_in_is_set(c, k, i))
+      continue;
+    where w = {.at = c->at[i < 0 ? 0 : i][k], .sec = sec, .key = k, .item = i,
+               .title = t >= 0 ? mpm_io_in_title(cfg, t, i) : NULL};
+    return mpm_io_in_fail_key(c, &w, "a key of 3D runs, set in a plane one (allowed: with "
+                              "mesh.nz > 0 only)");
   }
   return MPM_OK;
 }
@@ -678,27 +455,23 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
 {
   const int knz = key_index(S_MESH, "nz");
   if (cfg->mesh.nz == 0) {
-    for (int f = -1; f < cfg->nfill; f++)
-      for (int k = 0; k < NKEYS; k++) {
-        if (!(mpm_io_in_keys[k].flags & KF_3D) || k == knz ||
-            (mpm_io_in_keys[k].sec == S_FILL) != (f >= 0) || !is_set(c, k, f))
-          continue;
-        where w = {.at = c->at[f < 0 ? 0 : f][k], .sec = mpm_io_in_keys[k].sec, .key = k,
-                   .fill = f, .title = f >= 0 ? cfg->fill[f].name : NULL};
-        return mpm_io_in_fail_key(c, &w, "a key of 3D runs, set in a plane one (allowed: with "
-                                  "mesh.nz > 0 only)");
-      }
+    if (check_plane_keys(c, cfg, -1, -1) != MPM_OK)
+      return MPM_EINPUT;
+    for (int t = 0; t < NTITLED; t++)
+      for (int i = 0; i < mpm_io_in_count_of(cfg, t); i++)
+        if (check_plane_keys(c, cfg, t, i) != MPM_OK)
+          return MPM_EINPUT;
     return MPM_OK;
   }
   const int kdz = key_index(S_MESH, "dz");
   if (!(cfg->mesh.dz > 0.0)) {
-    where w = blame(c, cfg, -1, kdz, knz);
+    where w = mpm_io_in_blame(c, cfg, -1, kdz, knz);
     return mpm_io_in_fail_key(c, &w, "nz = %d without dz (allowed: dz in %s ... %s m with "
                               "nz > 0)", cfg->mesh.nz, mpm_io_in_num(mpm_io_in_keys[kdz].lo).s,
                               mpm_io_in_num(mpm_io_in_keys[kdz].hi).s);
   }
   if ((cfg->mesh.nx + 1.0) * (cfg->mesh.ny + 1.0) * (cfg->mesh.nz + 1.0) > MAX_NODES) {
-    where w = blame(c, cfg, -1, knz, knz);
+    where w = mpm_io_in_blame(c, cfg, -1, knz, knz);
     return mpm_io_in_fail_key(c, &w, "%d x %d x %d units make too many nodes (allowed: "
                               "(nx+1)(ny+1)(nz+1) <= %s)", cfg->mesh.nx, cfg->mesh.ny,
                               cfg->mesh.nz, mpm_io_in_num(MAX_NODES).s);
@@ -711,7 +484,7 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     if (!no3[i].on)
       continue;
     const int k = key_index(no3[i].sec, no3[i].key);
-    where w = blame(c, cfg, -1, k, knz);
+    where w = mpm_io_in_blame(c, cfg, -1, k, knz);
     return mpm_io_in_fail_key(c, &w, "not available in a 3D run (mesh.nz > 0) (allowed: %s)",
                               no3[i].allowed);
   }
@@ -723,14 +496,14 @@ static int check_dimension(in_ctx *c, const mpm_config *cfg)
     const mpm_fill_config *fc = &cfg->fill[f];
     if (!(mpm_io_in_keys[kz0].shapes & mpm_io_in_fill_form(fc, 1)))
       continue;  /* a cylinder along x or y: its span is its own (check_disc) */
-    if (!is_set(c, kz0, f) || !is_set(c, kz1, f)) {
-      const int km = is_set(c, kz0, f) ? kz1 : kz0;
-      where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .fill = f, .title = fc->name};
+    if (!mpm_io_in_is_set(c, kz0, f) || !mpm_io_in_is_set(c, kz1, f)) {
+      const int km = mpm_io_in_is_set(c, kz0, f) ? kz1 : kz0;
+      where w = {.at = c->at[f][km], .sec = S_FILL, .key = km, .item = f, .title = fc->name};
       return mpm_io_in_fail_key(c, &w, "required in a 3D run, not set (allowed: %s ... %s m)",
                                 mpm_io_in_approx(cfg->mesh.z0).s, mpm_io_in_approx(z1).s);
     }
     if (!(fc->zmin < fc->zmax) || fc->zmin < cfg->mesh.z0 - tol || fc->zmax > z1 + tol) {
-      where w = blame(c, cfg, f, kz1, kz0);
+      where w = mpm_io_in_blame(c, cfg, f, kz1, kz0);
       return mpm_io_in_fail_key(c, &w, "the fill spans z %s ... %s (allowed: zmin < zmax "
                                 "within %s ... %s m)", mpm_io_in_num(fc->zmin).s,
                                 mpm_io_in_num(fc->zmax).s, mpm_io_in_approx(cfg->mesh.z0).s,
@@ -745,7 +518,7 @@ int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
   if (check_required(c) != MPM_OK)
     return MPM_EINPUT;
   if (cfg->nfill == 0) {
-    where w = {.sec = S_FILL, .key = -1, .fill = -1};
+    where w = {.sec = S_FILL, .key = -1, .item = -1};
     return mpm_io_in_fail_at(
         c, &w, "no fill section (allowed: 1 ... %d sections 'fill NAME { ... }')", MPM_MAX_FILLS);
   }
@@ -756,7 +529,10 @@ int mpm_io_in_validate(in_ctx *c, mpm_config *cfg)
     return MPM_EINPUT;
   resolve_stop(c, cfg);
   for (int i = 0; i < cfg->nfill; i++)
-    if (check_fill(c, cfg, i) != MPM_OK)
+    if (mpm_io_in_check_fill(c, cfg, i) != MPM_OK)
+      return MPM_EINPUT;
+  for (int i = 0; i < cfg->nbody; i++)
+    if (mpm_io_in_check_body(c, cfg, i) != MPM_OK)
       return MPM_EINPUT;
   return check_model(c, cfg);
 }

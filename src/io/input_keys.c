@@ -1,9 +1,10 @@
 /* input_keys.c: the one table of input keys (section, type, default, allowed
- * range, unit, offset into mpm_config or mpm_fill_config, the forms of fill
- * that use a fill key) and the names each named key allows. The owning
- * modules (mesh, shape, material, bc, nonlocal) decide which names are valid;
- * the few name tables of the input itself (fill shapes and cylinder axes,
- * outlet edges, dilatation rules) live here. */
+ * range, unit, offset into mpm_config or the record of a titled section, the
+ * forms of fill or body that use a key), the table of titled sections, and
+ * the names each named key allows. The owning modules (mesh, shape,
+ * material, bc, nonlocal) decide which names are valid; the few name tables
+ * of the input itself (fill shapes and cylinder axes, body shapes, sides
+ * and contacts, outlet edges, dilatation rules) live here. */
 #include <stddef.h>
 #include <string.h>
 
@@ -20,19 +21,25 @@
 
 /* ------------------------------------------------------------ the key table */
 
-const char *const mpm_io_in_sec_names[NSEC] = {"mesh",     "time", "gravity", "material",
-                                               "boundary", "fill", "stop",    "output",
-                                               "outlet",   "wall", "remove",  "region",
-                                               "absorb"};
+const char *const mpm_io_in_sec_names[NSEC] = {
+  "mesh", "time", "gravity", "material", "boundary", "fill", "body", "stop", "output", "outlet",
+  "wall", "remove", "region", "absorb",
+};
 
 #define C_(m) offsetof(mpm_config, m)
 #define F_(m) offsetof(mpm_fill_config, m)
+#define B_(m) offsetof(mpm_body_config, m)
 #define NUM(s, t, n, o, d, l, h, f, u) \
   {.name = n, .sec = s, .type = t, .off = o, .def = d, .lo = l, .hi = h, .flags = f, .unit = u}
 #define NAMED(s, t, n, o, k, d) {.name = n, .sec = s, .type = t, .off = o, .kind = k, .sdef = d}
+#define BODY(t, n, o, d, l, h, f, u) NUM(S_BODY, t, n, o, d, l, h, f, u)
+/* a body's list: its values at o, their count at no */
+#define BLIST(n, o, no, l, h, f, sh, u) \
+  {.name = n, .sec = S_BODY, .type = KT_LIST, .off = B_(o), .noff = B_(no), .lo = l, .hi = h, \
+   .flags = f, .shapes = sh, .unit = u}
 #define GEOM(t, n, o, l, h, f, sh) \
   {.name = n, .sec = S_FILL, .type = t, .off = o, .lo = l, .hi = h, \
-   .flags = KF_REQUIRED | (f), .shapes = sh, .unit = "m"}
+   .flags = KF_REQUIRED | (f), .shapes = sh, .unit = "m", .noff = F_(nvert)}
 
 const key_def mpm_io_in_keys[] = {
     NUM(S_MESH, KT_INT, "nx", C_(mesh.nx), 0, 1, 100000, KF_REQUIRED, "-"),
@@ -128,6 +135,43 @@ const key_def mpm_io_in_keys[] = {
     NUM(S_FILL, KT_REAL, "k0", F_(k0), 0, 0.01, 10, KF_ZERO_OFF, "-"),
     NUM(S_FILL, KT_REAL, "pressure", F_(pressure), 0, 0, 1e9, 0, "Pa"),
 
+    NAMED(S_BODY, KT_ENUM, "shape", B_(shape), NK_BODY_SHAPE, "disc"),
+    {.name = "axis", .sec = S_BODY, .type = KT_ENUM, .off = B_(axis), .kind = NK_FILL_AXIS,
+     .sdef = "z", .flags = KF_3D},
+    BODY(KT_REAL, "cx", B_(cx), 0, -1e9, 1e9, KF_REQUIRED, "m"),
+    BODY(KT_REAL, "cy", B_(cy), 0, -1e9, 1e9, KF_REQUIRED, "m"),
+    BODY(KT_REAL, "cz", B_(cz), 0, -1e9, 1e9, KF_3D, "m"),
+    {.name = "radius", .sec = S_BODY, .type = KT_REAL, .off = B_(radius), .lo = 1e-6, .hi = 1e9,
+     .flags = KF_REQUIRED, .shapes = BS_DISC, .unit = "m"},
+    {.name = "hx", .sec = S_BODY, .type = KT_REAL, .off = B_(hx), .lo = 1e-6, .hi = 1e9,
+     .flags = KF_REQUIRED, .shapes = BS_BOX, .unit = "m"},
+    {.name = "hy", .sec = S_BODY, .type = KT_REAL, .off = B_(hy), .lo = 1e-6, .hi = 1e9,
+     .flags = KF_REQUIRED, .shapes = BS_BOX, .unit = "m"},
+    BLIST("x", px, nvert, -1e9, 1e9, KF_REQUIRED, BS_POLY, "m"),
+    BLIST("y", py, nvert, -1e9, 1e9, KF_REQUIRED, BS_POLY, "m"),
+    BODY(KT_REAL, "angle", B_(angle), 0, -360, 360, 0, "deg"),
+    BODY(KT_REAL, "length", B_(length), 0, 0, 1e9, KF_3D, "m"),
+    NAMED(S_BODY, KT_ENUM, "side", B_(side), NK_BODY_SIDE, "outside"),
+    NAMED(S_BODY, KT_ENUM, "contact", B_(contact), NK_BODY_CONTACT, "noslip"),
+    BODY(KT_REAL, "friction", B_(friction), 0, 0, 10, 0, "-"),
+    BLIST("t", t, ntable, 0, 1e9, KF_RISING, 0, "s"),
+    BLIST("vx", val[MPM_BODY_VX], nval[MPM_BODY_VX], -1e4, 1e4, 0, 0, "m/s"),
+    BLIST("vy", val[MPM_BODY_VY], nval[MPM_BODY_VY], -1e4, 1e4, 0, 0, "m/s"),
+    BLIST("vz", val[MPM_BODY_VZ], nval[MPM_BODY_VZ], -1e4, 1e4, KF_3D, 0, "m/s"),
+    BLIST("omega", val[MPM_BODY_OMEGA], nval[MPM_BODY_OMEGA], -1e4, 1e4, 0, 0, "rad/s"),
+    BODY(KT_BOOL, "free_x", B_(free[MPM_BODY_VX]), 0, 0, 1, 0, "-"),
+    BODY(KT_BOOL, "free_y", B_(free[MPM_BODY_VY]), 0, 0, 1, 0, "-"),
+    BODY(KT_BOOL, "free_z", B_(free[MPM_BODY_VZ]), 0, 0, 1, KF_3D, "-"),
+    BODY(KT_BOOL, "free_rotation", B_(free[MPM_BODY_OMEGA]), 0, 0, 1, 0, "-"),
+    BODY(KT_REAL, "mass", B_(mass), 0, 0, 1e12, 0, "kg/m"),
+    BODY(KT_REAL, "inertia", B_(inertia), 0, 0, 1e12, 0, "kg m^2/m"),
+    BODY(KT_REAL, "fx", B_(force[0]), 0, -1e12, 1e12, 0, "N/m"),
+    BODY(KT_REAL, "fy", B_(force[1]), 0, -1e12, 1e12, 0, "N/m"),
+    BODY(KT_REAL, "fz", B_(force[2]), 0, -1e12, 1e12, KF_3D, "N/m"),
+    BODY(KT_REAL, "torque", B_(torque), 0, -1e12, 1e12, 0, "N m/m"),
+    BODY(KT_REAL, "damping", B_(damping), 0, 0, 1e6, 0, "1/s"),
+    BODY(KT_BOOL, "carve", B_(carve), 0, 0, 1, 0, "-"),
+
     NUM(S_STOP, KT_REAL, "ke", C_(stop.ke), 0, 0, 1e9, 0, "J/kg"),
     NUM(S_STOP, KT_REAL, "t_min", C_(stop.t_min), 0, 0, 1e9, 0, "s"),
     NUM(S_STOP, KT_REAL, "mass", C_(stop.mass), 0, 0, 1e9, 0, "kg/m"),
@@ -154,6 +198,7 @@ const key_def mpm_io_in_keys[] = {
      .sec = S_WALL,
      .type = KT_LIST,
      .off = C_(wall.px),
+     .noff = C_(wall.nvert),
      .lo = -1e9,
      .hi = 1e9,
      .unit = "m"},
@@ -161,6 +206,7 @@ const key_def mpm_io_in_keys[] = {
      .sec = S_WALL,
      .type = KT_LIST,
      .off = C_(wall.py),
+     .noff = C_(wall.nvert),
      .lo = -1e9,
      .hi = 1e9,
      .unit = "m"},
@@ -183,6 +229,53 @@ const key_def mpm_io_in_keys[] = {
 _Static_assert(sizeof mpm_io_in_keys / sizeof mpm_io_in_keys[0] == NKEYS,
                "NKEYS (input_internal.h) must count the rows of mpm_io_in_keys");
 
+/* ------------------------------------------------------ titled sections */
+
+const titled_def mpm_io_in_titled[NTITLED] = {
+  [T_FILL] = {.sec = S_FILL, .max = MPM_MAX_FILLS, .count_off = C_(nfill), .array_off = C_(fill),
+              .size = sizeof(mpm_fill_config), .name_off = F_(name)},
+  [T_BODY] = {.sec = S_BODY, .max = MPM_MAX_BODIES, .count_off = C_(nbody), .array_off = C_(body),
+              .size = sizeof(mpm_body_config), .name_off = B_(name)},
+};
+
+_Static_assert(MAX_ITEMS >= MPM_MAX_FILLS && MAX_ITEMS >= MPM_MAX_BODIES,
+               "MAX_ITEMS must hold every titled section's items");
+
+int mpm_io_in_titled_of(int sec)
+{
+  for (int t = 0; t < NTITLED; t++)
+    if (mpm_io_in_titled[t].sec == sec)
+      return t;
+  return -1;
+}
+
+int *mpm_io_in_count(mpm_config *cfg, int t)
+{
+  return (int *)(void *)((char *)cfg + mpm_io_in_titled[t].count_off);
+}
+
+int mpm_io_in_count_of(const mpm_config *cfg, int t)
+{
+  return *(const int *)(const void *)((const char *)cfg + mpm_io_in_titled[t].count_off);
+}
+
+void *mpm_io_in_item(mpm_config *cfg, int t, int i)
+{
+  const titled_def *td = &mpm_io_in_titled[t];
+  return (char *)cfg + td->array_off + (size_t)i * td->size;
+}
+
+const void *mpm_io_in_item_of(const mpm_config *cfg, int t, int i)
+{
+  const titled_def *td = &mpm_io_in_titled[t];
+  return (const char *)cfg + td->array_off + (size_t)i * td->size;
+}
+
+const char *mpm_io_in_title(const mpm_config *cfg, int t, int i)
+{
+  return (const char *)mpm_io_in_item_of(cfg, t, i) + mpm_io_in_titled[t].name_off;
+}
+
 /* ------------------------------------------------------------- name tables */
 
 static const char *const fill_shape_names[] = {
@@ -190,7 +283,21 @@ static const char *const fill_shape_names[] = {
   [MPM_FILL_POLYGON] = "polygon",
 };
 
-static const char *const fill_axis_names[] = {"x", "y", "z"};  /* mpm_fill_config.axis */
+/* mpm_fill_config.axis, mpm_body_config.axis */
+static const char *const fill_axis_names[] = {"x", "y", "z"};
+
+static const char *const body_shape_names[] = {
+  [MPM_BODY_DISC] = "disc", [MPM_BODY_BOX] = "box", [MPM_BODY_POLYGON] = "polygon",
+};
+
+static const char *const body_side_names[] = {
+  [MPM_BODY_OUTSIDE] = "outside", [MPM_BODY_INSIDE] = "inside",
+};
+
+static const char *const body_contact_names[] = {
+  [MPM_CONTACT_NOSLIP] = "noslip", [MPM_CONTACT_FRICTIONLESS] = "frictionless",
+  [MPM_CONTACT_FRICTION] = "friction",
+};
 
 static const char *const edge_names[] = {
   [MPM_OUTLET_NONE] = "none", [MPM_OUTLET_LEFT] = "left", [MPM_OUTLET_RIGHT] = "right",
@@ -228,6 +335,9 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_DIAGONAL: return mpm_mesh_diagonal_name(i);
   case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
   case NK_FILL_AXIS: return NAME_AT(fill_axis_names, i);
+  case NK_BODY_SHAPE: return NAME_AT(body_shape_names, i);
+  case NK_BODY_SIDE: return NAME_AT(body_side_names, i);
+  case NK_BODY_CONTACT: return NAME_AT(body_contact_names, i);
   case NK_EDGE: return NAME_AT(edge_names, i);
   case NK_OUTLET_SHAPE: return NAME_AT(outlet_shape_names, i);
   case NK_OUTLET_ENDS: return NAME_AT(outlet_ends_names, i);
@@ -267,6 +377,9 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return NAME_INDEX(fill_shape_names, s);
   case NK_FILL_AXIS: return NAME_INDEX(fill_axis_names, s);
+  case NK_BODY_SHAPE: return NAME_INDEX(body_shape_names, s);
+  case NK_BODY_SIDE: return NAME_INDEX(body_side_names, s);
+  case NK_BODY_CONTACT: return NAME_INDEX(body_contact_names, s);
   case NK_NGF_FORM: return mpm_material_ngf_form_from_name(s);
   case NK_NGF_P_SAMPLE: return mpm_material_ngf_p_sample_from_name(s);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
@@ -314,4 +427,22 @@ int mpm_io_in_fill_form(const mpm_fill_config *f, int dim3)
     return f->axis >= 0 && f->axis <= 2 ? SH_CYL_X << f->axis : 0;
   default: return 0;
   }
+}
+
+/* The form of item rec of titled section t (one bit of key_def.shapes), 0
+ * for a section without forms. */
+int mpm_io_in_item_form(int t, const void *rec, int dim3)
+{
+  switch (t) {
+  case T_FILL: return mpm_io_in_fill_form(rec, dim3);
+  case T_BODY: return mpm_io_in_body_form(rec);
+  default: return 0;
+  }
+}
+
+/* The form of body b (one BS_ bit, the same in a plane and a 3D run); 0 for
+ * a shape out of range. */
+int mpm_io_in_body_form(const mpm_body_config *b)
+{
+  return b->shape >= MPM_BODY_DISC && b->shape <= MPM_BODY_POLYGON ? 1 << b->shape : 0;
 }

@@ -1,7 +1,8 @@
 /* input_override.c: the --set arguments, "section.key=value", applied in
- * order after the file: "fill.KEY=value" sets a key in every fill,
- * "fill.TITLE.KEY=value" in one; a list is "{1, 2, 3}" or "1, 2, 3"; one
- * pair of quotes around a value is dropped. Errors name the argument. */
+ * order after the file: in a titled section "fill.KEY=value" sets a key in
+ * every fill, "fill.TITLE.KEY=value" in one (bodies alike); a list is
+ * "{1, 2, 3}" or "1, 2, 3"; one pair of quotes around a value is dropped.
+ * Errors name the argument. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -57,50 +58,53 @@ static int override_value(in_ctx *c, void *rec, const where *w, char *v)
   return rc;
 }
 
-static int fill_index(const mpm_config *cfg, const char *title)
+static int item_index(const mpm_config *cfg, int t, const char *title)
 {
-  for (int i = 0; i < cfg->nfill; i++)
-    if (strcmp(cfg->fill[i].name, title) == 0)
+  for (int i = 0; i < mpm_io_in_count_of(cfg, t); i++)
+    if (strcmp(mpm_io_in_title(cfg, t, i), title) == 0)
       return i;
   return -1;
 }
 
-static text fill_titles(const mpm_config *cfg)
+static text item_titles(const mpm_config *cfg, int t)
 {
-  text t = {{0}};
-  for (int i = 0; i < cfg->nfill; i++)
-    mpm_io_in_addf(&t, "%s%s", i ? ", " : "", cfg->fill[i].name);
-  if (cfg->nfill == 0)
-    mpm_io_in_addf(&t, "the file has no fill section");
-  return t;
+  text s = {{0}};
+  const int n = mpm_io_in_count_of(cfg, t);
+  for (int i = 0; i < n; i++)
+    mpm_io_in_addf(&s, "%s%s", i ? ", " : "", mpm_io_in_title(cfg, t, i));
+  if (n == 0)
+    mpm_io_in_addf(&s, "the file has no %s section", mpm_io_in_sec_names[mpm_io_in_titled[t].sec]);
+  return s;
 }
 
-/* A fill key: "fill.KEY" sets it in every fill, "fill.TITLE.KEY" in one. */
-static int override_fill(in_ctx *c, mpm_config *cfg, where *w, char *rest, char *v)
+/* A key of titled section t: "fill.KEY" sets it in every fill,
+ * "fill.TITLE.KEY" in one. */
+static int override_item(in_ctx *c, mpm_config *cfg, int t, where *w, char *rest, char *v)
 {
+  const char *sec = mpm_io_in_sec_names[w->sec];
   char *dot = strrchr(rest, '.'), *key = dot ? dot + 1 : rest;
   if (dot)
     *dot = '\0';
-  w->key = mpm_io_in_find_key(S_FILL, key);
+  w->key = mpm_io_in_find_key(w->sec, key);
   w->title = dot ? rest : NULL;
   if (w->key < 0)
-    return mpm_io_in_fail_at(c, w, "%s", mpm_io_in_unknown_key_text(S_FILL, w->title, key).s);
+    return mpm_io_in_fail_at(c, w, "%s", mpm_io_in_unknown_key_text(w->sec, w->title, key).s);
   if (dot) {
-    w->fill = fill_index(cfg, rest);
-    if (w->fill < 0)
-      return mpm_io_in_fail_at(c, w, "no fill titled '%s' (allowed: %s)", mpm_io_in_show(rest).s,
-                               fill_titles(cfg).s);
-    return override_value(c, &cfg->fill[w->fill], w, v);
+    w->item = item_index(cfg, t, rest);
+    if (w->item < 0)
+      return mpm_io_in_fail_at(c, w, "no %s titled '%s' (allowed: %s)", sec,
+                               mpm_io_in_show(rest).s, item_titles(cfg, t).s);
+    return override_value(c, mpm_io_in_item(cfg, t, w->item), w, v);
   }
-  for (w->fill = 0; w->fill < cfg->nfill; w->fill++)
-    if (override_value(c, &cfg->fill[w->fill], w, v) != MPM_OK)
+  for (w->item = 0; w->item < mpm_io_in_count_of(cfg, t); w->item++)
+    if (override_value(c, mpm_io_in_item(cfg, t, w->item), w, v) != MPM_OK)
       return MPM_EINPUT;
   return MPM_OK;
 }
 
 static int apply_override(in_ctx *c, mpm_config *cfg, int i, char *arg)
 {
-  where w = {.at = {0, i + 1}, .sec = -1, .key = -1, .fill = -1};
+  where w = {.at = {0, i + 1}, .sec = -1, .key = -1, .item = -1};
   char *eq = strchr(arg, '=');
   if (!eq)
     return mpm_io_in_fail_at(c, &w, "expected section.key=value");
@@ -114,8 +118,9 @@ static int apply_override(in_ctx *c, mpm_config *cfg, int i, char *arg)
   if (w.sec < 0)
     return mpm_io_in_fail_at(c, &w, "unknown section '%s' (allowed: %s)", mpm_io_in_show(name).s,
                              mpm_io_in_section_list().s);
-  if (w.sec == S_FILL)
-    return override_fill(c, cfg, &w, dot + 1, v);
+  const int t = mpm_io_in_titled_of(w.sec);
+  if (t >= 0)
+    return override_item(c, cfg, t, &w, dot + 1, v);
   w.key = mpm_io_in_find_key(w.sec, dot + 1);
   if (w.key < 0)
     return mpm_io_in_fail_at(c, &w, "%s", mpm_io_in_unknown_key_text(w.sec, NULL, dot + 1).s);

@@ -2,9 +2,10 @@
  * whole (at most INPUT_MAX_BYTES), its comments are blanked and the lines
  * where sections open are noted, then libconfuse parses it with one CFGT_PTR
  * option per key of the key table, whose callback keeps each value's raw text
- * and line; the values are then collected section by section, fill by fill,
- * and stored through input_value.c. libconfuse's own complaints are rewritten
- * in the shape of the other input messages (input_internal.h). */
+ * and line; the values are then collected section by section, item by item
+ * of the titled sections, and stored through input_value.c. libconfuse's own
+ * complaints are rewritten in the shape of the other input messages
+ * (input_internal.h). */
 #include <ctype.h>
 #include <errno.h>
 #include <stdarg.h>
@@ -80,6 +81,24 @@ static void unknown_option(in_ctx *c, const where *w, int sec, const char *title
                     mpm_io_in_section_list().s);
 }
 
+/* The titled section whose item titled `title` was opened again at `line`
+ * (libconfuse names the title only): the last one opened at or before that
+ * line that already has an item of that title. */
+static int duplicate_section(const in_ctx *c, cfg_t *cfg, const char *title, int line)
+{
+  int best = 0, best_line = 0;
+  for (int t = 0; t < NTITLED; t++) {
+    if (!cfg_gettsec(cfg, mpm_io_in_sec_names[mpm_io_in_titled[t].sec], title))
+      continue;
+    for (int j = 0; j <= MAX_ITEMS && c->item_open[t][j]; j++)
+      if (c->item_open[t][j] <= line && c->item_open[t][j] >= best_line) {
+        best = t;
+        best_line = c->item_open[t][j];
+      }
+  }
+  return mpm_io_in_titled[best].sec;
+}
+
 /* libconfuse's messages, rewritten; the formats are those of libconfuse 3.3. */
 static void on_confuse_error(cfg_t *cfg, const char *fmt, va_list ap)
 {
@@ -87,16 +106,19 @@ static void on_confuse_error(cfg_t *cfg, const char *fmt, va_list ap)
   if (!c || c->failed)
     return;
   int sec = cfg->name ? mpm_io_in_find_section(cfg->name) : -1;
-  where w = {.at = {cfg->line > 0 ? cfg->line : 1, 0}, .sec = sec, .key = -1, .fill = -1};
+  where w = {.at = {cfg->line > 0 ? cfg->line : 1, 0}, .sec = sec, .key = -1, .item = -1};
   char msg[MPM_ERR_MSG];
   if (strcmp(fmt, "no such option '%s'") == 0) {
     unknown_option(c, &w, sec, cfg->title, va_arg(ap, const char *));
   } else if (strcmp(fmt, "missing title for section '%s'") == 0) {
-    mpm_io_in_fail_at(c, &w, "section '%s' needs a title (allowed: %s NAME { ... })",
-                      mpm_io_in_show(va_arg(ap, const char *)).s, mpm_io_in_sec_names[S_FILL]);
+    const word name = mpm_io_in_show(va_arg(ap, const char *));
+    mpm_io_in_fail_at(c, &w, "section '%s' needs a title (allowed: %s NAME { ... })", name.s,
+                      name.s);
   } else if (strcmp(fmt, "found duplicate title '%s'") == 0) {
-    mpm_io_in_fail_at(c, &w, "a second fill titled '%s' (allowed: a different title for each fill)",
-                      mpm_io_in_show(va_arg(ap, const char *)).s);
+    const char *title = va_arg(ap, const char *);
+    const char *name = mpm_io_in_sec_names[duplicate_section(c, cfg, title, w.at.line)];
+    mpm_io_in_fail_at(c, &w, "a second %s titled '%s' (allowed: a different title for each %s)",
+                      name, mpm_io_in_show(title).s, name);
   } else if (strcmp(fmt, "missing equal sign after option '%s'") == 0) {
     const char *k = va_arg(ap, const char *);
     w.key = sec >= 0 ? mpm_io_in_find_key(sec, k) : -1;
@@ -154,7 +176,8 @@ static void build_options(in_ctx *c)
     root[s].name = mpm_io_in_sec_names[s];
     root[s].type = CFGT_SEC;
     root[s].subopts = o;
-    root[s].flags = s == S_FILL ? CFGF_MULTI | CFGF_TITLE | CFGF_NO_TITLE_DUPES : CFGF_NONE;
+    root[s].flags = mpm_io_in_titled_of(s) >= 0 ? CFGF_MULTI | CFGF_TITLE | CFGF_NO_TITLE_DUPES
+                                                : CFGF_NONE;
   }
   root[NSEC] = ctx_option(c);
   memset(&root[NSEC + 1], 0, sizeof root[NSEC + 1]);
@@ -256,7 +279,7 @@ static const char *env_ref_end(const char *p)
 /* A "${" that starts no reference, at line `line`. */
 static int bad_env_ref(in_ctx *c, int line)
 {
-  where w = {.at = {line, 0}, .sec = -1, .key = -1, .fill = -1};
+  where w = {.at = {line, 0}, .sec = -1, .key = -1, .item = -1};
   return mpm_io_in_fail_at(c, &w, "'${' starts no variable reference "
                            "(allowed: ${NAME} or ${NAME:-fallback}, NAME of letters, digits, '_')");
 }
@@ -324,7 +347,7 @@ static int blank_comments(in_ctx *c, char *s)
     }
     sc.line += *p == '\n';  /* a skipped first character is never a newline */
   }
-  where w = {.at = {sc.from, 0}, .sec = -1, .key = -1, .fill = -1};
+  where w = {.at = {sc.from, 0}, .sec = -1, .key = -1, .item = -1};
   if (sc.bad_ref)
     return bad_env_ref(c, sc.bad_ref);
   if (sc.state == SC_BLOCK)
@@ -367,20 +390,26 @@ static int word_is(const char *w, const char *end, const char *name)
 }
 
 /* The opening lines of the sections ("NAME {" or "fill TITLE {"), in the order
- * libconfuse keeps them: the first of a repeated section, every fill. */
+ * libconfuse keeps them: the first of a repeated plain section, every item of
+ * a titled one. */
 static void find_section_lines(in_ctx *c, const char *s)
 {
-  int nfill = 0;
+  int nitem[NTITLED] = {0};
   for (int b = 0; b < c->nbrace; b++) {
     const char *e1, *e2, *w1 = word_before(s, s + c->brace_pos[b], &e1);
     const char *w2 = word_before(s, w1, &e2);
-    if (word_is(w2, e2, mpm_io_in_sec_names[S_FILL])) {
-      if (nfill < MPM_MAX_FILLS + 1)
-        c->fill_open[nfill++] = c->brace_line[b];
+    int titled = 0;
+    for (int t = 0; t < NTITLED; t++)
+      if (word_is(w2, e2, mpm_io_in_sec_names[mpm_io_in_titled[t].sec])) {
+        if (nitem[t] < MAX_ITEMS + 1)
+          c->item_open[t][nitem[t]++] = c->brace_line[b];
+        titled = 1;
+      }
+    if (titled)
       continue;
-    }
     for (int k = 0; k < NSEC; k++)
-      if (k != S_FILL && word_is(w1, e1, mpm_io_in_sec_names[k]) && !c->sec_open[k])
+      if (mpm_io_in_titled_of(k) < 0 && word_is(w1, e1, mpm_io_in_sec_names[k]) &&
+          !c->sec_open[k])
         c->sec_open[k] = c->brace_line[b];
   }
 }
@@ -396,7 +425,7 @@ static int check_line_lengths(in_ctx *c, const char *s)
     const char *nl = strchr(p, '\n');
     size_t n = nl ? (size_t)(nl - p) : strlen(p);
     if (n > LINE_MAX_CHARS) {
-      where w = {.at = {line, 0}, .sec = -1, .key = -1, .fill = -1};
+      where w = {.at = {line, 0}, .sec = -1, .key = -1, .item = -1};
       return mpm_io_in_fail_at(c, &w, "a line of %zu characters (allowed: at most %d per line)",
                                n, LINE_MAX_CHARS);
     }
@@ -419,7 +448,7 @@ static int byte_order_mark(in_ctx *c, const char *s)
   const char *p = strstr(s, BOM);
   if (!p)
     return MPM_OK;
-  where w = {.at = {line_at(s, (size_t)(p - s)), 0}, .sec = -1, .key = -1, .fill = -1};
+  where w = {.at = {line_at(s, (size_t)(p - s)), 0}, .sec = -1, .key = -1, .item = -1};
   return mpm_io_in_fail_at(c, &w, "a UTF-8 byte-order mark (bytes EF BB BF, invisible) inside "
                            "the text (allowed: only as the first bytes of the file)");
 }
@@ -428,7 +457,7 @@ int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
 {
   const char *nul = memchr(s, '\0', len);
   if (nul) {
-    where w = {.at = {line_at(s, (size_t)(nul - s)), 0}, .sec = -1, .key = -1, .fill = -1};
+    where w = {.at = {line_at(s, (size_t)(nul - s)), 0}, .sec = -1, .key = -1, .item = -1};
     return mpm_io_in_fail_at(c, &w, "NUL byte in the input file (allowed: text)");
   }
   if (len >= BOM_LEN && memcmp(s, BOM, BOM_LEN) == 0)
@@ -446,7 +475,7 @@ int mpm_io_in_parse_text(in_ctx *c, char *s, size_t len, cfg_t **root)
     return mpm_err_set(c->err, MPM_ENOMEM, "%s: out of memory", c->path);
   cfg_set_error_function(*root, on_confuse_error);
   if (cfg_parse_buf(*root, s) != CFG_SUCCESS) {
-    where w = {.at = {c->eof_line, 0}, .sec = -1, .key = -1, .fill = -1};
+    where w = {.at = {c->eof_line, 0}, .sec = -1, .key = -1, .item = -1};
     return mpm_io_in_fail_at(c, &w, "syntax error");  /* kept only if nothing was said */
   }
   return MPM_OK;
@@ -467,7 +496,7 @@ static int collect_list(in_ctx *c, void *rec, const where *w, cfg_opt_t *o)
   return mpm_io_in_store_list(c, rec, w, vals, locs, n);
 }
 
-static int collect_section(in_ctx *c, cfg_t *sec, int s, int fill, void *rec, const char *title)
+static int collect_section(in_ctx *c, cfg_t *sec, int s, int item, void *rec, const char *title)
 {
   for (int k = 0; k < NKEYS; k++) {
     if (mpm_io_in_keys[k].sec != s)
@@ -475,7 +504,7 @@ static int collect_section(in_ctx *c, cfg_t *sec, int s, int fill, void *rec, co
     cfg_opt_t *o = cfg_getopt(sec, mpm_io_in_keys[k].name);
     if (cfg_opt_size(o) == 0)
       continue;
-    where w = {.sec = s, .key = k, .fill = fill, .title = title};
+    where w = {.sec = s, .key = k, .item = item, .title = title};
     int rc;
     if (mpm_io_in_keys[k].type == KT_LIST) {
       rc = collect_list(c, rec, &w, o);
@@ -501,35 +530,41 @@ int mpm_io_in_valid_title(const char *t)
   return 1;
 }
 
-static void fill_defaults(mpm_fill_config *f)
+/* A record of titled section t with the defaults of its keys. */
+static void item_defaults(void *rec, int t)
 {
-  memset(f, 0, sizeof *f);
+  memset(rec, 0, mpm_io_in_titled[t].size);
   for (int k = 0; k < NKEYS; k++)
-    if (mpm_io_in_keys[k].sec == S_FILL)
-      mpm_io_in_store_default(f, &mpm_io_in_keys[k]);
+    if (mpm_io_in_keys[k].sec == mpm_io_in_titled[t].sec)
+      mpm_io_in_store_default(rec, &mpm_io_in_keys[k]);
 }
 
-static int collect_fills(in_ctx *c, cfg_t *root, mpm_config *cfg)
+/* The items of titled section t, each with its title checked. */
+static int collect_items(in_ctx *c, cfg_t *root, mpm_config *cfg, int t)
 {
-  unsigned n = cfg_size(root, mpm_io_in_sec_names[S_FILL]);
+  const titled_def *td = &mpm_io_in_titled[t];
+  const char *name = mpm_io_in_sec_names[td->sec];
+  unsigned n = cfg_size(root, name);
   for (unsigned i = 0; i < n; i++) {
-    cfg_t *sec = cfg_getnsec(root, mpm_io_in_sec_names[S_FILL], i);
+    cfg_t *sec = cfg_getnsec(root, name, i);
     const char *title = cfg_title(sec) ? cfg_title(sec) : "";
-    int line = i <= MPM_MAX_FILLS && c->fill_open[i] ? c->fill_open[i] : sec->line;
-    where w = {.at = {line, 0}, .sec = S_FILL, .key = -1, .fill = -1};
-    if (i == MPM_MAX_FILLS)
+    int line = i <= MAX_ITEMS && c->item_open[t][i] ? c->item_open[t][i] : sec->line;
+    where w = {.at = {line, 0}, .sec = td->sec, .key = -1, .item = -1};
+    if (i == (unsigned)td->max)
       return mpm_io_in_fail_at(c, &w,
-                               "fill '%s' is fill number %u (allowed: at most %d fill sections)",
-                               mpm_io_in_show(title).s, i + 1, MPM_MAX_FILLS);
+                               "%s '%s' is %s number %u (allowed: at most %d %s sections)", name,
+                               mpm_io_in_show(title).s, name, i + 1, td->max, name);
     if (!mpm_io_in_valid_title(title))
       return mpm_io_in_fail_at(c, &w,
-                               "fill title '%s' (allowed: 1 ... %d letters, digits, '_' or '-')",
-                               mpm_io_in_show(title).s, MPM_NAME_MAX - 1);
-    c->fill_line[i] = line;
-    fill_defaults(&cfg->fill[i]);
-    mpm_io_in_copy_text(cfg->fill[i].name, MPM_NAME_MAX, title);
-    cfg->nfill = (int)i + 1;
-    if (collect_section(c, sec, S_FILL, (int)i, &cfg->fill[i], cfg->fill[i].name) != MPM_OK)
+                               "%s title '%s' (allowed: 1 ... %d letters, digits, '_' or '-')",
+                               name, mpm_io_in_show(title).s, MPM_NAME_MAX - 1);
+    c->item_line[t][i] = line;
+    void *rec = mpm_io_in_item(cfg, t, (int)i);
+    item_defaults(rec, t);
+    char *stored = (char *)rec + td->name_off;
+    mpm_io_in_copy_text(stored, MPM_NAME_MAX, title);
+    *mpm_io_in_count(cfg, t) = (int)i + 1;
+    if (collect_section(c, sec, td->sec, (int)i, rec, stored) != MPM_OK)
       return MPM_EINPUT;
   }
   return MPM_OK;
@@ -538,12 +573,15 @@ static int collect_fills(in_ctx *c, cfg_t *root, mpm_config *cfg)
 int mpm_io_in_collect(in_ctx *c, cfg_t *root, mpm_config *cfg)
 {
   for (int s = 0; s < NSEC; s++) {
-    if (s == S_FILL)
+    if (mpm_io_in_titled_of(s) >= 0)
       continue;
     cfg_t *sec = cfg_getsec(root, mpm_io_in_sec_names[s]);
     c->sec_line[s] = c->sec_open[s] ? c->sec_open[s] : sec ? sec->line : 0;
     if (sec && collect_section(c, sec, s, -1, cfg, NULL) != MPM_OK)
       return MPM_EINPUT;
   }
-  return collect_fills(c, root, cfg);
+  for (int t = 0; t < NTITLED; t++)
+    if (collect_items(c, root, cfg, t) != MPM_OK)
+      return MPM_EINPUT;
+  return MPM_OK;
 }

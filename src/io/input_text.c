@@ -149,7 +149,8 @@ text mpm_io_in_allowed_text(const key_def *kd)
   return t;
 }
 
-/* Comma-separated keys of a section (fill keys of some shapes if shapes != 0). */
+/* Comma-separated keys of a section (the keys of some forms of a titled
+ * section if shapes != 0). */
 text mpm_io_in_key_list(int sec, int shapes)
 {
   text t = {{0}};
@@ -174,9 +175,10 @@ static int line_of(const in_ctx *c, const where *w)
   if (w->at.line > 0)
     return w->at.line;
   int line = 0;
-  if (w->sec == S_FILL && w->fill >= 0)
-    line = c->fill_line[w->fill];
-  else if (w->sec >= 0 && w->sec != S_FILL)
+  const int t = w->sec >= 0 ? mpm_io_in_titled_of(w->sec) : -1;
+  if (t >= 0 && w->item >= 0)
+    line = c->item_line[t][w->item];
+  else if (w->sec >= 0 && t < 0)
     line = c->sec_line[w->sec];
   return line > 0 ? line : c->eof_line;
 }
@@ -185,8 +187,9 @@ static text key_name(const where *w)
 {
   text t = {{0}};
   const key_def *kd = &mpm_io_in_keys[w->key];
-  if (kd->sec == S_FILL && w->title)
-    mpm_io_in_addf(&t, "fill.%s.%s", mpm_io_in_show(w->title).s, kd->name);
+  if (mpm_io_in_titled_of(kd->sec) >= 0 && w->title)
+    mpm_io_in_addf(&t, "%s.%s.%s", mpm_io_in_sec_names[kd->sec], mpm_io_in_show(w->title).s,
+                   kd->name);
   else
     mpm_io_in_addf(&t, "%s.%s", mpm_io_in_sec_names[kd->sec], kd->name);
   return t;
@@ -248,8 +251,9 @@ int mpm_io_in_fail_range(in_ctx *c, const where *w, const char *value)
 text mpm_io_in_unknown_key_text(int sec, const char *title, const char *name)
 {
   text t = {{0}};
-  if (sec == S_FILL && title)
-    mpm_io_in_addf(&t, "unknown key 'fill.%s.%s'", mpm_io_in_show(title).s, mpm_io_in_show(name).s);
+  if (mpm_io_in_titled_of(sec) >= 0 && title)
+    mpm_io_in_addf(&t, "unknown key '%s.%s.%s'", mpm_io_in_sec_names[sec],
+                   mpm_io_in_show(title).s, mpm_io_in_show(name).s);
   else
     mpm_io_in_addf(&t, "unknown key '%s.%s'", mpm_io_in_sec_names[sec], mpm_io_in_show(name).s);
   mpm_io_in_addf(&t, " (allowed keys in '%s': %s)", mpm_io_in_sec_names[sec],

@@ -1,8 +1,8 @@
 /* input_value.c: one key's value, from its text (a file or a --set) to its
- * place in mpm_config or mpm_fill_config: integers, reals, booleans, names
- * of a table, paths and polygon lists, each parsed whole and checked against
- * the key's range, with the place it was set on recorded; and the defaults of
- * the key table. */
+ * place in mpm_config or an item's record: integers, reals, booleans, names
+ * of a table, paths and lists (polygons, a body's tables), each parsed whole
+ * and checked against the key's range (a list of times also for its order),
+ * with the place it was set on recorded; and the defaults of the key table. */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -11,9 +11,9 @@
 
 #include "io/input_internal.h"
 
-static loc *loc_of(in_ctx *c, int key, int fill)
+static loc *loc_of(in_ctx *c, int key, int item)
 {
-  return &c->at[fill < 0 ? 0 : fill][key];
+  return &c->at[item < 0 ? 0 : item][key];
 }
 
 static int starts_blank(const char *s)
@@ -155,7 +155,8 @@ static int store_path(in_ctx *c, const where *w, const char *s, char *out)
   return MPM_OK;
 }
 
-/* Parse s as the value of key w->key into rec (mpm_config or mpm_fill_config). */
+/* Parse s as the value of key w->key into rec (mpm_config, or the record of
+ * item w->item of a titled section). */
 int mpm_io_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
 {
   const key_def *kd = &mpm_io_in_keys[w->key];
@@ -171,11 +172,28 @@ int mpm_io_in_store_value(in_ctx *c, void *rec, const where *w, const char *s)
   default: break;
   }
   if (rc == MPM_OK)
-    *loc_of(c, w->key, w->fill) = w->at;
+    *loc_of(c, w->key, w->item) = w->at;
   return rc;
 }
 
-/* Polygon coordinates: n values, each with its own location. */
+/* A list's values in increasing order (KF_RISING): the first that is not
+ * larger than the one before is refused at its own place. */
+static int check_rising(in_ctx *c, const where *w, const double *v, const char *const *vals,
+                        const loc *locs, int n)
+{
+  for (int i = 1; i < n; i++)
+    if (!(v[i] > v[i - 1])) {
+      where e = *w;
+      e.at = locs[i];
+      return mpm_io_in_fail_key(c, &e, "value %s is not larger than the one before it, %s "
+                                "(allowed: strictly increasing values)",
+                                mpm_io_in_show(vals[i]).s, mpm_io_in_show(vals[i - 1]).s);
+    }
+  return MPM_OK;
+}
+
+/* A list (polygon coordinates, a body's times or velocities): n values,
+ * each with its own location. */
 int mpm_io_in_store_list(in_ctx *c, void *rec, const where *w, const char *const *vals,
                          const loc *locs, int n)
 {
@@ -184,7 +202,10 @@ int mpm_io_in_store_list(in_ctx *c, void *rec, const where *w, const char *const
   if (n > MPM_MAX_POLY) {
     where e = *w;
     e.at = locs[MPM_MAX_POLY];
-    return mpm_io_in_fail_key(c, &e, "more than %d values (allowed: 3 ... %d vertices)",
+    if (strcmp(kd->name, "x") == 0 || strcmp(kd->name, "y") == 0)  /* a polygon's */
+      return mpm_io_in_fail_key(c, &e, "more than %d values (allowed: 3 ... %d vertices)",
+                                MPM_MAX_POLY, MPM_MAX_POLY);
+    return mpm_io_in_fail_key(c, &e, "more than %d values (allowed: at most %d values)",
                               MPM_MAX_POLY, MPM_MAX_POLY);
   }
   memset(arr, 0, MPM_MAX_POLY * sizeof *arr);
@@ -194,8 +215,10 @@ int mpm_io_in_store_list(in_ctx *c, void *rec, const where *w, const char *const
     if (store_real(c, &e, vals[i], &arr[i]) != MPM_OK)
       return MPM_EINPUT;
   }
-  (w->fill < 0 ? c->wall_nlist : c->nlist[w->fill])[strcmp(kd->name, "x") == 0 ? 0 : 1] = n;
-  *loc_of(c, w->key, w->fill) = n > 0 ? locs[0] : w->at;
+  if ((kd->flags & KF_RISING) && check_rising(c, w, arr, vals, locs, n) != MPM_OK)
+    return MPM_EINPUT;
+  c->nlist[w->item < 0 ? 0 : w->item][w->key] = n;
+  *loc_of(c, w->key, w->item) = n > 0 ? locs[0] : w->at;
   return MPM_OK;
 }
 

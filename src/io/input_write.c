@@ -16,7 +16,14 @@ static void write_list(FILE *f, const double *v, int n)
   fputc('}', f);
 }
 
-static void write_key(FILE *f, const void *rec, const key_def *kd, int nvert)
+/* The number of values of list kd in rec, within 0 ... MPM_MAX_POLY. */
+static int list_count(const void *rec, const key_def *kd)
+{
+  const int n = *(const int *)(const void *)((const char *)rec + kd->noff);
+  return n < 0 ? 0 : n > MPM_MAX_POLY ? MPM_MAX_POLY : n;
+}
+
+static void write_key(FILE *f, const void *rec, const key_def *kd)
 {
   const char *p = (const char *)rec + kd->off;
   const char *name;
@@ -31,7 +38,7 @@ static void write_key(FILE *f, const void *rec, const key_def *kd, int nvert)
     name = mpm_io_in_name_at(kd->kind, *(const int *)(const void *)p);
     fputs(mpm_io_in_quoted(name ? name : "?").s, f);
     break;
-  case KT_LIST: write_list(f, (const double *)(const void *)p, nvert); break;
+  case KT_LIST: write_list(f, (const double *)(const void *)p, list_count(rec, kd)); break;
   default:
     fputs(mpm_io_in_quoted(p).s, f);
     break;  /* names and paths */
@@ -74,27 +81,32 @@ static void write_section(FILE *f, const mpm_config *cfg, int s)
       write_path(f, (const char *)cfg + mpm_io_in_keys[k].off);
       fputc('\n', f);
     } else {
-      write_key(f, cfg, &mpm_io_in_keys[k], s == S_WALL ? cfg->wall.nvert : 0);
+      write_key(f, cfg, &mpm_io_in_keys[k]);
     }
   }
   fputs("}\n", f);
 }
 
-/* A fill with the keys of its form only (a cylinder: its axis, the span
- * along it and the centre across it), and the 3D keys in a 3D run. */
-static void write_fill(FILE *f, const mpm_fill_config *fc, int i, int dim3)
+/* Item i of titled section t with the keys of its form only (a fill
+ * cylinder: its axis, the span along it and the centre across it), and the
+ * 3D keys in a 3D run. */
+static void write_item(FILE *f, const mpm_config *cfg, int t, int i)
 {
-  if (mpm_io_in_valid_title(fc->name))
-    fprintf(f, "fill %s {\n", fc->name);
+  const void *rec = mpm_io_in_item_of(cfg, t, i);
+  const char *sec = mpm_io_in_sec_names[mpm_io_in_titled[t].sec];
+  const char *title = mpm_io_in_title(cfg, t, i);
+  const int dim3 = cfg->mesh.nz > 0;
+  if (mpm_io_in_valid_title(title))
+    fprintf(f, "%s %s {\n", sec, title);
   else
-    fprintf(f, "fill fill%d {\n", i + 1);
-  const int form = mpm_io_in_fill_form(fc, dim3);
-  int nvert = fc->nvert < 0 ? 0 : fc->nvert > MPM_MAX_POLY ? MPM_MAX_POLY : fc->nvert;
-  for (int k = 0; k < NKEYS; k++)
-    if (mpm_io_in_keys[k].sec == S_FILL &&
-        (!mpm_io_in_keys[k].shapes || (mpm_io_in_keys[k].shapes & form)) &&
-        (dim3 || !(mpm_io_in_keys[k].flags & KF_3D)))
-      write_key(f, fc, &mpm_io_in_keys[k], nvert);
+    fprintf(f, "%s %s%d {\n", sec, sec, i + 1);
+  const int form = mpm_io_in_item_form(t, rec, dim3);
+  for (int k = 0; k < NKEYS; k++) {
+    const key_def *kd = &mpm_io_in_keys[k];
+    if (kd->sec == mpm_io_in_titled[t].sec && (!kd->shapes || (kd->shapes & form)) &&
+        (dim3 || !(kd->flags & KF_3D)))
+      write_key(f, rec, kd);
+  }
   fputs("}\n", f);
 }
 
@@ -110,11 +122,12 @@ int mpm_io_input_write(FILE *f, const mpm_config *cfg)
   }
   fputc('\n', f);
   for (int s = 0; s < NSEC; s++) {
-    if (s != S_FILL)
+    const int t = mpm_io_in_titled_of(s);
+    if (t < 0)
       write_section(f, cfg, s);
     else
-      for (int i = 0; i < cfg->nfill && i < MPM_MAX_FILLS; i++)
-        write_fill(f, &cfg->fill[i], i, cfg->mesh.nz > 0);
+      for (int i = 0; i < mpm_io_in_count_of(cfg, t) && i < mpm_io_in_titled[t].max; i++)
+        write_item(f, cfg, t, i);
   }
   return ferror(f) ? MPM_EIO : MPM_OK;
 }

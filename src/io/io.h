@@ -47,7 +47,8 @@ void mpm_io_input_free(mpm_io_input *in);  /* accepts NULL */
 
 /* MPM_EINPUT with "FILE:LINE: key 'KEY': MESSAGE" (or "--set '...': ..."),
  * LINE where KEY was set, else where its section opens. KEY is
- * "section.key" or "fill.TITLE.key" of cfg, the configuration in loaded. */
+ * "section.key", "fill.TITLE.key" or "body.TITLE.key" of cfg, the
+ * configuration in loaded. */
 int mpm_io_input_fail(mpm_io_input *in, const mpm_config *cfg, const char *key, mpm_err *err,
                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 

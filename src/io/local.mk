@@ -19,7 +19,7 @@ tests_test_output_LDADD = libmpm_diag.la libmpm_mesh.la libmpm_core.la $(HDF5_LI
 # concern; src/io/input_internal.h says which file holds what.
 INPUT_PARTS = src/io/input_internal.h src/io/input_keys.c src/io/input_text.c \
 	src/io/input_parse.c src/io/input_value.c src/io/input_override.c src/io/input_check.c \
-	src/io/input_write.c
+	src/io/input_shared.c src/io/input_fill.c src/io/input_body.c src/io/input_write.c
 libmpm_io_la_SOURCES += $(INPUT_PARTS)
 
 # test_input compiles the input parser directly, so it needs libconfuse and the
@@ -29,13 +29,23 @@ libmpm_io_la_SOURCES += $(INPUT_PARTS)
 check_PROGRAMS += tests/test_input
 TESTS += tests/test_input tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh \
 	tests/cli-cylinders.sh
-tests_test_input_SOURCES = tests/test_input.c src/io/input.c $(INPUT_PARTS) src/io/text.c
+tests_test_input_SOURCES = tests/test_input.c tests/input_case.h src/io/input.c $(INPUT_PARTS) \
+	src/io/text.c
 tests_test_input_CPPFLAGS = $(AM_CPPFLAGS) -DTEST_SRCDIR='"$(abs_top_srcdir)"'
 tests_test_input_CFLAGS = $(AM_CFLAGS) $(CHECK_CFLAGS)
 tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_nonlocal.la \
 	libmpm_mesh.la libmpm_linalg.la libmpm_core.la $(SUITESPARSE_LIBS) $(CONFUSE_LIBS) $(CHECK_LIBS) -lm
 EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh tests/cli-cylinders.sh \
 	tests/inputs
+
+# test_input_body: the body sections, built as test_input.
+check_PROGRAMS += tests/test_input_body
+TESTS += tests/test_input_body
+tests_test_input_body_SOURCES = tests/test_input_body.c tests/input_case.h src/io/input.c \
+	$(INPUT_PARTS) src/io/text.c
+tests_test_input_body_CPPFLAGS = $(tests_test_input_CPPFLAGS)
+tests_test_input_body_CFLAGS = $(tests_test_input_CFLAGS)
+tests_test_input_body_LDADD = $(tests_test_input_LDADD)
 
 # test_output3: the store's dimension and the output of a 3D store; it also
 # writes the 3D run that cli-extract3.sh and paraview3.sh read (--write3).
