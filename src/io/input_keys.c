@@ -2,13 +2,15 @@
  * range, unit, offset into mpm_config or the record of a titled section, the
  * forms of fill or body that use a key), the table of titled sections, and
  * the names each named key allows. The owning modules (mesh, shape,
- * material, bc, nonlocal) decide which names are valid; the few name tables
- * of the input itself (fill shapes and cylinder axes, body shapes, sides
- * and contacts, outlet edges, dilatation rules) live here. */
+ * material, bc with its bodies' shapes, sides and contacts, nonlocal)
+ * decide which names are valid; the few name tables of the input itself
+ * (fill shapes and cylinder axes, outlet edges, dilatation rules) live
+ * here. */
 #include <stddef.h>
 #include <string.h>
 
 #include "bc/bc.h"
+#include "bc/body.h"
 #include "core/names.h"
 #include "io/input_internal.h"
 #include "material/density.h"
@@ -286,19 +288,6 @@ static const char *const fill_shape_names[] = {
 /* mpm_fill_config.axis, mpm_body_config.axis */
 static const char *const fill_axis_names[] = {"x", "y", "z"};
 
-static const char *const body_shape_names[] = {
-  [MPM_BODY_DISC] = "disc", [MPM_BODY_BOX] = "box", [MPM_BODY_POLYGON] = "polygon",
-};
-
-static const char *const body_side_names[] = {
-  [MPM_BODY_OUTSIDE] = "outside", [MPM_BODY_INSIDE] = "inside",
-};
-
-static const char *const body_contact_names[] = {
-  [MPM_CONTACT_NOSLIP] = "noslip", [MPM_CONTACT_FRICTIONLESS] = "frictionless",
-  [MPM_CONTACT_FRICTION] = "friction",
-};
-
 static const char *const edge_names[] = {
   [MPM_OUTLET_NONE] = "none", [MPM_OUTLET_LEFT] = "left", [MPM_OUTLET_RIGHT] = "right",
   [MPM_OUTLET_BOTTOM] = "bottom", [MPM_OUTLET_TOP] = "top", [MPM_OUTLET_FRONT] = "front",
@@ -335,9 +324,9 @@ const char *mpm_io_in_name_at(int kind, int i)
   case NK_DIAGONAL: return mpm_mesh_diagonal_name(i);
   case NK_FILL_SHAPE: return NAME_AT(fill_shape_names, i);
   case NK_FILL_AXIS: return NAME_AT(fill_axis_names, i);
-  case NK_BODY_SHAPE: return NAME_AT(body_shape_names, i);
-  case NK_BODY_SIDE: return NAME_AT(body_side_names, i);
-  case NK_BODY_CONTACT: return NAME_AT(body_contact_names, i);
+  case NK_BODY_SHAPE: return mpm_body_shape_name(i);
+  case NK_BODY_SIDE: return mpm_body_side_name(i);
+  case NK_BODY_CONTACT: return mpm_body_contact_name(i);
   case NK_EDGE: return NAME_AT(edge_names, i);
   case NK_OUTLET_SHAPE: return NAME_AT(outlet_shape_names, i);
   case NK_OUTLET_ENDS: return NAME_AT(outlet_ends_names, i);
@@ -377,9 +366,9 @@ int mpm_io_in_name_value(int kind, const char *s)
   case NK_BC: return mpm_bc_kind_from_name(s);
   case NK_FILL_SHAPE: return NAME_INDEX(fill_shape_names, s);
   case NK_FILL_AXIS: return NAME_INDEX(fill_axis_names, s);
-  case NK_BODY_SHAPE: return NAME_INDEX(body_shape_names, s);
-  case NK_BODY_SIDE: return NAME_INDEX(body_side_names, s);
-  case NK_BODY_CONTACT: return NAME_INDEX(body_contact_names, s);
+  case NK_BODY_SHAPE: return mpm_body_shape_from_name(s);
+  case NK_BODY_SIDE: return mpm_body_side_from_name(s);
+  case NK_BODY_CONTACT: return mpm_body_contact_from_name(s);
   case NK_NGF_FORM: return mpm_material_ngf_form_from_name(s);
   case NK_NGF_P_SAMPLE: return mpm_material_ngf_p_sample_from_name(s);
   case NK_NGF_G_AVERAGE: return mpm_nonlocal_rule_from_name(s);
