@@ -14,6 +14,10 @@
 #  - The same for the NGF chute (ngf-chute-quick, shortened) stopped by
 #    SIGUSR1 after its fluidity was seeded (t_seed = 10 ms), two threads
 #    before, one after.
+#  - A layer with a free wheel turning on it and a plate pushed through it
+#    along a velocity table (tests/inputs/bodies.conf), stopped by SIGTERM:
+#    bodies.csv too is bitwise that of the uninterrupted run, and
+#    `extract --bodies` reads the same rows back from run.h5.
 #  - The NGF chute with the implicit diffusion and checkpoints every 12.5 ms
 #    of simulated time, on one thread, killed by SIGKILL (no chance to write
 #    anything) two frames after a checkpoint (frames every 5 ms): resumed
@@ -49,6 +53,11 @@ wait_rows() {
 same_run() {
   cmp -s "$1/diagnostics.csv" "$2/diagnostics.csv" || fail "$3: diagnostics.csv differs"
   cmp -s "$1/run.xdmf" "$2/run.xdmf" || fail "$3: run.xdmf differs"
+  if [ -e "$1/bodies.csv" ] || [ -e "$2/bodies.csv" ]; then
+    cmp -s "$1/bodies.csv" "$2/bodies.csv" || fail "$3: bodies.csv differs"
+    "$GRANMPM" extract "$2" --bodies | cmp -s - "$2/bodies.csv" ||
+      fail "$3: extract --bodies (run.h5) differs from bodies.csv"
+  fi
   n=$(($(wc -l <"$1/diagnostics.csv") - 1))
   [ "$n" -ge 3 ] || fail "$3: only $n frames"
   "$builddir/tests/test_output" --same-frames "$1" "$2" || fail "$3: the frames of run.h5 differ"
@@ -108,6 +117,7 @@ stop_and_resume() {
 stop_and_resume example "$srcdir/inputs/example.conf" TERM 3 0.025 --set time.frame_dt=0.005
 stop_and_resume ngf "$srcdir/inputs/ngf-chute-quick.conf" USR1 5 0.03 \
   --set time.frame_dt=0.005 --set stop.t_min=2
+stop_and_resume bodies "$srcdir/tests/inputs/bodies.conf" TERM 4 0.03
 
 # Killed outright, two frames after a checkpoint.
 d=$tmp/killed

@@ -40,6 +40,9 @@ static const char usage_text[] =
   "  extract RUNDIR [--frame N|last] [--fields a,b,c] [--z-range ZMIN:ZMAX]\n"
   "        print one output frame as CSV with a header row (a 3D run: z too;\n"
   "        --z-range keeps the points with ZMIN <= z <= ZMAX)\n"
+  "  extract RUNDIR --bodies [--frame N|last]\n"
+  "        the rigid bodies of every frame (or one) as CSV: frame, t, body, centre,\n"
+  "        turn, velocity, angular velocity, force, torque, points put back\n"
   "  extract RUNDIR --profile N [--frame N|last] [--range YMIN:YMAX]\n"
   "  extract RUNDIR --surface [--frame N|last] [--width W]\n"
   "  extract RUNDIR --smooth [--frame N|last]\n"
@@ -109,7 +112,7 @@ static int cmd_extract(int argc, char **argv)
   if (mpm_app_is_analysis(argc, argv))
     return mpm_app_analyse(argc, argv);
   const char *dir = NULL, *fields = NULL;
-  int frame = -1;
+  int frame = -1, bodies = 0, frame_given = 0;
   mpm_io_zrange zr;
   const mpm_io_zrange *sel = NULL;
   for (int i = 1; i < argc; i++) {
@@ -117,10 +120,13 @@ static int cmd_extract(int argc, char **argv)
     int st = 0;
     if (strcmp(a, "--frame") == 0 && v) {
       st = mpm_app_arg_frame("extract", v, &frame);
+      frame_given = 1;
       i++;
     } else if (strcmp(a, "--fields") == 0 && v) {
       fields = v;
       i++;
+    } else if (strcmp(a, "--bodies") == 0) {
+      bodies = 1;
     } else if (strcmp(a, "--z-range") == 0 && v) {
       if (!mpm_app_arg_pair(v, &zr.zmin, &zr.zmax))
         return mpm_app_usage("extract: --z-range expects ZMIN:ZMAX with ZMIN < ZMAX, got '%s'",
@@ -135,8 +141,11 @@ static int cmd_extract(int argc, char **argv)
   }
   if (!dir)
     return mpm_app_usage("%s: a run directory is required", "extract");
+  if (bodies && (fields || sel))
+    return mpm_app_usage("extract: --bodies takes --frame only");
   mpm_err err = {0};
-  if (mpm_io_extract_in(dir, frame, fields, sel, stdout, &err) != MPM_OK)
+  if (bodies ? mpm_io_extract_bodies(dir, frame_given ? frame : MPM_IO_ALL_FRAMES, stdout, &err) != MPM_OK
+             : mpm_io_extract_in(dir, frame, fields, sel, stdout, &err) != MPM_OK)
     return mpm_app_fail(&err);
   return 0;
 }

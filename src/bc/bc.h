@@ -15,11 +15,9 @@
  * Staircase walls (walls.c) are the nodes inside a plane polygon, in 3D the
  * prism along z of it.
  *
- * The walls are fixed today. A wall that moves (a rigid body's surface:
- * nodes whose held components take the body's velocity instead of zero,
- * and whose reaction the grid update sums into the body's force) belongs in
- * its own file of this module beside walls.c, applied node by node through
- * the same mask in the grid update (docs/design.md). */
+ * These walls are fixed. Walls that move are rigid bodies (body.h), which
+ * correct the nodes near them after the grid update and keep what a mask
+ * holds held (docs/design.md, "Moving bodies"). */
 #ifndef MPM_BC_BC_H
 #define MPM_BC_BC_H
 

@@ -121,3 +121,77 @@ int mpm_io_out_bodies_reopen(mpm_io_output *out, long nframes, mpm_err *err)
   }
   return rc;
 }
+
+/* ---- reading back ---------------------------------------------------------- */
+
+/* The rows of frame k of /bodies (group g) as CSV, names the bodies' titles
+ * separated by commas; MPM_EIO naming what is wrong. */
+static int print_frame(hid_t g, long k, const char *names, FILE *out, const char *path,
+                       mpm_err *err)
+{
+  char name[32];
+  snprintf(name, sizeof name, "%06ld", k);
+  hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+  hid_t sp = d >= 0 ? H5Dget_space(d) : H5I_INVALID_HID;
+  hsize_t dims[2] = {0, 0};
+  double t = 0.0, v[MPM_MAX_BODIES * BODY_COLUMNS];
+  int ok = sp >= 0 && H5Sget_simple_extent_ndims(sp) == 2 &&
+           H5Sget_simple_extent_dims(sp, dims, NULL) == 2 && dims[0] <= MPM_MAX_BODIES &&
+           dims[1] == BODY_COLUMNS && mpm_io_h5_attr_read(d, "time", H5T_NATIVE_DOUBLE, &t) >= 0 &&
+           H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0;
+  mpm_io_h5_close(sp);
+  mpm_io_h5_close(d);
+  if (!ok)
+    return mpm_err_set(err, MPM_EIO, "'%s': /bodies/%s is not %d bodies x %d values with a time",
+                       path, name, MPM_MAX_BODIES, BODY_COLUMNS);
+  const char *p = names;
+  for (hsize_t b = 0; b < dims[0]; b++) {
+    const size_t len = strcspn(p, ",");
+    fprintf(out, "%ld,%.10g,%.*s", k, t, (int)len, p);
+    for (int c = 0; c < BODY_COLUMNS; c++)
+      fprintf(out, ",%.10g", v[b * BODY_COLUMNS + (hsize_t)c]);
+    fputc('\n', out);
+    p += len + (p[len] == ',');
+  }
+  return MPM_OK;
+}
+
+int mpm_io_extract_bodies(const char *dir, int frame, FILE *out, mpm_err *err)
+{
+  char *path = mpm_io_path_join(dir, "run.h5");
+  if (!path)
+    return mpm_err_set(err, MPM_ENOMEM, "out of memory");
+  mpm_io_h5_init();
+  mpm_io_h5_quiet q;
+  mpm_io_h5_quiet_begin(&q);
+  hid_t file = mpm_io_h5_open_read(path);
+  hid_t g = file >= 0 && H5Lexists(file, "bodies", H5P_DEFAULT) > 0
+                ? H5Gopen2(file, "bodies", H5P_DEFAULT)
+                : H5I_INVALID_HID;
+  char *names = g >= 0 ? mpm_io_h5_attr_text(g, "names") : NULL;
+  H5G_info_t info;
+  int rc = MPM_OK;
+  if (file < 0)
+    rc = mpm_io_h5_fail(err, &q, "cannot open", path);
+  else if (g < 0 || !names || H5Gget_info(g, &info) < 0)
+    rc = mpm_err_set(err, MPM_EINPUT, "'%s' holds no bodies (a run without body sections)", path);
+  else if (frame >= (long long)info.nlinks)
+    rc = mpm_err_set(err, MPM_EINPUT, "'%s': no frame %d of the bodies (0 ... %llu)", path, frame,
+                     (unsigned long long)info.nlinks - 1);
+  if (rc == MPM_OK && info.nlinks == 0)
+    rc = mpm_err_set(err, MPM_EINPUT, "'%s': the bodies have no frame yet", path);
+  if (rc == MPM_OK) {
+    const long n = (long)info.nlinks;
+    const long first = frame == MPM_IO_ALL_FRAMES ? 0 : frame < 0 ? n - 1 : frame;
+    const long end = frame == MPM_IO_ALL_FRAMES ? n : first + 1;
+    fputs(header, out);
+    for (long k = first; rc == MPM_OK && k < end; k++)
+      rc = print_frame(g, k, names, out, path, err);
+  }
+  free(names);
+  mpm_io_h5_close(g);
+  mpm_io_h5_close(file);
+  mpm_io_h5_quiet_end(&q);
+  free(path);
+  return rc;
+}

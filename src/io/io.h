@@ -112,6 +112,12 @@ int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_dia
 int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const *names,
                          const mpm_body_state *b, mpm_err *err);
 
+/* The bodies of a run (run.h5's /bodies) as bodies.csv has them: every
+ * frame (MPM_IO_ALL_FRAMES), the last (-1) or one; MPM_EINPUT for a run
+ * without bodies or a frame it does not have. */
+#define MPM_IO_ALL_FRAMES (-2)
+int mpm_io_extract_bodies(const char *dir, int frame, FILE *out, mpm_err *err);
+
 /* Write run.xdmf and close everything; accepts NULL. */
 int mpm_io_output_close(mpm_io_output *out, mpm_err *err);
 
