@@ -259,6 +259,43 @@ START_TEST(free_motion)
 }
 END_TEST
 
+/* mpm_body_near never rules out a point with phi <= margin: every shape,
+ * side and dimension at scattered points. */
+START_TEST(near_is_a_safe_filter)
+{
+  const int shapes[3] = {MPM_BODY_DISC, MPM_BODY_BOX, MPM_BODY_POLYGON};
+  int ruled = 0;
+  for (int k = 0; k < 12; k++) {
+    mpm_body_config c = base(shapes[k % 3]);
+    c.radius = 0.3;
+    c.hx = 0.3;
+    c.hy = 0.1;
+    const double px[3] = {-0.2, 0.3, 0.0}, py[3] = {-0.1, 0.0, 0.25};
+    c.nvert = 3;
+    memcpy(c.px, px, sizeof px);
+    memcpy(c.py, py, sizeof py);
+    c.side = (k / 3) % 2 ? MPM_BODY_INSIDE : MPM_BODY_OUTSIDE;
+    c.angle = 25.0;
+    c.length = k >= 6 ? 0.4 : 0.0;
+    mpm_body b;
+    mpm_body_init(&b, &c, k >= 6 ? 3 : 2);
+    for (int i = 0; i < 4000; i++) {
+      const double x[3] = {1.0 - 0.6 + 1.2 * ((i * 37) % 101) / 100.0,
+                           2.0 - 0.6 + 1.2 * ((i * 53) % 97) / 96.0,
+                           3.0 - 0.5 + ((i * 17) % 89) / 88.0};
+      for (int m = 0; m < 3; m++) {
+        const double margin = 0.05 * m;
+        if (!mpm_body_near(&b, x, margin)) {
+          ruled++;
+          ck_assert_msg(mpm_body_phi(&b, x, NULL) > margin, "body %d, point %d", k, i);
+        }
+      }
+    }
+  }
+  ck_assert(ruled > 10000);                                  /* it does filter */
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("body");
@@ -269,6 +306,7 @@ int main(void)
   tcase_add_test(tc, contact_rule);
   tcase_add_test(tc, tables_and_rotation);
   tcase_add_test(tc, free_motion);
+  tcase_add_test(tc, near_is_a_safe_filter);
   suite_add_tcase(s, tc);
   SRunner *sr = srunner_create(s);
   srunner_run_all(sr, CK_NORMAL);

@@ -33,6 +33,8 @@ int mpm_body_side_from_name(const char *name) { return NAME_INDEX(side_names, na
 const char *mpm_body_contact_name(int contact) { return NAME_AT(contact_names, contact); }
 int mpm_body_contact_from_name(const char *name) { return NAME_INDEX(contact_names, name); }
 
+static double profile_reach(const mpm_body_config *cfg);
+
 void mpm_body_init(mpm_body *b, const mpm_body_config *cfg, int dim)
 {
   *b = (mpm_body){.cfg = cfg, .dim = dim};
@@ -46,6 +48,8 @@ void mpm_body_init(mpm_body *b, const mpm_body_config *cfg, int dim)
   mpm_body_turned(b, cfg->angle * (3.14159265358979323846 / 180.0));
   for (int k = 0; k < MPM_BODY_NDOF; k++)
     b->v[k] = mpm_body_table(cfg, k, 0.0);
+  const double r = profile_reach(cfg);
+  b->reach2 = r * r;
   if (dim == 2)
     b->v[MPM_BODY_VZ] = 0.0;
 }
@@ -260,7 +264,7 @@ static double profile_reach(const mpm_body_config *cfg)
 
 void mpm_body_node_box(const mpm_body *b, const mpm_mesh *m, int lo[3], int hi[3])
 {
-  const double r = profile_reach(b->cfg);
+  const double r = sqrt(b->reach2);
   for (int a = 0; a < 3; a++) {
     lo[a] = 0;
     hi[a] = m->sn[a];

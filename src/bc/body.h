@@ -18,6 +18,8 @@
 #ifndef MPM_BC_BODY_H
 #define MPM_BC_BODY_H
 
+#include <math.h>
+
 #include "core/config.h"
 #include "mesh/mesh.h"
 
@@ -33,6 +35,8 @@ typedef struct mpm_body {
                                   [N; plane N/m] and its torque about the centre
                                   [N m; plane N m/m] (plane: tq[2] only) */
   long npushed;                /* points put back on the surface, in all */
+  double reach2;               /* the profile's radius about the centre, squared
+                                  (mpm_body_near) */
 } mpm_body;
 
 /* The name table of enum mpm_body_shape, _side and _contact: "disc", "box",
@@ -55,6 +59,26 @@ double mpm_body_table(const mpm_body_config *cfg, int k, double t);
 /* Signed distance of x to the body's surface, > 0 on the material side;
  * n (may be NULL) the unit normal into the material (grad phi). */
 double mpm_body_phi(const mpm_body *b, const double x[3], double n[3]);
+
+/* 0 when x is certainly farther than `margin` on the material's side
+ * (phi(x) > margin), from the distance to the axis alone: exact for a
+ * disc, the profile's bounding circle for material outside a box or
+ * polygon (the prism's ends only make phi larger there); 1 otherwise (then
+ * mpm_body_phi decides). Cheap, branch-free for a disc: the filter of the
+ * point and node passes. */
+static inline int mpm_body_near(const mpm_body *b, const double x[3], double margin)
+{
+  const double X = x[b->e[0]] - b->c[b->e[0]], Y = x[b->e[1]] - b->c[b->e[1]];
+  const double r2 = X * X + Y * Y;
+  if (b->cfg->side == MPM_BODY_OUTSIDE) {               /* 1e-9: phi's own rounding */
+    const double R = sqrt(b->reach2) * (1.0 + 1e-9) + margin;
+    return r2 <= R * R;
+  }
+  if (b->cfg->shape != MPM_BODY_DISC || (b->dim == 3 && b->cfg->length > 0.0))
+    return 1;                                            /* (a drum's caps hold too) */
+  const double R = b->cfg->radius * (1.0 - 1e-9) - margin;  /* material inside the disc */
+  return R <= 0.0 || r2 >= R * R;
+}
 
 /* The body's velocity at x: v + omega a x (x - c), a its axis. */
 void mpm_body_velocity_at(const mpm_body *b, const double x[3], double vb[3]);

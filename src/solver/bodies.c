@@ -133,7 +133,7 @@ static void contact_rows(mpm_sim *s, mpm_body *b, const int lo[3], const int hi[
         continue;
       double x[3], n[3], vb[3];
       mpm_mesh_node_pos(m, i, j, kz, x);
-      if (mpm_body_phi(b, x, n) > tol)
+      if (!mpm_body_near(b, x, tol) || mpm_body_phi(b, x, n) > tol)
         continue;
       double *q = s->nq + (size_t)lanes * (size_t)id;
       double v[3] = {q[0], q[1], D == 3 ? q[2] : 0.0}, dv[3] = {0.0, 0.0, 0.0};
@@ -196,6 +196,8 @@ void mpm_sim_bodies_points(mpm_sim *s)
 #pragma omp parallel for schedule(static) reduction(+ : pushed)
     for (long p = 0; p < n; p++) {
       double x[3] = {P->x[p], P->y[p], D == 3 ? P->z[p] : 0.0}, nv[3];
+      if (!mpm_body_near(b, x, 0.0))
+        continue;
       const double phi = mpm_body_phi(b, x, nv);
       if (!(phi < 0.0))
         continue;
