@@ -23,6 +23,7 @@
 #    anything) two frames after a checkpoint (frames every 5 ms): resumed
 #    from the checkpoint on two threads, the frames written after it are
 #    replaced and the result is bitwise the same.
+#  - A body over the fill is refused with the file, line and key.
 #  - --force replaces a run; a second signal ends a run at once.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
@@ -140,6 +141,13 @@ OMP_NUM_THREADS=2 OMP_WAIT_POLICY=passive "$GRANMPM" resume "$d" --t-end "$T" --
 "$GRANMPM" run "$srcdir/inputs/ngf-chute-quick.conf" --quiet --output "$d.ref" \
   --set time.t_end="$T" $sets || fail "killed: the reference run failed"
 same_run "$d.ref" "$d" killed
+
+# A body over the fill is refused at the key to change, where its section opens.
+"$GRANMPM" run "$srcdir/tests/inputs/bodies.conf" --quiet --output "$tmp/overlap" \
+  --set body.plate.cy=0.06 2>"$tmp/err"
+st=$?
+[ "$st" -eq 2 ] && [ "$(cat "$tmp/err")" = "granmpm: $srcdir/tests/inputs/bodies.conf:47: key 'body.plate.carve': body 'plate' overlaps 19 points of the fills at t = 0 (allowed: none, or carve = true to leave them out)" ] ||
+  fail "overlapping body: exit $st, '$(cat "$tmp/err")'"
 
 # --force replaces a run, checkpoint included.
 "$GRANMPM" run "$srcdir/inputs/example.conf" --quiet --output "$tmp/ngf" --force \

@@ -138,7 +138,7 @@ START_TEST(overlap_refused_or_carved)
   mpm_sim *s = NULL;
   mpm_err err = {0};
   ck_assert(mpm_sim_create(&s, &c, &err) == MPM_EINPUT);
-  ck_assert_msg(strstr(err.msg, "body 'plate' overlaps 16 points"), "%s", err.msg);
+  ck_assert_msg(strstr(err.msg, "key 'body.plate.carve': body 'plate' overlaps 16 points"), "%s", err.msg);
   mpm_body_config plate = c.body[0];
   c.body[0].shape = MPM_BODY_DISC;                           /* 6 mm from every node */
   c.body[0].cx = 0.055;

@@ -299,6 +299,12 @@ int mpm_app_plan_build(mpm_app_plan *p)
   mpm_err err = {0};
   if (mpm_sim_create(&p->sim, &p->cfg, &err) == MPM_OK)
     return 0;
+  /* an input the simulation refuses at a key ("key 'K': ..."): where K was set */
+  char key[4 * MPM_NAME_MAX];
+  int off = 0;
+  if (err.code == MPM_EINPUT && p->in &&
+      sscanf(err.msg, "key '%95[^']': %n", key, &off) == 1 && off > 0)
+    return fail(p, key, "%s", err.msg + off);
   fprintf(stderr, "granmpm: %s: %s\n", p->file, err.msg);
   return err.code == MPM_ENOMEM ? MPM_APP_EXIT_RUNTIME : MPM_APP_EXIT_USAGE;
 }

@@ -92,21 +92,23 @@ int mpm_sim_bodies_setup(mpm_sim *s, mpm_err *err)
   for (int k = 0; k < s->nbody && rc == MPM_OK; k++) {
     const mpm_body *b = &s->body[k];
     if (!mpm_body_in_mesh(b, &s->mesh)) {
-      rc = mpm_err_set(err, MPM_EINPUT, "body '%s': its centre lies outside the mesh at t = 0",
-                       b->cfg->name);
+      rc = mpm_err_set(err, MPM_EINPUT, "key 'body.%s.cx': body '%s': its centre lies outside "
+                       "the mesh at t = 0", b->cfg->name, b->cfg->name);
       break;
     }
     if (nodes_inside(s, b) == 0) {
-      rc = mpm_err_set(err, MPM_EINPUT, "body '%s' holds no node of the mesh at t = 0: the "
-                       "material would pass through it (allowed: a body within half a unit of "
-                       "a node)", b->cfg->name);
+      static const char *const size_key[] = {"radius", "hx", "x"};
+      rc = mpm_err_set(err, MPM_EINPUT, "key 'body.%s.%s': body '%s' holds no node of the mesh "
+                       "at t = 0, so the material would pass through it (allowed: a body that "
+                       "reaches within half a unit of a node)", b->cfg->name,
+                       size_key[b->cfg->shape], b->cfg->name);
       break;
     }
     const size_t n = overlap(s, b, b->cfg->carve ? keep : NULL);
     if (n > 0 && !b->cfg->carve)
-      rc = mpm_err_set(err, MPM_EINPUT, "body '%s' overlaps %zu points of the fills at t = 0 "
-                       "(allowed: none; body.%s.carve = true leaves them out)", b->cfg->name, n,
-                       b->cfg->name);
+      rc = mpm_err_set(err, MPM_EINPUT, "key 'body.%s.carve': body '%s' overlaps %zu points "
+                       "of the fills at t = 0 (allowed: none, or carve = true to leave them out)",
+                       b->cfg->name, b->cfg->name, n);
   }
   if (rc == MPM_OK)
     mpm_points_compact(s->pts, keep);

@@ -164,8 +164,9 @@ typedef struct mpm_sim_size {
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
 
 /* The rigid bodies of the input (bodies.c): set up after the fill (a body
- * may not overlap a point of it unless it carves them out: MPM_EINPUT naming
- * the body and the count); after the grid update each corrects its nodes
+ * may not overlap a point of it unless it carves them out, and must hold a
+ * node: MPM_EINPUT "key 'body.NAME.KEY': ..." naming the body, the key to
+ * change and the count); after the grid update each corrects its nodes
  * and sums its force and torque (thread-count free); after the points have
  * moved they are put back on its surface; at the end of the step it moves
  * (a body whose centre leaves the mesh is MPM_EOUTSIDE naming it and the
