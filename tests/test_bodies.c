@@ -7,6 +7,8 @@
  *   grid's internal forces and g2p conserve it), here within 1e-9 of the
  *   gravity impulse, for a column landing on a plate (plane) and on a
  *   square plate in 3D.
+ * - The plane and a slab of two boxes periodic along z: the same force per
+ *   unit length on the plate at every step, to round-off.
  * - A column at rest on a body plate sees on average its weight.
  * - A body overlapping the fill is refused, naming it and the count; with
  *   carve the points inside are left out and none stays inside; a small disc
@@ -103,6 +105,35 @@ END_TEST
 START_TEST(force_is_the_momentum_taken_3d) { impulse_balance(4); }
 END_TEST
 
+/* The plane and a slab of two boxes periodic along z: the same force per
+ * unit length on the plate, step by step (the kernels are one code; the
+ * 3D step sums in another order, so to round-off). */
+START_TEST(slab_gives_the_plane_force)
+{
+  mpm_config c2, c3;
+  column_on_plate(&c2, 0);
+  column_on_plate(&c3, 2);
+  c3.bc.front = c3.bc.back = MPM_BC_PERIODIC;
+  c3.fill[0].zmin = 0.0;
+  c3.fill[0].zmax = 0.02;
+  mpm_sim *s2 = make(&c2), *s3 = make(&c3);
+  mpm_err err = {0};
+  double fbig = 0.0;
+  for (int i = 0; i < 300; i++) {
+    ck_assert_msg(mpm_sim_step(s2, &err) == MPM_OK, "%s", err.msg);
+    ck_assert_msg(mpm_sim_step(s3, &err) == MPM_OK, "%s", err.msg);
+    const double f2 = s2->body[0].f[1], f3 = s3->body[0].f[1] / 0.02;
+    fbig = fmax(fbig, fabs(f2));
+    ck_assert_msg(fabs(f3 - f2) <= 1e-9 * fbig + 1e-12, "step %d: plane %.15g N/m, slab %.15g N/m",
+                  i, f2, f3);
+    ck_assert(fabs(s3->body[0].f[2]) <= 1e-9 * fbig * 0.02);
+  }
+  ck_assert(fbig > 1.0);
+  mpm_sim_free(s2);
+  mpm_sim_free(s3);
+}
+END_TEST
+
 START_TEST(resting_column_weighs_on_the_plate)
 {
   mpm_config c;
@@ -194,6 +225,7 @@ int main(void)
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, force_is_the_momentum_taken_plane);
   tcase_add_test(tc, force_is_the_momentum_taken_3d);
+  tcase_add_test(tc, slab_gives_the_plane_force);
   tcase_add_test(tc, resting_column_weighs_on_the_plate);
   tcase_add_test(tc, overlap_refused_or_carved);
   tcase_add_test(tc, pushed_plate_keeps_points_out);
