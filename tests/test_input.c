@@ -297,10 +297,10 @@ START_TEST(t_every_key)
   ck_assert_str_eq(w->name, "wheel");
   ck_assert_int_eq(w->shape, MPM_BODY_DISC);
   ck_assert_int_eq(w->axis, 2);  /* a plane body lies along z */
-  ck_assert_double_eq(w->cx, 0.2);
-  ck_assert_double_eq(w->cy, 1.1);
+  ck_assert_double_eq(w->cx, 0.1);
+  ck_assert_double_eq(w->cy, 0.8);
   ck_assert_double_eq(w->cz, 0);
-  ck_assert_double_eq(w->radius, 0.1);
+  ck_assert_double_eq(w->radius, 0.15);
   ck_assert_double_eq(w->angle, 15);
   ck_assert_double_eq(w->length, 0);
   ck_assert_int_eq(w->side, MPM_BODY_INSIDE);

@@ -220,10 +220,8 @@ void mpm_sim_bodies_points(mpm_sim *s)
   }
 }
 
-int mpm_sim_bodies_advance(mpm_sim *s, mpm_err *err)
+int mpm_sim_bodies_advance(mpm_sim *s, const double g[3], mpm_err *err)
 {
-  double g[3];
-  mpm_sim_gravity(s, s->t, g);
   for (int k = 0; k < s->nbody; k++) {
     mpm_body *b = &s->body[k];
     mpm_body_advance(b, s->dt, g);

@@ -174,7 +174,7 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
 int mpm_sim_bodies_setup(mpm_sim *s, mpm_err *err);
 void mpm_sim_bodies_contact(mpm_sim *s);
 void mpm_sim_bodies_points(mpm_sim *s);
-int mpm_sim_bodies_advance(mpm_sim *s, mpm_err *err);
+int mpm_sim_bodies_advance(mpm_sim *s, const double g[3], mpm_err *err);  /* g: the step's */
 /* The bodies' state for output and checkpoints, and back (s->nbody of them). */
 void mpm_sim_bodies_state(const mpm_sim *s, mpm_body_state *st);
 void mpm_sim_bodies_set(mpm_sim *s, const mpm_body_state *st);

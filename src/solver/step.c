@@ -574,8 +574,10 @@ static int step_end(mpm_sim *s, long bad, mpm_err *err)
   if (s->usum)                               /* one mean stress per unit */
     mpm_sim_in_unit_project(s);
   if (s->nbody) {                            /* points back out of the bodies, which move */
+    double g[3];
+    mpm_sim_gravity(s, s->t, g);
     mpm_sim_bodies_points(s);
-    const int rc = mpm_sim_bodies_advance(s, err);
+    const int rc = mpm_sim_bodies_advance(s, g, err);
     if (rc != MPM_OK)
       return rc;
   }
