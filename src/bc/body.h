@@ -10,7 +10,8 @@
  * n = grad phi pointing into the material.
  *
  * The solver (solver/bodies.c) corrects the velocity of each node with mass
- * and phi <= 0 after the grid update, relative to the body's velocity there
+ * and phi <= h/2 (half a unit: docs/model.md says why) after the grid
+ * update, relative to the body's velocity there
  * (mpm_body_contact), sums the change of momentum into the body's force and
  * torque, puts points that end inside the body back on its surface, and
  * moves the body (mpm_body_advance): each degree of freedom (x, y, z, the
@@ -108,7 +109,7 @@ void mpm_body_turned(mpm_body *b, double theta);
 /* The torque about the axis (the component of tq along it). */
 double mpm_body_axial_torque(const mpm_body *b);
 
-/* Storage nodes lo[a] <= i < hi[a] that can lie inside the body (phi <= 0),
+/* Storage nodes lo[a] <= i < hi[a] that can lie within a unit of the body,
  * a box of the mesh's stored nodes: the profile's bounding box, one unit
  * wider; the whole mesh for a body whose material is inside. */
 void mpm_body_node_box(const mpm_body *b, const mpm_mesh *m, int lo[3], int hi[3]);
