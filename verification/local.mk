@@ -15,3 +15,4 @@ include verification/V9-steady-galerkin/local.mk
 include verification/V10-silo-jam/local.mk
 include verification/V11-3d/local.mk
 include verification/V12-annular-shear/local.mk
+include verification/V13-earth-pressure/local.mk
