@@ -3,9 +3,8 @@
  *
  * After the grid update each node with mass and phi(x_i) <= h/2 of a body
  * (h the shortest unit side: the nodes inside it and those less than half a
- * unit outside, see reach()) has
- * its velocity corrected by the contact rule relative to the body's
- * velocity there (components held by a fixed wall stay held), and its
+ * unit outside, see reach()) has its velocity corrected by the contact rule
+ * relative to the body's velocity there (components held by a fixed wall stay held), and its
  * acceleration takes the jump, a_i += (v_i' - v_i)/dt, so that FLIP carries
  * the correction to the points. The material's force on the body is
  * -sum m_i (v_i' - v_i)/dt over those nodes and its torque about the centre
