@@ -85,7 +85,7 @@ static void impulse_balance(int nz)
   for (int i = 0; i < N; i++) {
     ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "%s", err.msg);
     for (int d = 0; d < 3; d++)
-      J[d] += s->dt * s->body[0].f[d];
+      J[d] += s->dt * s->body[0].s.f[d];
   }
   ck_assert(s->pts->n == n0);
   momentum(s, P, &M);
@@ -122,11 +122,11 @@ START_TEST(slab_gives_the_plane_force)
   for (int i = 0; i < 300; i++) {
     ck_assert_msg(mpm_sim_step(s2, &err) == MPM_OK, "%s", err.msg);
     ck_assert_msg(mpm_sim_step(s3, &err) == MPM_OK, "%s", err.msg);
-    const double f2 = s2->body[0].f[1], f3 = s3->body[0].f[1] / 0.02;
+    const double f2 = s2->body[0].s.f[1], f3 = s3->body[0].s.f[1] / 0.02;
     fbig = fmax(fbig, fabs(f2));
     ck_assert_msg(fabs(f3 - f2) <= 1e-9 * fbig + 1e-12, "step %d: plane %.15g N/m, slab %.15g N/m",
                   i, f2, f3);
-    ck_assert(fabs(s3->body[0].f[2]) <= 1e-9 * fbig * 0.02);
+    ck_assert(fabs(s3->body[0].s.f[2]) <= 1e-9 * fbig * 0.02);
   }
   ck_assert(fbig > 1.0);
   mpm_sim_free(s2);
@@ -149,14 +149,14 @@ START_TEST(resting_column_weighs_on_the_plate)
   for (int i = 0; i < 3000; i++) {
     ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "%s", err.msg);
     if (i >= 1000) {
-      F += s->body[0].f[1];
+      F += s->body[0].s.f[1];
       n++;
     }
   }
   /* the mean over many periods of the column's elastic oscillation */
   ck_assert_msg(fabs(-F / n / (M * 9.8) - 1.0) < 0.02, "mean force %g of the weight %g", -F / n,
                 M * 9.8);
-  ck_assert(fabs(s->body[0].tq[2]) < 1e-6 * M * 9.8 * 0.02);  /* symmetric about its centre */
+  ck_assert(fabs(s->body[0].s.tq[2]) < 1e-6 * M * 9.8 * 0.02);  /* symmetric about its centre */
   mpm_sim_free(s);
 }
 END_TEST
@@ -208,12 +208,12 @@ START_TEST(pushed_plate_keeps_points_out)
   mpm_err err = {0};
   for (int i = 0; i < 200; i++)                             /* 2 mm down */
     ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "%s", err.msg);
-  ck_assert(fabs(s->body[0].c[1] - (0.0555 - 0.05 * 200 * 2e-4)) < 1e-15);
+  ck_assert(fabs(s->body[0].s.c[1] - (0.0555 - 0.05 * 200 * 2e-4)) < 1e-15);
   for (size_t p = 0; p < s->pts->n; p++) {
     const double x[3] = {s->pts->x[p], s->pts->y[p], 0.0};
     ck_assert(mpm_body_phi(&s->body[0], x, NULL) >= -1e-15);
   }
-  ck_assert(s->body[0].f[1] > 0.0);                         /* the layer pushes back */
+  ck_assert(s->body[0].s.f[1] > 0.0);                         /* the layer pushes back */
   mpm_sim_free(s);
 }
 END_TEST

@@ -221,8 +221,8 @@ START_TEST(tables_and_rotation)
     mpm_body_prescribe(&b, i * dt, dt);
     mpm_body_advance(&b, dt, g);                             /* not free: no gravity */
   }
-  NEAR(b.c[0], 1.0 + 0.5 + 0.0, 1e-12);                      /* 0.5 up to t = 2, 0 after */
-  NEAR(b.c[1], 2.0, 0.0);
+  NEAR(b.s.c[0], 1.0 + 0.5 + 0.0, 1e-12);                      /* 0.5 up to t = 2, 0 after */
+  NEAR(b.s.c[1], 2.0, 0.0);
 }
 END_TEST
 
@@ -238,9 +238,9 @@ START_TEST(free_motion)
   const int N = 20;
   for (int i = 0; i < N; i++)
     mpm_body_advance(&b, dt, g);
-  ck_assert(b.v[MPM_BODY_VY] == N * -8.0 * dt);
-  ck_assert(b.c[1] == 2.0 + -8.0 * dt * dt * N * (N + 1) / 2);
-  ck_assert(b.c[0] == 1.0);
+  ck_assert(b.s.v[MPM_BODY_VY] == N * -8.0 * dt);
+  ck_assert(b.s.c[1] == 2.0 + -8.0 * dt * dt * N * (N + 1) / 2);
+  ck_assert(b.s.c[0] == 1.0);
   /* an applied force against damping: v -> F / (m k) */
   mpm_body_config d = base(MPM_BODY_DISC);
   d.free[MPM_BODY_VX] = d.free[MPM_BODY_OMEGA] = 1;
@@ -253,9 +253,9 @@ START_TEST(free_motion)
   const double g0[3] = {0.0, 0.0, 0.0};
   for (int i = 0; i < 10000; i++)                           /* (1 - k dt)^N = e^-40 */
     mpm_body_advance(&b, 1e-3, g0);
-  NEAR(b.v[MPM_BODY_VX], 3.0 / (2.0 * 4.0), 1e-12);
-  NEAR(b.v[MPM_BODY_OMEGA], 1.0 / (0.5 * 4.0), 1e-12);
-  NEAR(cos(b.theta), b.ct, 0.0);
+  NEAR(b.s.v[MPM_BODY_VX], 3.0 / (2.0 * 4.0), 1e-12);
+  NEAR(b.s.v[MPM_BODY_OMEGA], 1.0 / (0.5 * 4.0), 1e-12);
+  NEAR(cos(b.s.theta), b.ct, 0.0);
 }
 END_TEST
 

@@ -345,8 +345,8 @@ static double *run_bodies(int i, int nthreads, size_t *len, int *team)
     ck_assert_msg(mpm_sim_step(s, &err) == MPM_OK, "step %d: %s", k, err.msg);
     for (int j = 0; j < 2; j++)
       for (int d = 0; d < 3; d++) {
-        forces[k][j][d] = s->body[j].f[d];
-        forces[k][j][3 + d] = s->body[j].tq[d];
+        forces[k][j][d] = s->body[j].s.f[d];
+        forces[k][j][3 + d] = s->body[j].s.tq[d];
       }
   }
   double touched[2] = {0.0, 0.0};

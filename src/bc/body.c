@@ -42,16 +42,16 @@ void mpm_body_init(mpm_body *b, const mpm_body_config *cfg, int dim)
   b->e[0] = (axis + 1) % 3;                  /* cyclic: (x, y, z), (y, z, x), (z, x, y) */
   b->e[1] = (axis + 2) % 3;
   b->e[2] = axis;
-  b->c[0] = cfg->cx;
-  b->c[1] = cfg->cy;
-  b->c[2] = dim == 3 ? cfg->cz : 0.0;
+  b->s.c[0] = cfg->cx;
+  b->s.c[1] = cfg->cy;
+  b->s.c[2] = dim == 3 ? cfg->cz : 0.0;
   mpm_body_turned(b, cfg->angle * (3.14159265358979323846 / 180.0));
   for (int k = 0; k < MPM_BODY_NDOF; k++)
-    b->v[k] = mpm_body_table(cfg, k, 0.0);
+    b->s.v[k] = mpm_body_table(cfg, k, 0.0);
   const double r = profile_reach(cfg);
   b->reach2 = r * r;
   if (dim == 2)
-    b->v[MPM_BODY_VZ] = 0.0;
+    b->s.v[MPM_BODY_VZ] = 0.0;
 }
 
 double mpm_body_table(const mpm_body_config *cfg, int k, double t)
@@ -136,14 +136,14 @@ static double profile_distance(const mpm_body_config *cfg, double u, double w, d
 double mpm_body_phi(const mpm_body *b, const double x[3], double n[3])
 {
   const mpm_body_config *cfg = b->cfg;
-  const double ct = b->ct, st = b->st;
-  const double X = x[b->e[0]] - b->c[b->e[0]], Y = x[b->e[1]] - b->c[b->e[1]];
+  const double ct = b->ct, st = b->sn;
+  const double X = x[b->e[0]] - b->s.c[b->e[0]], Y = x[b->e[1]] - b->s.c[b->e[1]];
   const double u = ct * X + st * Y, w = -st * X + ct * Y;   /* R(-theta) (X, Y) */
   double g[2];
   double d = profile_distance(cfg, u, w, g);
   double ga = 0.0;                           /* the gradient's part along the axis */
   if (b->dim == 3 && cfg->length > 0.0) {    /* the prism's ends */
-    const double s = x[b->e[2]] - b->c[b->e[2]];
+    const double s = x[b->e[2]] - b->s.c[b->e[2]];
     const double a = fabs(s) - 0.5 * cfg->length, sa = s < 0.0 ? -1.0 : 1.0;
     if (d <= 0.0 && a <= 0.0) {
       if (a > d) {
@@ -170,12 +170,12 @@ double mpm_body_phi(const mpm_body *b, const double x[3], double n[3])
 
 void mpm_body_velocity_at(const mpm_body *b, const double x[3], double vb[3])
 {
-  const double om = b->v[MPM_BODY_OMEGA];
+  const double om = b->s.v[MPM_BODY_OMEGA];
   const int e0 = b->e[0], e1 = b->e[1];
   for (int d = 0; d < 3; d++)
-    vb[d] = b->v[d];
-  vb[e0] -= om * (x[e1] - b->c[e1]);         /* omega a x r, a = e2 */
-  vb[e1] += om * (x[e0] - b->c[e0]);
+    vb[d] = b->s.v[d];
+  vb[e0] -= om * (x[e1] - b->s.c[e1]);         /* omega a x r, a = e2 */
+  vb[e1] += om * (x[e0] - b->s.c[e0]);
   if (b->dim == 2)
     vb[2] = 0.0;
 }
@@ -212,15 +212,14 @@ int mpm_body_contact(const mpm_body_config *cfg, int D, const double vb[3], cons
 
 void mpm_body_prescribe(mpm_body *b, double t, double dt)
 {
-  const int nk = MPM_BODY_NDOF;
-  for (int k = 0; k < nk; k++)
+  for (int k = 0; k < MPM_BODY_NDOF; k++)
     if (!b->cfg->free[k] && (b->dim == 3 || k != MPM_BODY_VZ))
-      b->v[k] = mpm_body_table(b->cfg, k, t + 0.5 * dt);
+      b->s.v[k] = mpm_body_table(b->cfg, k, t + 0.5 * dt);
 }
 
 double mpm_body_axial_torque(const mpm_body *b)
 {
-  return b->tq[b->e[2]];
+  return b->s.tq[b->e[2]];
 }
 
 void mpm_body_advance(mpm_body *b, double dt, const double g[3])
@@ -228,21 +227,21 @@ void mpm_body_advance(mpm_body *b, double dt, const double g[3])
   const mpm_body_config *cfg = b->cfg;
   for (int d = 0; d < b->dim; d++)
     if (cfg->free[d])
-      b->v[d] += dt * ((b->f[d] + cfg->force[d]) / cfg->mass + g[d] - cfg->damping * b->v[d]);
+      b->s.v[d] += dt * ((b->s.f[d] + cfg->force[d]) / cfg->mass + g[d] - cfg->damping * b->s.v[d]);
   if (cfg->free[MPM_BODY_OMEGA])
-    b->v[MPM_BODY_OMEGA] += dt * ((mpm_body_axial_torque(b) + cfg->torque) / cfg->inertia -
-                                  cfg->damping * b->v[MPM_BODY_OMEGA]);
+    b->s.v[MPM_BODY_OMEGA] += dt * ((mpm_body_axial_torque(b) + cfg->torque) / cfg->inertia -
+                                  cfg->damping * b->s.v[MPM_BODY_OMEGA]);
   for (int d = 0; d < b->dim; d++)
-    b->c[d] += dt * b->v[d];
-  if (b->v[MPM_BODY_OMEGA] != 0.0)
-    mpm_body_turned(b, b->theta + dt * b->v[MPM_BODY_OMEGA]);
+    b->s.c[d] += dt * b->s.v[d];
+  if (b->s.v[MPM_BODY_OMEGA] != 0.0)
+    mpm_body_turned(b, b->s.theta + dt * b->s.v[MPM_BODY_OMEGA]);
 }
 
 void mpm_body_turned(mpm_body *b, double theta)
 {
-  b->theta = theta;
+  b->s.theta = theta;
   b->ct = cos(theta);
-  b->st = sin(theta);
+  b->sn = sin(theta);
 }
 
 /* ---- reach --------------------------------------------------------------- */
@@ -273,8 +272,8 @@ void mpm_body_node_box(const mpm_body *b, const mpm_mesh *m, int lo[3], int hi[3
     double ext = r;                          /* along the axis: half the length */
     if (a == b->e[2])
       ext = b->cfg->length > 0.0 ? 0.5 * b->cfg->length : INFINITY;
-    const double l = floor((b->c[a] - ext - m->o[a]) * m->ih[a]) - 1.0;
-    const double h = ceil((b->c[a] + ext - m->o[a]) * m->ih[a]) + 2.0;
+    const double l = floor((b->s.c[a] - ext - m->o[a]) * m->ih[a]) - 1.0;
+    const double h = ceil((b->s.c[a] + ext - m->o[a]) * m->ih[a]) + 2.0;
     if (l > 0.0)
       lo[a] = l < (double)m->sn[a] ? (int)l : m->sn[a];
     if (h < (double)m->sn[a])
@@ -285,7 +284,7 @@ void mpm_body_node_box(const mpm_body *b, const mpm_mesh *m, int lo[3], int hi[3
 int mpm_body_in_mesh(const mpm_body *b, const mpm_mesh *m)
 {
   for (int a = 0; a < m->dim; a++)
-    if (!m->periodic[a] && !(b->c[a] >= m->o[a] && b->c[a] <= m->o[a] + m->len[a]))
+    if (!m->periodic[a] && !(b->s.c[a] >= m->o[a] && b->s.c[a] <= m->o[a] + m->len[a]))
       return 0;
   return 1;
 }

@@ -22,20 +22,18 @@
 #include <math.h>
 
 #include "core/config.h"
+#include "core/state.h"
 #include "mesh/mesh.h"
 
 typedef struct mpm_body {
   const mpm_body_config *cfg;  /* the input (not owned; outlives the body) */
   int dim;                     /* 2 or 3 */
   int e[3];                    /* the profile's axes e[0], e[1] and the body's axis e[2] */
-  double c[3];                 /* centre [m] */
-  double theta;                /* turn about the axis [rad] */
-  double ct, st;               /* cos and sin of theta (mpm_body_turned) */
-  double v[MPM_BODY_NDOF];     /* velocity of the step: x, y, z [m/s], omega [rad/s] */
-  double f[3], tq[3];          /* the material's force on the body over the last step
-                                  [N; plane N/m] and its torque about the centre
-                                  [N m; plane N m/m] (plane: tq[2] only) */
-  long npushed;                /* points put back on the surface, in all */
+  mpm_body_state s;            /* centre, turn, velocity (x, y, z [m/s], omega [rad/s]:
+                                  that of the step), the material's force and torque
+                                  about the centre over the last step (plane: tq[2]
+                                  only), points put back (core/state.h) */
+  double ct, sn;               /* cos and sin of s.theta (mpm_body_turned) */
   double reach2;               /* the profile's radius about the centre, squared
                                   (mpm_body_near) */
 } mpm_body;
@@ -69,7 +67,7 @@ double mpm_body_phi(const mpm_body *b, const double x[3], double n[3]);
  * point and node passes. */
 static inline int mpm_body_near(const mpm_body *b, const double x[3], double margin)
 {
-  const double X = x[b->e[0]] - b->c[b->e[0]], Y = x[b->e[1]] - b->c[b->e[1]];
+  const double X = x[b->e[0]] - b->s.c[b->e[0]], Y = x[b->e[1]] - b->s.c[b->e[1]];
   const double r2 = X * X + Y * Y;
   if (b->cfg->side == MPM_BODY_OUTSIDE) {               /* 1e-9: phi's own rounding */
     const double R = sqrt(b->reach2) * (1.0 + 1e-9) + margin;
@@ -98,7 +96,7 @@ int mpm_body_contact(const mpm_body_config *cfg, int D, const double vb[3], cons
 void mpm_body_prescribe(mpm_body *b, double t, double dt);
 
 /* The end of a step of dt: a free degree of freedom's velocity from the
- * force (contact b->f, applied, gravity g on the mass, damping) and the
+ * force (contact b->s.f, applied, gravity g on the mass, damping) and the
  * torque about the axis; then the centre and the turn move by dt times the
  * velocity (the new one of a free degree, that of the step otherwise). */
 void mpm_body_advance(mpm_body *b, double dt, const double g[3]);

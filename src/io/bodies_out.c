@@ -142,7 +142,8 @@ static int print_frame(hid_t g, long k, const char *names, FILE *out, const char
   mpm_io_h5_close(sp);
   mpm_io_h5_close(d);
   if (!ok)
-    return mpm_err_set(err, MPM_EIO, "'%s': /bodies/%s is not %d bodies x %d values with a time",
+    return mpm_err_set(err, MPM_EIO,
+                       "'%s': /bodies/%s is not (at most %d bodies) x %d values with a time",
                        path, name, MPM_MAX_BODIES, BODY_COLUMNS);
   const char *p = names;
   for (hsize_t b = 0; b < dims[0]; b++) {

@@ -152,7 +152,7 @@ static void contact_rows(mpm_sim *s, mpm_body *b, const int lo[3], const int hi[
         fb[d] = -mi * dv[d] * idt;             /* the node's push on the body */
       }
       for (int d = 0; d < 3; d++)
-        rx[d] = x[d] - b->c[d];
+        rx[d] = x[d] - b->s.c[d];
       acc[0] += fb[0];
       acc[1] += fb[1];
       acc[2] += fb[2];
@@ -167,8 +167,8 @@ static void contact_rows(mpm_sim *s, mpm_body *b, const int lo[3], const int hi[
     for (int c = 0; c < 6; c++)
       sum[c] += s->brow[6 * r + c];
   for (int d = 0; d < 3; d++) {
-    b->f[d] = sum[d];
-    b->tq[d] = sum[3 + d];
+    b->s.f[d] = sum[d];
+    b->s.tq[d] = sum[3 + d];
   }
 }
 
@@ -180,7 +180,7 @@ void mpm_sim_bodies_contact(mpm_sim *s)
     mpm_body_prescribe(b, s->t, s->dt);
     mpm_body_node_box(b, &s->mesh, lo, hi);
     for (int d = 0; d < 3; d++)
-      b->f[d] = b->tq[d] = 0.0;
+      b->s.f[d] = b->s.tq[d] = 0.0;
     if (lo[0] < hi[0] && lo[1] < hi[1] && lo[2] < hi[2])
       contact_rows(s, b, lo, hi);
   }
@@ -215,7 +215,7 @@ void mpm_sim_bodies_points(mpm_sim *s)
         for (int d = 0; d < D; d++)
           P->vel[d][p] -= wn * nv[d];
     }
-    s->body[k].npushed += pushed;
+    s->body[k].s.npushed += pushed;
   }
 }
 
@@ -226,7 +226,7 @@ int mpm_sim_bodies_advance(mpm_sim *s, const double g[3], mpm_err *err)
     mpm_body_advance(b, s->dt, g);
     if (!mpm_body_in_mesh(b, &s->mesh))
       return mpm_err_set(err, MPM_EOUTSIDE, "body '%s' left the mesh: its centre at (%.6g, %.6g, "
-                         "%.6g) m, t = %.6g s", b->cfg->name, b->c[0], b->c[1], b->c[2],
+                         "%.6g) m, t = %.6g s", b->cfg->name, b->s.c[0], b->s.c[1], b->s.c[2],
                          s->t + s->dt);
   }
   return MPM_OK;
@@ -234,28 +234,14 @@ int mpm_sim_bodies_advance(mpm_sim *s, const double g[3], mpm_err *err)
 
 void mpm_sim_bodies_state(const mpm_sim *s, mpm_body_state *st)
 {
-  for (int k = 0; k < s->nbody; k++) {
-    const mpm_body *b = &s->body[k];
-    mpm_body_state *o = &st[k];
-    memcpy(o->c, b->c, sizeof o->c);
-    o->theta = b->theta;
-    memcpy(o->v, b->v, sizeof o->v);
-    memcpy(o->f, b->f, sizeof o->f);
-    memcpy(o->tq, b->tq, sizeof o->tq);
-    o->npushed = b->npushed;
-  }
+  for (int k = 0; k < s->nbody; k++)
+    st[k] = s->body[k].s;
 }
 
 void mpm_sim_bodies_set(mpm_sim *s, const mpm_body_state *st)
 {
   for (int k = 0; k < s->nbody; k++) {
-    mpm_body *b = &s->body[k];
-    const mpm_body_state *o = &st[k];
-    memcpy(b->c, o->c, sizeof o->c);
-    mpm_body_turned(b, o->theta);
-    memcpy(b->v, o->v, sizeof o->v);
-    memcpy(b->f, o->f, sizeof o->f);
-    memcpy(b->tq, o->tq, sizeof o->tq);
-    b->npushed = o->npushed;
+    s->body[k].s = st[k];
+    mpm_body_turned(&s->body[k], st[k].theta);
   }
 }
