@@ -20,6 +20,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "solver/solver.h"
 #include "sim_config.h"
@@ -220,6 +223,10 @@ END_TEST
 
 int main(void)
 {
+#ifdef _OPENMP
+  omp_set_num_threads(1);  /* thousands of steps of 100 points: two threads on busy cores can wait
+                              milliseconds at every parallel region (test_threads runs two) */
+#endif
   Suite *s = suite_create("bodies");
   TCase *tc = tcase_create("bodies");
   tcase_set_timeout(tc, 120);

@@ -208,16 +208,16 @@ static inline int mpm_shape_in_axes_extent(int D, const double *r, double h[3])
     for (int d = 0; d < D; d++)
       if (d != k && r[D * k + d] != 0.0)
         return 0;
-  double v = 1.0, s = 0.0;
+  double v = 1.0;
   for (int d = 0; d < D; d++) {
     h[d] = fabs(r[D * d + d]);
     if (!(h[d] != 0.0))
       return 0;
     v *= h[d];
-    s += D == 3 ? h[d] * h[(d + 1) % D] : 0.0;
   }
   if (D != 3)
     h[2] = 0.0;
+  const double s = D == 3 ? h[0] * h[1] + h[1] * h[2] + h[2] * h[0] : 0.0;
   return isfinite(v) && isfinite(s);
 }
 
