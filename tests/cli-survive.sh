@@ -104,6 +104,11 @@ stop_and_resume() {
   st=$?
   [ "$st" -eq 2 ] && [ "$(cat "$tmp/err")" = "granmpm: output directory '$d' holds a run (run.h5): replace it with --force, or continue it with: granmpm resume $d" ] ||
     fail "$label: an occupied directory: exit $st, '$(cat "$tmp/err")'"
+  "$GRANMPM" resume "$d" --t-end 0 --quiet 2>"$tmp/err"
+  st=$?
+  tc=$(sed -n "s/^granmpm: resume: --t-end 0 is not after the checkpoint's t = \([^ ]*\) s .*/\1/p" "$tmp/err")
+  [ "$st" -eq 2 ] && awk -v a="$tc" -v b="$t" 'BEGIN { exit !(a != "" && a > 0 && (a - b) ^ 2 < 1e-10 * b * b) }' ||
+    fail "$label: an early --t-end: exit $st, '$(cat "$tmp/err")'"
   "$GRANMPM" resume "$d" --t-end "$T" --quiet || fail "$label: resume failed"
   "$GRANMPM" run "$input" --quiet --output "$d.ref" --set time.t_end="$T" "$@" ||
     fail "$label: the reference run failed"

@@ -9,6 +9,7 @@
 #include <check.h>
 #include <ftw.h>
 #include <hdf5.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -928,6 +929,157 @@ static int extract_main(const char *dir, const char *frame)
   return rc;
 }
 
+/* A checkpoint is checked when read: a value out of range written with a
+ * right checksum is named (point, id, field, value, allowed range). */
+START_TEST(t_checkpoint_values_checked)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  make_tmpdir(dir);
+  double series_t[2] = {0.0, 0.1}, series_m[2] = {3.5, 3.25};
+  const mpm_run_state good = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000,
+                              .n_sub = 1, .mass0 = 3.5, .frames = 2, .frame_next = 3,
+                              .check_next = 1, .nseries = 2, .series_t = series_t,
+                              .series_m = series_m};
+  good.pts->next_id = 2147483647;
+  mpm_points *pts = mpm_points_alloc(0);
+  ck_assert_ptr_nonnull(pts);
+  const char *want[] = {
+    "point 1 (id 2147483101): field 'mass' = nan (allowed: finite and > 0) (a damaged checkpoint)",
+    "point 0 (id 2147483100): field 'volume' = -0 (allowed: finite and > 0)",
+    "point 2 (id 2147483102): field 'g' = inf (allowed: finite)",
+    "point 4 (id 2147483104): field 'state' = 1000000 (allowed: 0 or 1)",
+    "point 3: field 'id' = -1 (allowed: 0 ... next_id - 1 = 2147483646)",
+    "id 2147483100 is held by two points (allowed: unique ids)",
+    "attribute 't' = nan (allowed: finite, >= 0)",
+    "attribute 'n_sub' = 0 (allowed: finite, >= 1)",
+    "attribute 'dt' = 0 (allowed: finite, > 0)",
+    "frame series entry 1: t = 0.1 s, mass inf (allowed: finite)",
+  };
+  for (int c = 0; c < (int)(sizeof want / sizeof want[0]); c++) {
+    mpm_run_state st = good;
+    double sm[2] = {series_m[0], series_m[1]};
+    st.series_m = sm;
+    ck_assert_int_eq(mpm_points_copy(pts, good.pts), MPM_OK);
+    st.pts = pts;
+    switch (c) {
+    case 0: pts->mass[1] = NAN; break;
+    case 1: pts->vol[0] = -0.0; break;
+    case 2: pts->g[2] = INFINITY; break;
+    case 3: pts->state[4] = 1000000; break;
+    case 4: pts->id[3] = -1; break;
+    case 5: pts->id[4] = pts->id[0]; break;
+    case 6: st.t = NAN; break;
+    case 7: st.n_sub = 0; break;
+    case 8: st.dt = 0.0; break;
+    default: sm[1] = INFINITY; break;
+    }
+    ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "input", "test", &err), MPM_OK);
+    mpm_io_checkpoint ck;
+    ck_assert_int_eq(mpm_io_checkpoint_read(dir, &ck, &err), MPM_EIO);
+    ck_assert_msg(strstr(err.msg, want[c]) && strstr(err.msg, "/checkpoint.h5': "),
+                  "case %d: %s", c, err.msg);
+    ck_assert_ptr_null(ck.state.pts);
+  }
+  mpm_points_free(pts);
+  mpm_points_free(good.pts);
+  remove_tree(dir);
+}
+END_TEST
+
+/* A damaged byte anywhere in a checkpoint: reading it either fails with one
+ * line naming the damage, or (a byte HDF5 does not read) gives back the
+ * state written, bit for bit: never another state. Every 7th byte. */
+START_TEST(t_checkpoint_flipped_bytes)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  make_tmpdir(dir);
+  double series_t[2] = {0.0, 0.1}, series_m[2] = {3.5, 3.25};
+  mpm_run_state st = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000, .n_sub = 1,
+                      .mass0 = 3.5, .frames = 2, .frame_next = 3, .check_next = 1, .nseries = 2,
+                      .series_t = series_t, .series_m = series_m};
+  st.pts->next_id = 2147483647;
+  ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "mesh {\n  nx = 4\n}\n", "test", &err),
+                   MPM_OK);
+  snprintf(path, sizeof path, "%s/checkpoint.h5", dir);
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  static unsigned char image[1 << 16];
+  const size_t len = fread(image, 1, sizeof image, f);
+  fclose(f);
+  ck_assert(len > 1000 && len < sizeof image);
+  int failed = 0, same = 0, checksum = 0;
+  for (size_t off = 0; off < len; off += 7) {
+    image[off] ^= 0x5a;
+    f = fopen(path, "wb");
+    ck_assert_uint_eq(fwrite(image, 1, len, f), len);
+    fclose(f);
+    image[off] ^= 0x5a;
+    mpm_io_checkpoint ck;
+    if (mpm_io_checkpoint_read(dir, &ck, &err) != MPM_OK) {
+      ck_assert_msg(err.msg[0] && !strchr(err.msg, '\n'), "byte %zu: '%s'", off, err.msg);
+      checksum += strstr(err.msg, "checksum") != NULL;
+      failed++;
+      continue;
+    }
+    same_points(st.pts, ck.state.pts);
+    ck_assert_msg(ck.state.t == st.t && ck.state.dt == st.dt && ck.state.step == st.step &&
+                  ck.state.n_sub == st.n_sub && ck.state.mass0 == st.mass0 &&
+                  ck.state.frames == st.frames && ck.state.frame_next == st.frame_next &&
+                  ck.state.check_next == st.check_next && ck.state.nseries == 2 &&
+                  !memcmp(ck.state.series_m, series_m, sizeof series_m) &&
+                  !strcmp(ck.input, "mesh {\n  nx = 4\n}\n"), "byte %zu read as another state", off);
+    mpm_io_checkpoint_clear(&ck);
+    same++;
+  }
+  ck_assert_msg(failed > 0 && checksum > 0, "%d damaged, %d by a checksum, %d unused", failed,
+                checksum, same);
+  mpm_points_free(st.pts);
+  remove_tree(dir);
+}
+END_TEST
+
+/* A damaged byte in a frame's data: extract names the frame, the field and
+ * the checksum, in one line, where the point values would have been read
+ * wrong before. */
+START_TEST(t_frame_flipped_byte)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  make_tmpdir(dir);
+  write_run(dir);
+  snprintf(path, sizeof path, "%s/run.h5", dir);
+  /* the file offset of frame 1's field 'mass': HDF5 tells where its chunk is */
+  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = H5Dopen2(file, "frames/000001/mass", H5P_DEFAULT);
+  haddr_t addr = HADDR_UNDEF;
+  hsize_t size = 0, zero[1] = {0};
+  ck_assert_int_ge(H5Dget_chunk_info_by_coord(d, zero, NULL, &addr, &size), 0);
+  H5Dclose(d);
+  H5Fclose(file);
+  ck_assert(addr != HADDR_UNDEF && size == 5 * sizeof(double) + 4);
+  FILE *f = fopen(path, "r+b");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_int_eq(fseek(f, (long)addr + 9, SEEK_SET), 0);
+  const int byte = fgetc(f);
+  ck_assert_int_eq(fseek(f, (long)addr + 9, SEEK_SET), 0);
+  fputc(byte ^ 0x10, f);
+  fclose(f);
+  char *out = NULL;
+  size_t outlen = 0;
+  FILE *o = open_memstream(&out, &outlen);
+  ck_assert_int_eq(mpm_io_extract(dir, 1, "id,mass", o, &err), MPM_EIO);
+  fclose(o);
+  free(out);
+  char want[DIR_MAX + 160];
+  snprintf(want, sizeof want, "frame 1 of '%s': cannot read field 'mass': data error detected by "
+           "Fletcher32 checksum (a damaged run)", path);
+  ck_assert_str_eq(err.msg, want);
+  remove_tree(dir);
+}
+END_TEST
+
 /* `test_output --damage DIR FRAME`: remove field x of frame FRAME of DIR's
  * run.h5 and set npoints of frame 0 to 2^60 (for tests/cli-faults.sh). */
 static int damage_main(const char *dir, const char *frame)
@@ -945,14 +1097,23 @@ static int damage_main(const char *dir, const char *frame)
   return H5Fclose(f) < 0 || bad;
 }
 
-/* `test_output --same-frames A B`: every frame of A/run.h5 and B/run.h5,
- * dataset by dataset, byte for byte (for tests/cli-survive.sh). */
+/* The bytes of dataset d's values as type t (its storage also holds
+ * checksums). */
+static hsize_t data_size(hid_t d, hid_t t)
+{
+  hid_t sp = d < 0 || t < 0 ? -1 : H5Dget_space(d);
+  hssize_t n = sp < 0 ? 0 : H5Sget_simple_extent_npoints(sp);
+  if (sp >= 0)
+    H5Sclose(sp);
+  return n > 0 ? (hsize_t)n * H5Tget_size(t) : 0;
+}
+
 static herr_t same_dataset(hid_t ga, const char *name, const H5L_info_t *info, void *gb)
 {
   (void)info;
   hid_t da = H5Dopen2(ga, name, H5P_DEFAULT), db = H5Dopen2(*(hid_t *)gb, name, H5P_DEFAULT);
   hid_t ta = da < 0 ? -1 : H5Dget_type(da);
-  hsize_t na = da < 0 ? 0 : H5Dget_storage_size(da), nb = db < 0 ? 0 : H5Dget_storage_size(db);
+  hsize_t na = data_size(da, ta), nb = data_size(db, ta);
   char *a = malloc(na + 1), *b = malloc(nb + 1);
   int same = da >= 0 && db >= 0 && ta >= 0 && na == nb && a && b &&
              H5Dread(da, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 &&
@@ -967,6 +1128,8 @@ static herr_t same_dataset(hid_t ga, const char *name, const H5L_info_t *info, v
   return same ? 0 : 1;
 }
 
+/* `test_output --same-frames A B`: every frame of A/run.h5 and B/run.h5,
+ * dataset by dataset, byte for byte (for tests/cli-survive.sh). */
 static int same_frames_main(const char *dir_a, const char *dir_b)
 {
   char pa[DIR_MAX + 32], pb[DIR_MAX + 32], name[32];
@@ -1028,6 +1191,9 @@ int main(int argc, char **argv)
   tcase_add_test(tc, t_open_creates_parents);
   tcase_add_test(tc, t_open_fails);
   tcase_add_test(tc, t_checkpoint_roundtrip);
+  tcase_add_test(tc, t_checkpoint_values_checked);
+  tcase_add_test(tc, t_checkpoint_flipped_bytes);
+  tcase_add_test(tc, t_frame_flipped_byte);
   tcase_add_test(tc, t_reopen_truncates);
   tcase_add_test(tc, t_damaged_run);
   suite_add_tcase(s, tc);

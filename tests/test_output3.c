@@ -626,7 +626,7 @@ START_TEST(t_checkpoint3_roundtrip)
   mpm_run_state st = {.pts = frame_points(1, 3), .t = 0.5, .dt = 1e-4, .step = 5000,
                       .n_sub = 1, .mass0 = 2.0, .frames = 1, .frame_next = 2, .check_next = 1,
                       .nseries = 1, .series_t = series_t, .series_m = series_m};
-  st.pts->next_id = 123456;
+  st.pts->next_id = 2147483647;   /* above every id (a checkpoint is checked) */
   ck_assert_msg(mpm_io_checkpoint_write(dir, &st, "input", "test", &err) == MPM_OK, "%s",
                 err.msg);
   mpm_io_checkpoint ck;
@@ -651,6 +651,7 @@ START_TEST(t_checkpoint3_roundtrip)
   /* a 2D store's checkpoint stays 2D, without 3D arrays */
   mpm_points_free(st.pts);
   st.pts = frame_points(1, 2);
+  st.pts->next_id = 2147483647;
   ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "input", "test", &err), MPM_OK);
   ck_assert_int_eq(mpm_io_checkpoint_read(dir, &ck, &err), MPM_OK);
   ck_assert_int_eq(ck.state.pts->dim, 2);

@@ -444,9 +444,9 @@ int mpm_app_resume(int argc, char **argv, int full_argc, char **full_argv,
     return MPM_APP_EXIT_USAGE;
   }
   if (tend && !(t_end > ck.state.t)) {
+    const double t = ck.state.t;
     mpm_io_checkpoint_clear(&ck);
-    return mpm_app_usage("resume: --t-end %s is not after the checkpoint's t = %.17g s", tend,
-                         ck.state.t);
+    return mpm_app_usage("resume: --t-end %s is not after the checkpoint's t = %.17g s", tend, t);
   }
   char by[128], name[MPM_PATH_MAX + 32], set[64];
   this_program(by, sizeof by);

@@ -73,16 +73,13 @@ int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const 
   snprintf(name, sizeof name, "%06d", out->nframes);
   hid_t g = bodies_group(out, n, names);
   const hsize_t dims[2] = {(hsize_t)n, BODY_COLUMNS};
-  hid_t sp = g >= 0 ? H5Screate_simple(2, dims, NULL) : H5I_INVALID_HID;
-  hid_t d = sp >= 0 ? H5Dcreate2(g, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT,
-                                 H5P_DEFAULT)
-                    : H5I_INVALID_HID;
+  hid_t d = g >= 0 ? mpm_io_h5_create_checked(g, name, H5T_IEEE_F64LE, 2, dims)
+                   : H5I_INVALID_HID;
   int rc = d >= 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0 &&
                    mpm_io_h5_attr_double(d, "time", t) >= 0
                ? MPM_OK
                : mpm_io_h5_fail(err, &q, "cannot write the bodies of a frame to", out->h5_path);
   mpm_io_h5_close(d);
-  mpm_io_h5_close(sp);
   mpm_io_h5_close(g);
   mpm_io_h5_quiet_end(&q);
   return rc;
@@ -138,6 +135,7 @@ static int print_frame(hid_t g, long k, const char *names, FILE *out, const char
   int ok = sp >= 0 && H5Sget_simple_extent_ndims(sp) == 2 &&
            H5Sget_simple_extent_dims(sp, dims, NULL) == 2 && dims[0] <= MPM_MAX_BODIES &&
            dims[1] == BODY_COLUMNS && mpm_io_h5_attr_read(d, "time", H5T_NATIVE_DOUBLE, &t) >= 0 &&
+           mpm_io_h5_type_ok(d, H5T_NATIVE_DOUBLE) &&
            H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0;
   mpm_io_h5_close(sp);
   mpm_io_h5_close(d);
@@ -162,7 +160,6 @@ int mpm_io_extract_bodies(const char *dir, int frame, FILE *out, mpm_err *err)
   char *path = mpm_io_path_join(dir, "run.h5");
   if (!path)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory");
-  mpm_io_h5_init();
   mpm_io_h5_quiet q;
   mpm_io_h5_quiet_begin(&q);
   hid_t file = mpm_io_h5_open_read(path);

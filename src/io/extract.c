@@ -113,20 +113,9 @@ static int open_frame(extract_ctx *c, int frame, mpm_err *err)
     return h5_fail(err, c, "cannot open frame group in");
   /* A damaged frame is an error, not a frame with a column less or with
    * rows that do not match its point count. */
-  const char *missing = mpm_io_frame_missing_field(c->group);
   unsigned long long np = 0;
-  long long have = mpm_io_h5_array_length(c->group, "x");
-  if (mpm_io_frame_dim(c->group) < 0)
-    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': attribute 'dimension' is not 2 or 3 "
-                       "(a damaged run)", frame, c->path);
-  if (missing)
-    return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)", frame,
-                       c->path, missing);
-  if (mpm_io_h5_attr_read(c->group, "npoints", H5T_NATIVE_ULLONG, &np) < 0 ||
-      have != (long long)np)
-    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': npoints = %llu but field 'x' holds %lld "
-                       "values (a damaged run)", frame, c->path, np, have);
-  return MPM_OK;
+  int dim = 2;
+  return mpm_io_frame_check(c->group, frame, c->path, &c->quiet, &np, &dim, err);
 }
 
 /* Names of the frame's datasets in the order they were written (creation
@@ -267,6 +256,9 @@ static int open_column(extract_ctx *c, column *col, mpm_err *err)
   type = H5Dget_type(col->dset);
   col->isint = type >= 0 && H5Tget_class(type) == H5T_INTEGER;
   mpm_io_h5_close(type);
+  if (!mpm_io_h5_type_ok(col->dset, col->isint ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE))
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s': its stored type is damaged "
+                       "(a damaged run)", c->frame, c->path, col->name);
   if (col == c->col)
     c->npoints = dims[0]; /* the first column sets the row count */
   if (rank != 1 || dims[0] != c->npoints)
@@ -321,6 +313,12 @@ static void print_rows(const extract_ctx *c, size_t count, FILE *out)
   }
 }
 
+static int unreadable(mpm_err *err, const extract_ctx *c, const column *col)
+{
+  return mpm_err_set(err, MPM_EIO, "frame %d of '%s': cannot read field '%s': %s (a damaged run)",
+                     c->frame, c->path, col->name, mpm_io_h5_reason(&c->quiet));
+}
+
 static int print_frame(extract_ctx *c, FILE *out, mpm_err *err)
 {
   for (int k = 0; k < c->ncol; k++) {
@@ -345,9 +343,9 @@ static int print_frame(extract_ctx *c, FILE *out, mpm_err *err)
     hsize_t count = c->npoints - start < BLOCK_ROWS ? c->npoints - start : BLOCK_ROWS;
     for (int k = 0; k < c->ncol; k++)
       if (read_block(&c->col[k], start, count) < 0)
-        return h5_fail(err, c, "cannot read field in");
+        return unreadable(err, c, &c->col[k]);
     if (c->zr && read_block(&c->zcol, start, count) < 0)
-      return h5_fail(err, c, "cannot read field in");
+      return unreadable(err, c, &c->zcol);
     print_rows(c, (size_t)count, out);
   }
   if (fflush(out) != 0 || ferror(out))

@@ -157,20 +157,29 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
 }
 
 /* One 1-D dataset of n values into dst (double or int); -1 if missing. */
+/* Field name of frame group g (n values) into dst: 0, or FIELD_MISSING,
+ * FIELD_LENGTH (not n values), FIELD_TYPE (a damaged stored type) or
+ * FIELD_UNREADABLE (HDF5 failed: a damaged chunk fails its checksum). */
+enum { FIELD_MISSING = -1, FIELD_LENGTH = -2, FIELD_TYPE = -3, FIELD_UNREADABLE = -4 };
+
 static int read_field(hid_t g, const char *name, hid_t type, hsize_t n, void *dst)
 {
   if (H5Lexists(g, name, H5P_DEFAULT) <= 0)
-    return -1;
+    return FIELD_MISSING;
   hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
   hid_t s = d < 0 ? -1 : H5Dget_space(d);
   hsize_t dims[1] = {0};
-  int ok = s >= 0 && H5Sget_simple_extent_ndims(s) == 1 &&
-           H5Sget_simple_extent_dims(s, dims, NULL) == 1 && dims[0] == n;
-  if (ok && n > 0)
-    ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, dst) >= 0;
+  int rc = s >= 0 && H5Sget_simple_extent_ndims(s) == 1 &&
+                   H5Sget_simple_extent_dims(s, dims, NULL) == 1
+               ? (dims[0] == n ? 0 : FIELD_LENGTH)
+               : FIELD_UNREADABLE;
+  if (rc == 0 && !mpm_io_h5_type_ok(d, type))
+    rc = FIELD_TYPE;
+  if (rc == 0 && n > 0 && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, dst) < 0)
+    rc = FIELD_UNREADABLE;
   mpm_io_h5_close(s);
   mpm_io_h5_close(d);
-  return ok ? 0 : -1;
+  return rc;
 }
 
 
@@ -186,26 +195,16 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
                        r->nframes - 1);
   snprintf(name, sizeof name, "frames/%06d", frame);
   hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
-  if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, t) < 0 ||
-      mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, &n) < 0) {
+  if (g < 0 || mpm_io_h5_attr_read(g, "time", H5T_NATIVE_DOUBLE, t) < 0) {
     mpm_io_h5_close(g);
-    return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s'", frame, r->path);
+    return mpm_err_set(err, MPM_EIO, "cannot read frame %d of '%s': %s (a damaged run)", frame,
+                       r->path, mpm_io_h5_reason(&r->quiet));
   }
-  /* The count is checked against the data before anything is allocated:
-   * a damaged npoints must not ask for 2^63 bytes. */
-  const int dim = mpm_io_frame_dim(g);
-  const char *missing = dim < 0 ? NULL : mpm_io_frame_missing_field(g);
-  long long have = mpm_io_h5_array_length(g, "x");
-  if (dim < 0 || missing || have != (long long)n) {
+  int dim = 2;
+  int rc = mpm_io_frame_check(g, frame, r->path, &r->quiet, &n, &dim, err);
+  if (rc != MPM_OK) {
     H5Gclose(g);
-    if (dim < 0)
-      return mpm_err_set(err, MPM_EIO, "frame %d of '%s': attribute 'dimension' is not 2 or 3 "
-                         "(a damaged run)", frame, r->path);
-    if (missing)
-      return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)",
-                         frame, r->path, missing);
-    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': npoints = %llu but field 'x' holds %lld "
-                       "values (a damaged run)", frame, r->path, n, have);
+    return rc;
   }
   pts->n = 0;
   if (mpm_points_set_dim(pts, dim) != MPM_OK || mpm_points_reserve(pts, (size_t)n) != MPM_OK) {
@@ -220,19 +219,22 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
   };
 #undef STORED_REAL_
 #undef STORED_INT_
-  int rc = MPM_OK;
   for (size_t k = 0; rc == MPM_OK && k < sizeof field / sizeof field[0]; k++) {
     if (field[k].dim > dim)
       continue;
-    if (read_field(g, field[k].name, field[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, n,
-                   field[k].dst) == 0)
-      continue;
-    if (mpm_io_frame_field_optional(field[k].name) &&
-        H5Lexists(g, field[k].name, H5P_DEFAULT) <= 0)   /* written by an older version */
-      memset(field[k].dst, 0, (size_t)n * field[k].size);
-    else
-      rc = mpm_err_set(err, MPM_EIO, "cannot read field '%s' of frame %d in '%s' (not %llu "
-                       "values?)", field[k].name, frame, r->path, n);
+    const int got = read_field(g, field[k].name, field[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
+                               n, field[k].dst);
+    if (got == FIELD_MISSING && mpm_io_frame_field_optional(field[k].name))
+      memset(field[k].dst, 0, (size_t)n * field[k].size);   /* written by an older version */
+    else if (got == FIELD_TYPE)
+      rc = mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s': its stored type is damaged "
+                       "(a damaged run)", frame, r->path, field[k].name);
+    else if (got == FIELD_LENGTH)
+      rc = mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s' does not hold npoints = %llu "
+                       "values (a damaged run)", frame, r->path, field[k].name, n);
+    else if (got != 0)
+      rc = mpm_err_set(err, MPM_EIO, "frame %d of '%s': cannot read field '%s': %s (a damaged "
+                       "run)", frame, r->path, field[k].name, mpm_io_h5_reason(&r->quiet));
   }
   H5Gclose(g);
   if (rc != MPM_OK)

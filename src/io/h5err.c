@@ -44,6 +44,7 @@ static herr_t capture(hid_t stack, void *data)
 
 void mpm_io_h5_quiet_begin(mpm_io_h5_quiet *q)
 {
+  mpm_io_h5_init();   /* the first HDF5 call of every reader and writer */
   q->reason[0] = '\0';
   if (H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data) < 0) {
     q->func = NULL;
@@ -191,7 +192,9 @@ int mpm_io_h5_attr_read(hid_t obj, const char *name, hid_t type, void *v)
     return -1;
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   hid_t s = a < 0 ? H5I_INVALID_HID : H5Aget_space(a);
-  herr_t rc = s < 0 || H5Sget_simple_extent_npoints(s) != 1 ? -1 : H5Aread(a, type, v);
+  herr_t rc = s < 0 || H5Sget_simple_extent_npoints(s) != 1 || !mpm_io_h5_type_ok(a, type)
+                  ? -1
+                  : H5Aread(a, type, v);
   mpm_io_h5_close(s);
   mpm_io_h5_close(a);
   return rc < 0 ? -1 : 0;
@@ -203,8 +206,12 @@ char *mpm_io_h5_attr_text(hid_t obj, const char *name)
     return NULL;
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   hid_t t = a < 0 ? H5I_INVALID_HID : H5Aget_type(a);
-  size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t) ? H5Tget_size(t)
-                                                                               : 0;
+  hid_t s = a < 0 ? H5I_INVALID_HID : H5Aget_space(a);
+  size_t n = t >= 0 && s >= 0 && H5Sget_simple_extent_npoints(s) == 1 &&
+                     H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t)
+                 ? H5Tget_size(t)
+                 : 0;
+  mpm_io_h5_close(s);
   char *text = n ? malloc(n + 1) : NULL;
   if (text && H5Aread(a, t, text) < 0) {
     free(text);
@@ -217,14 +224,46 @@ char *mpm_io_h5_attr_text(hid_t obj, const char *name)
   return text;
 }
 
+hid_t mpm_io_h5_file_create_plist(void)
+{
+  hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+  if (fcpl >= 0 && H5Pset_istore_k(fcpl, 1) < 0) {
+    H5Pclose(fcpl);
+    return H5I_INVALID_HID;
+  }
+  return fcpl;
+}
+
+hid_t mpm_io_h5_create_checked(hid_t loc, const char *name, hid_t ftype, int rank,
+                               const hsize_t *dims)
+{
+  hsize_t chunk[2] = {0, 0}, rows = 1;
+  for (int d = 1; d < rank; d++)
+    rows *= dims[d] > 0 ? dims[d] : 1;
+  chunk[0] = MPM_IO_H5_CHUNK / rows > 0 ? MPM_IO_H5_CHUNK / rows : 1;
+  if (dims[0] < chunk[0])
+    chunk[0] = dims[0];
+  for (int d = 1; d < rank; d++)
+    chunk[d] = dims[d];
+  int empty = 0;
+  for (int d = 0; d < rank; d++)
+    empty |= dims[d] == 0;
+  hid_t space = H5Screate_simple(rank, dims, NULL);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  hid_t dset = H5I_INVALID_HID;
+  if (space >= 0 && dcpl >= 0 &&
+      (empty || (H5Pset_chunk(dcpl, rank, chunk) >= 0 && H5Pset_fletcher32(dcpl) >= 0)))
+    dset = H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  mpm_io_h5_close(dcpl);
+  mpm_io_h5_close(space);
+  return dset;
+}
+
 herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype, size_t n,
                              const void *buf, const char *unit, const char *desc)
 {
-  hsize_t dims[1] = {(hsize_t)n};
-  hid_t space = H5Screate_simple(1, dims, NULL);
-  hid_t dset = space < 0 ? H5I_INVALID_HID
-                         : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT);
+  const hsize_t dims[1] = {(hsize_t)n};
+  hid_t dset = mpm_io_h5_create_checked(loc, name, ftype, 1, dims);
   herr_t rc = dset < 0 ? -1 : 0;
   if (rc >= 0 && n > 0)
     rc = H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
@@ -233,8 +272,16 @@ herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mty
   if (rc >= 0 && desc)
     rc = mpm_io_h5_attr_string(dset, "description", desc);
   mpm_io_h5_close(dset);
-  mpm_io_h5_close(space);
   return rc;
+}
+
+int mpm_io_h5_type_ok(hid_t d, hid_t mtype)
+{
+  hid_t t = d < 0 ? H5I_INVALID_HID : H5Iget_type(d) == H5I_ATTR ? H5Aget_type(d) : H5Dget_type(d);
+  const size_t size = t < 0 ? 0 : H5Tget_size(t);
+  const int ok = t >= 0 && H5Tget_class(t) == H5Tget_class(mtype) && size >= 1 && size <= 8;
+  mpm_io_h5_close(t);
+  return ok;
 }
 
 long long mpm_io_h5_array_length(hid_t loc, const char *name)
@@ -248,6 +295,17 @@ long long mpm_io_h5_array_length(hid_t loc, const char *name)
                         H5Sget_simple_extent_dims(s, dims, NULL) == 1
                     ? (long long)dims[0]
                     : -1;
+  /* the data of a granmpm file are not compressed: more values than the
+   * file has bytes is a damaged size, which must not be allocated */
+  hid_t t = n > 0 ? H5Dget_type(d) : H5I_INVALID_HID;
+  hid_t f = n > 0 ? H5Iget_file_id(d) : H5I_INVALID_HID;
+  hsize_t bytes = 0;
+  const size_t size = t >= 0 ? H5Tget_size(t) : 0;
+  if (n > 0 && (size == 0 || f < 0 || H5Fget_filesize(f, &bytes) < 0 ||
+                (hsize_t)n > bytes / size))
+    n = -1;
+  mpm_io_h5_close(f);
+  mpm_io_h5_close(t);
   mpm_io_h5_close(s);
   mpm_io_h5_close(d);
   return n;
@@ -293,6 +351,31 @@ const char *mpm_io_frame_missing_field(hid_t g)
         H5Lexists(g, frame_fields[k].name, H5P_DEFAULT) <= 0)
       return frame_fields[k].name;
   return NULL;
+}
+
+int mpm_io_frame_check(hid_t g, int frame, const char *path, const mpm_io_h5_quiet *q,
+                       unsigned long long *n, int *dim, mpm_err *err)
+{
+  *n = 0;
+  *dim = mpm_io_frame_dim(g);
+  if (*dim < 0)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': attribute 'dimension' is not 2 or 3 "
+                       "(a damaged run)", frame, path);
+  const char *missing = mpm_io_frame_missing_field(g);
+  if (missing)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s' has no field '%s' (a damaged run)", frame,
+                       path, missing);
+  if (mpm_io_h5_attr_read(g, "npoints", H5T_NATIVE_ULLONG, n) < 0)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': cannot read attribute 'npoints': %s (a "
+                       "damaged run)", frame, path, mpm_io_h5_reason(q));
+  const long long have = mpm_io_h5_array_length(g, "x");
+  if (have < 0)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': cannot read field 'x': %s (a damaged "
+                       "run)", frame, path, mpm_io_h5_reason(q));
+  if (have != (long long)*n)
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': npoints = %llu but field 'x' holds %lld "
+                       "values (a damaged run)", frame, path, *n, have);
+  return MPM_OK;
 }
 
 char *mpm_io_path_join(const char *dir, const char *name)

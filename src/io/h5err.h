@@ -34,10 +34,13 @@ int mpm_io_h5_fail(mpm_err *err, const mpm_io_h5_quiet *q, const char *what, con
  * that is still writing (and flushes after every frame) can be read. */
 hid_t mpm_io_h5_open_read(const char *path);
 
-/* Before the first HDF5 call of a program that writes: no HDF5 clean-up at
- * exit. HDF5 1.10 leaves a file whose close failed (a full disk) with an
- * identifier to freed memory, and its exit handler then crashes; every file
- * is closed explicitly instead. Harmless once HDF5 has started. */
+/* No HDF5 clean-up at exit, called by mpm_io_h5_quiet_begin before the
+ * first HDF5 call of every reader and writer. HDF5 1.10 leaves a file whose
+ * close failed (a full disk) with an identifier to freed memory, and its
+ * exit handler then crashes; after a damaged file (a metadata checksum
+ * failed) the handler prints "infinite loop closing library" and a line of
+ * its codes. Every file is closed explicitly instead. Harmless once HDF5
+ * has started. */
 void mpm_io_h5_init(void);
 
 /* Scalar attributes of a predefined type (an existing one of the same name
@@ -61,12 +64,38 @@ int mpm_io_h5_attr_read(hid_t obj, const char *name, hid_t type, void *v);
  * not a string or out of memory. */
 char *mpm_io_h5_attr_text(hid_t obj, const char *name);
 
-/* A 1-D dataset of n values of memory type mtype, stored as ftype, with
- * optional "unit" and "description" attributes. */
+/* A new dataset of rank 1 or 2 and type ftype whose data carry HDF5's
+ * Fletcher32 checksum, so that a damaged byte is an error on reading
+ * ("data error detected by Fletcher32 checksum") rather than a wrong value:
+ * chunks of whole rows, at most MPM_IO_H5_CHUNK values (512 KiB of doubles,
+ * under HDF5's default chunk cache of 1 MiB, so a reader of blocks of rows
+ * reads and checks each chunk once); an empty one is contiguous. The
+ * dataset's id, negative on failure. */
+#define MPM_IO_H5_CHUNK 65536
+
+/* The file-creation properties of run.h5 and checkpoint.h5 (close it): the
+ * chunk index of each dataset a B-tree of nodes of 2 entries, about 120
+ * bytes a dataset rather than HDF5's default 2 kB (the files keep the 1.8
+ * format, which a reader can open while the run writes or after a kill). */
+hid_t mpm_io_h5_file_create_plist(void);
+hid_t mpm_io_h5_create_checked(hid_t loc, const char *name, hid_t ftype, int rank,
+                               const hsize_t *dims);
+
+/* A 1-D dataset of n values of memory type mtype, stored as ftype and
+ * checked (mpm_io_h5_create_checked), with optional "unit" and
+ * "description" attributes. */
 herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mtype, size_t n,
                              const void *buf, const char *unit, const char *desc);
 
-/* The length of the 1-D dataset `name` of loc, -1 if missing or not 1-D. */
+/* 1 if the stored type of dataset or attribute d is of the class of memory
+ * type mtype (integer, float) and of 1 to 8 bytes an element, as every
+ * number granmpm writes; 0 for a damaged type, which HDF5 1.10 would
+ * convert past the end of the reader's buffer. Every read of numbers from a
+ * granmpm file checks it first. */
+int mpm_io_h5_type_ok(hid_t d, hid_t mtype);
+
+/* The length of the 1-D dataset `name` of loc, -1 if missing, not 1-D or
+ * longer than its file could hold (a damaged size, never to be allocated). */
 long long mpm_io_h5_array_length(hid_t loc, const char *name);
 
 /* Frames: every field of MPM_POINT_FIELDS that the frame's dimension has is
@@ -80,6 +109,14 @@ const char *mpm_io_frame_missing_field(hid_t g);
 /* The dimension of frame group g: its "dimension" attribute, written on 3D
  * frames only (2 when absent); -1 when it is there but not 2 or 3. */
 int mpm_io_frame_dim(hid_t g);
+
+/* Frame group g (frame number frame of run file path), checked before its
+ * fields are read: its dimension (*dim), every required field there, its
+ * point count (*n) and field x of that many values (a damaged count must
+ * not ask for 2^63 bytes). MPM_EIO naming what is wrong, with HDF5's cause
+ * from q where a read failed. */
+int mpm_io_frame_check(hid_t g, int frame, const char *path, const mpm_io_h5_quiet *q,
+                       unsigned long long *n, int *dim, mpm_err *err);
 
 /* "DIR/NAME" in a new string (free it); NULL when out of memory. */
 char *mpm_io_path_join(const char *dir, const char *name);

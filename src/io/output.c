@@ -208,10 +208,11 @@ static mpm_io_output *output_alloc(const char *dir)
 
 static hid_t create_h5(const char *path)
 {
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS), fcpl = mpm_io_h5_file_create_plist();
   hid_t file = H5I_INVALID_HID;
-  if (fapl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110) >= 0)
-    file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  if (fapl >= 0 && fcpl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110) >= 0)
+    file = H5Fcreate(path, H5F_ACC_TRUNC, fcpl, fapl);
+  mpm_io_h5_close(fcpl);
   mpm_io_h5_close(fapl);
   return file;
 }
@@ -393,7 +394,6 @@ static int open_any(mpm_io_output **out, const char *dir, const mpm_io_origin *o
   *out = NULL;
   if (!dir || !dir[0])
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_open: empty output directory");
-  mpm_io_h5_init();
   mpm_io_h5_quiet_begin(&q);
   rc = output_open(out, dir, origin, input_text, m, dim, &q, err);
   mpm_io_h5_quiet_end(&q);
@@ -538,7 +538,6 @@ int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_orig
   *out = output_alloc(dir);
   if (!*out)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
-  mpm_io_h5_init();
   mpm_io_h5_quiet_begin(&q);
   int rc = output_reopen(*out, origin, nframes, &q, err);
   mpm_io_h5_quiet_end(&q);

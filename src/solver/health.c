@@ -51,6 +51,14 @@ static void likely_cause(const mpm_sim *s, char *buf, size_t len)
              "step dt = %.3g s is within the stable %.3g s)", s->dt, st);
 }
 
+static void find_cause(const mpm_sim *s, const char *given, char *buf, size_t len)
+{
+  if (given)
+    snprintf(buf, len, "%s", given);
+  else
+    likely_cause(s, buf, len);
+}
+
 /* The smallest side of a mesh unit. */
 static double unit_size(const mpm_sim *s)
 {
@@ -166,7 +174,9 @@ static const char *wrong(const mpm_sim *s, const field *f, double x, char *buf, 
   return NULL;
 }
 
-int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
+/* mpm_sim_check_state with the cause given (NULL: the likely cause of a
+ * blow-up). */
+static int check_state(const mpm_sim *s, double t, const char *given, mpm_err *err)
 {
   const mpm_points *P = s->pts;
   const field fields[] = {   /* F, Fp and the 3D fields are NULL in a store without them */
@@ -221,7 +231,7 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
       const char *w = wrong(s, &fields[k], fields[k].v[p], why, sizeof why);
       if (!w)
         continue;
-      likely_cause(s, cause, sizeof cause);
+      find_cause(s, given, cause, sizeof cause);
       return mpm_err_set(err, MPM_ENONFINITE,
                          "point %d: %s = %g%s%s at %s m, t = %.6g s: the %s is %s; "
                          "likely cause: %s", P->id[p], fields[k].name, fields[k].v[p],
@@ -240,13 +250,24 @@ int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
   }
   if (fast == P->n)
     return MPM_OK;
-  likely_cause(s, cause, sizeof cause);
+  find_cause(s, given, cause, sizeof cause);
   return mpm_err_set(err, MPM_ENONFINITE,
                      "point %d: speed %.3g m/s at %s m, t = %.6g s: a runaway, more "
                      "than a mesh unit per step (min(%s) / dt = %.3g m/s; P-wave and fill "
                      "speed of the input %.3g m/s); likely cause: %s", P->id[fast], vmax,
                      position(P, fast, at, sizeof at), t, s->dim == 3 ? "dx, dy, dz" : "dx, dy",
                      lim, h / mpm_sim_stable_dt(&s->cfg), cause);
+}
+
+int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err)
+{
+  return check_state(s, t, NULL, err);
+}
+
+int mpm_sim_check_restored(const mpm_sim *s, mpm_err *err)
+{
+  return check_state(s, s->t, "a damaged checkpoint, or one written by a run that was already "
+                     "going wrong", err);
 }
 
 int mpm_sim_too_fast(const mpm_sim *s, size_t a, size_t b)

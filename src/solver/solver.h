@@ -209,6 +209,10 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err);
  * material parameter). MPM_OK when nothing is wrong. */
 int mpm_sim_check_state(const mpm_sim *s, double t, mpm_err *err);
 
+/* The same checks of a state just restored from a checkpoint
+ * (mpm_sim_state_set), at its time, the cause given as the checkpoint. */
+int mpm_sim_check_restored(const mpm_sim *s, mpm_err *err);
+
 /* The bound of |g| dt beyond which a fluidity is absurd (health.c), and
  * the bound of |g| it makes at the run's step. */
 #define MPM_SIM_G_DT_MAX 1e3

@@ -61,5 +61,5 @@ int mpm_sim_state_set(mpm_sim *s, const mpm_run_state *st, mpm_err *err)
   s->check_next = st->check_next;
   mpm_sim_bodies_set(s, st->body);
   s->stop = MPM_STOP_NONE;
-  return MPM_OK;
+  return mpm_sim_check_restored(s, err);
 }
