@@ -17,3 +17,9 @@ EXTRA_DIST += tests/cli-survive.sh tests/cli-sweep.sh
 # the objects of the build).
 TESTS += tests/cli-calls.sh
 EXTRA_DIST += tests/cli-calls.sh
+
+# The examples of docs/output.md (examples/python, examples/paraview) on
+# small runs: their pictures and the values they print; skipped without
+# python3 with h5py and matplotlib, or without pvpython.
+TESTS += tests/python-example.sh tests/paraview-example.sh
+EXTRA_DIST += tests/python-example.sh tests/paraview-example.sh examples
