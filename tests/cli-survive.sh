@@ -23,6 +23,9 @@
 #    anything) two frames after a checkpoint (frames every 5 ms): resumed
 #    from the checkpoint on two threads, the frames written after it are
 #    replaced and the result is bitwise the same.
+#    While the run writes, a second run (--force too) and a resume of its
+#    directory are refused, naming its pid and host; killed, it leaves no
+#    lock behind (the resume above).
 #  - A body over the fill is refused with the file, line and key.
 #  - --force replaces a run; a second signal ends a run at once.
 set -u
@@ -133,6 +136,17 @@ sets="--set material.diffusion=implicit --set time.frame_dt=0.005 --set stop.t_m
   --set time.t_end=1 --set output.checkpoint_dt=0.0125 $sets &
 pid=$!
 wait_rows "$d/diagnostics.csv" 6 || fail "killed: the run ended before the kill"
+# while it writes, neither a second run (even with --force) nor a resume may
+# write the same directory; both name the holder
+held="is in use by granmpm pid $pid on host $(hostname): one run or resume at a time writes a directory"
+"$GRANMPM" run "$srcdir/inputs/example.conf" --quiet --output "$d" --force 2>"$tmp/err"
+st=$?
+[ "$st" -eq 2 ] && [ "$(cat "$tmp/err")" = "granmpm: output directory '$d' $held" ] ||
+  fail "locked: run --force: exit $st, '$(cat "$tmp/err")'"
+"$GRANMPM" resume "$d" --quiet 2>"$tmp/err"
+st=$?
+[ "$st" -eq 2 ] && [ "$(cat "$tmp/err")" = "granmpm: output directory '$d' $held" ] ||
+  fail "locked: resume: exit $st, '$(cat "$tmp/err")'"
 kill -KILL "$pid"
 wait "$pid"
 pid=""

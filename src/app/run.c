@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #ifdef _OPENMP
@@ -359,6 +360,18 @@ int mpm_app_check(int argc, char **argv)
   return st;
 }
 
+/* The output directory taken for this process's writing (mpm_io_dir_lock):
+ * 0, or the exit status with the holder named. */
+static int take_dir(const char *dir, int *lock)
+{
+  mpm_err err = {0};
+  const int rc = mpm_io_dir_lock(dir, lock, &err);
+  if (rc == MPM_OK)
+    return 0;
+  fprintf(stderr, "granmpm: %s\n", err.msg);
+  return rc == MPM_EINPUT ? MPM_APP_EXIT_USAGE : MPM_APP_EXIT_RUNTIME;
+}
+
 /* A directory that holds a run is replaced only when asked (--force). */
 static int claim_output(const char *dir, int force)
 {
@@ -385,7 +398,9 @@ int mpm_app_run(int argc, char **argv, int full_argc, char **full_argv,
 {
   run_opts o;
   mpm_app_plan p;
-  int st = load_run(argc, argv, &o, &p);
+  int st = load_run(argc, argv, &o, &p), lock = -1;
+  if (st == 0)
+    st = take_dir(p.cfg.output.dir, &lock);
   if (st == 0)
     st = claim_output(p.cfg.output.dir, o.force);
   if (st == 0) {
@@ -395,7 +410,9 @@ int mpm_app_run(int argc, char **argv, int full_argc, char **full_argv,
   }
   run_ctx ctx = {.dir = p.cfg.output.dir, .stop = stop, .quiet = o.quiet,
                  .tty = isatty(STDERR_FILENO)};
-  return open_and_execute(st, &p, &ctx, full_argc, full_argv, -1);
+  st = open_and_execute(st, &p, &ctx, full_argc, full_argv, -1);
+  mpm_io_dir_unlock(lock);
+  return st;
 }
 
 /* ---- resume ---------------------------------------------------------------------- */
@@ -439,13 +456,24 @@ int mpm_app_resume(int argc, char **argv, int full_argc, char **full_argv,
     return mpm_app_usage("resume: --t-end expects a time in seconds, got '%s'", tend);
   mpm_io_checkpoint ck;
   mpm_err err = {0};
+  struct stat sb;
+  int lock = -1;
+  if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "granmpm: nothing to resume in '%s': not a directory\n", dir);
+    return MPM_APP_EXIT_USAGE;
+  }
+  int st = take_dir(dir, &lock);
+  if (st != 0)
+    return st;
   if (mpm_io_checkpoint_read(dir, &ck, &err) != MPM_OK) {
     fprintf(stderr, "granmpm: nothing to resume in '%s': %s\n", dir, err.msg);
+    mpm_io_dir_unlock(lock);
     return MPM_APP_EXIT_USAGE;
   }
   if (tend && !(t_end > ck.state.t)) {
     const double t = ck.state.t;
     mpm_io_checkpoint_clear(&ck);
+    mpm_io_dir_unlock(lock);
     return mpm_app_usage("resume: --t-end %s is not after the checkpoint's t = %.17g s", tend, t);
   }
   char by[128], name[MPM_PATH_MAX + 32], set[64];
@@ -458,7 +486,7 @@ int mpm_app_resume(int argc, char **argv, int full_argc, char **full_argv,
   const char *sets[] = {set};
   mpm_app_plan p;
   run_ctx ctx = {.dir = dir, .stop = stop, .quiet = quiet, .tty = isatty(STDERR_FILENO)};
-  int st = mpm_app_plan_load(&p, name, ck.input, sets, tend ? 1 : 0, dir);
+  st = mpm_app_plan_load(&p, name, ck.input, sets, tend ? 1 : 0, dir);
   if (st == 0) {
     mpm_app_threads_default();
     st = mpm_app_plan_build(&p);
@@ -467,5 +495,6 @@ int mpm_app_resume(int argc, char **argv, int full_argc, char **full_argv,
     st = restore(&p, &ck, &ctx);
   st = open_and_execute(st, &p, &ctx, full_argc, full_argv, ck.state.frames);
   mpm_io_checkpoint_clear(&ck);
+  mpm_io_dir_unlock(lock);
   return st;
 }

@@ -95,6 +95,14 @@ int mpm_io_output_reopen(mpm_io_output **out, const char *dir, const mpm_io_orig
 int mpm_io_output_end(mpm_io_output *out, const char *status, const char *failure,
                       mpm_err *err);
 
+/* Output directory dir (made when missing) taken by this process for
+ * writing: a POSIX lock on DIR/.granmpm-lock, which names the holder ("granmpm pid P on
+ * host H"). The lock ends with the process however it ends (a kill
+ * included) or with mpm_io_dir_unlock(*fd). A directory another process
+ * holds is MPM_EINPUT naming that holder. */
+int mpm_io_dir_lock(const char *dir, int *fd, mpm_err *err);
+void mpm_io_dir_unlock(int fd);
+
 /* 1 when dir holds a run (run.h5 or checkpoint.h5), with *what the file. */
 int mpm_io_output_occupied(const char *dir, const char **what);
 

@@ -31,6 +31,7 @@
 #include "config.h" /* PACKAGE_VERSION */
 
 #include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -406,6 +407,52 @@ int mpm_io_output_open(mpm_io_output **out, const char *dir, const mpm_io_origin
                        const char *input_text, const mpm_mesh *m, mpm_err *err)
 {
   return open_any(out, dir, origin, input_text, m, m && m->dim == 3 ? 3 : 2, err);
+}
+
+int mpm_io_dir_lock(const char *dir, int *fd, mpm_err *err)
+{
+  *fd = -1;
+  int rc = make_dirs(dir, err);
+  char *path = rc == MPM_OK ? mpm_io_path_join(dir, ".granmpm-lock") : NULL;
+  if (rc == MPM_OK && !path)
+    rc = mpm_err_set(err, MPM_ENOMEM, "out of memory locking '%s'", dir);
+  int f = rc == MPM_OK ? open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666) : -1;
+  if (rc == MPM_OK && f < 0)
+    rc = mpm_err_set(err, MPM_EIO, "cannot create '%s': %s", path, strerror(errno));
+  struct flock l = {.l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = 0, .l_len = 0};
+  if (rc == MPM_OK && fcntl(f, F_SETLK, &l) != 0) {
+    const int e = errno;
+    char holder[256] = "";
+    const ssize_t n = pread(f, holder, sizeof holder - 1, 0);
+    holder[n > 0 ? n : 0] = '\0';
+    holder[strcspn(holder, "\n")] = '\0';
+    rc = e == EACCES || e == EAGAIN
+             ? mpm_err_set(err, MPM_EINPUT, "output directory '%s' is in use by %s: one run or "
+                           "resume at a time writes a directory", dir,
+                           holder[0] ? holder : "another granmpm")
+             : mpm_err_set(err, MPM_EIO, "cannot lock '%s': %s", path, strerror(e));
+  }
+  if (rc == MPM_OK) {   /* who holds it, for the next one's message */
+    char host[128] = "unknown host", text[256];
+    gethostname(host, sizeof host - 1);
+    host[sizeof host - 1] = '\0';
+    const int len = snprintf(text, sizeof text, "granmpm pid %ld on host %s\n", (long)getpid(),
+                             host);
+    if (ftruncate(f, 0) != 0 || pwrite(f, text, (size_t)len, 0) != len)
+      rc = mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
+  }
+  if (rc == MPM_OK)
+    *fd = f;
+  else if (f >= 0)
+    close(f);
+  free(path);
+  return rc;
+}
+
+void mpm_io_dir_unlock(int fd)
+{
+  if (fd >= 0)
+    close(fd);   /* the lock goes with it; the file stays, naming the last holder */
 }
 
 int mpm_io_output_occupied(const char *dir, const char **what)
