@@ -23,3 +23,11 @@ EXTRA_DIST += tests/cli-calls.sh
 # python3 with h5py and matplotlib, or without pvpython.
 TESTS += tests/python-example.sh tests/paraview-example.sh
 EXTRA_DIST += tests/python-example.sh tests/paraview-example.sh examples
+
+# check's size estimate against the peak resident memory and the bytes
+# written of a plane run and a 3D run (tests/maxrss runs a command and
+# reports its peak).
+check_PROGRAMS += tests/maxrss
+tests_maxrss_SOURCES = tests/maxrss.c
+TESTS += tests/cli-size.sh
+EXTRA_DIST += tests/cli-size.sh

@@ -102,16 +102,18 @@ static double weights_bytes(const mpm_config *cfg)
   return t->separable && !t->convect ? sizeof(mpm_shape_axes) + 2 * sizeof(int) : list;
 }
 
-/* Measured on the 2-core Xeon this is developed on (HDF5 1.10.8, Debian 12):
- * a run of 4 points holds 15 MB, and HDF5's metadata cache adds about 160
- * kB per frame written up to 45 MB (19 MB with 20 frames, 60 MB with 475 or
- * 1896); a frame's HDF5 objects take 8.2 kB of run.h5 besides its data,
- * its XDMF grid 4.4 kB and its diagnostics row 0.14 kB. */
+/* Measured (HDF5 1.10.8, Debian 12): a run of 4 points holds 15 MB, and
+ * HDF5's metadata cache adds about 240 kB per frame written (with the
+ * frames' datasets in checksummed chunks: 160 kB contiguous) up to 56 MB;
+ * a frame's HDF5 objects take 10.4 kB of run.h5 besides its data, its XDMF
+ * grid 4.4 kB and its diagnostics row 0.14 kB. The example over 26, 101
+ * and 501 frames peaks at 23.2, 41.8 and 68.6 MB against estimates of
+ * 25.0, 43.0 and 76.8 MB. */
 #define BASE_BYTES (16.0 * (1 << 20))
-#define H5_CACHE_PER_FRAME (160.0 * 1024)
-#define H5_CACHE_MAX (48.0 * (1 << 20))
+#define H5_CACHE_PER_FRAME (240.0 * 1024)
+#define H5_CACHE_MAX (56.0 * (1 << 20))
 enum {
-  FRAME_META_BYTES = 9 << 10,  /* HDF5 objects of one frame (19 datasets with attributes,
+  FRAME_META_BYTES = 11 << 10, /* HDF5 objects of one frame (19 datasets with attributes,
                                   the XY view) */
   FRAME_TEXT_BYTES = 5 << 10,  /* a frame's XDMF grid and diagnostics row */
   HEADER_BYTES = 64 << 10      /* run.h5 header, mesh lines excepted */
