@@ -11,6 +11,8 @@
 #                     scripts of the cases that figure drivers run)
 #   $(docdir)         README.md, docs/*.md, figures/README.md, each
 #                     verification case's README.md, examples/ (all of it)
+#   $(man1dir)        granmpm.1 (docs/granmpm.1.in; tests/man-help.sh keeps it
+#                     in step with --help)
 #
 # The lists follow the tree (kit_data_list, kit_doc_list): a new input,
 # figure driver, document or example is installed without a change here.
@@ -93,6 +95,16 @@ kit_put = kit_put() { \
 	}; \
 	kit_tmp=`mktemp -d "$${TMPDIR:-/tmp}/granmpm-install.XXXXXX"` || exit 1; \
 	trap 'rm -rf "$$kit_tmp"' EXIT
+
+# ---- the manual page --------------------------------------------------
+
+man_MANS = granmpm.1
+CLEANFILES += granmpm.1
+granmpm.1: $(srcdir)/docs/granmpm.1.in Makefile
+	$(AM_V_GEN)sed -e 's|@PACKAGE_VERSION[@]|$(PACKAGE_VERSION)|g' \
+	  -e 's|@bindir[@]|$(bindir)|g' -e 's|@pkgdatadir[@]|$(pkgdatadir)|g' \
+	  -e 's|@pkglibexecdir[@]|$(pkglibexecdir)|g' -e 's|@docdir[@]|$(docdir)|g' \
+	  '$(srcdir)/docs/granmpm.1.in' > $@.tmp && mv $@.tmp $@
 
 # ---- the kit: install and uninstall --------------------------------------
 

@@ -17,3 +17,8 @@ EXTRA_DIST += tests/cli-survive.sh tests/cli-sweep.sh
 # the objects of the build).
 TESTS += tests/cli-calls.sh
 EXTRA_DIST += tests/cli-calls.sh
+
+# The manual page (docs/granmpm.1.in) names every command and option of the
+# usage (--help).
+TESTS += tests/man-help.sh
+EXTRA_DIST += tests/man-help.sh
