@@ -11,7 +11,7 @@ export GRANMPM=${GRANMPM:-$src/src/app/granmpm}
 export GRANMPM_BUILDDIR=${GRANMPM_BUILDDIR:-$(cd "$(dirname "$GRANMPM")/../.." && pwd)}
 out=${1:?usage: dk-silo-fig2c.sh OUTDIR}
 [ -x "$GRANMPM_BUILDDIR/verification/ngf1d/ngf1d" ] ||
-  { echo "dk-silo-fig2c.sh: $GRANMPM_BUILDDIR/verification/ngf1d/ngf1d not built (make check builds it)" >&2; exit 1; }
+  { echo "dk-silo-fig2c.sh: $GRANMPM_BUILDDIR/verification/ngf1d/ngf1d not found (make builds it)" >&2; exit 1; }
 work=$out/dk-silo-fig2c.d
 mkdir -p "$work"
 for h in 10 15 25 35 98; do

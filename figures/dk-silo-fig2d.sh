@@ -15,7 +15,7 @@ export GRANMPM_BUILDDIR=${GRANMPM_BUILDDIR:-$(cd "$(dirname "$GRANMPM")/../.." &
 out=${1:?usage: dk-silo-fig2d.sh OUTDIR}
 ngf1d=$GRANMPM_BUILDDIR/verification/ngf1d/ngf1d
 [ -x "$ngf1d" ] ||
-  { echo "dk-silo-fig2d.sh: $ngf1d not built (make check builds it)" >&2; exit 1; }
+  { echo "dk-silo-fig2d.sh: $ngf1d not found (make builds it)" >&2; exit 1; }
 work=$out/dk-silo-fig2d.d
 mkdir -p "$work"
 A=0.48 mu_s=0.3819 mu_2=0.6435

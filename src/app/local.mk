@@ -31,3 +31,8 @@ check_PROGRAMS += tests/maxrss
 tests_maxrss_SOURCES = tests/maxrss.c
 TESTS += tests/cli-size.sh
 EXTRA_DIST += tests/cli-size.sh
+
+# The manual page (docs/granmpm.1.in) names every command and option of the
+# usage (--help).
+TESTS += tests/man-help.sh
+EXTRA_DIST += tests/man-help.sh

@@ -1,5 +1,5 @@
 noinst_LTLIBRARIES += libmpm_bc.la
-libmpm_bc_la_SOURCES = src/bc/bc.c src/bc/bc.h src/bc/walls.c src/bc/bc_internal.h src/bc/body.c src/bc/body.h
+libmpm_bc_la_SOURCES = src/bc/bc.c src/bc/bc.h src/bc/walls.c src/bc/body.c src/bc/body.h
 
 check_PROGRAMS += tests/test_bc
 TESTS += tests/test_bc
