@@ -11,7 +11,9 @@
 # the two finished runs alone, resume the third from its checkpoint (or
 # start it again when it has none), run the fourth, and finish all four.
 # Every granmpm run and resume goes through a wrapper that logs it, and the
-# log is what is counted. Skipped (77) without GNU parallel.
+# log is what is counted. Then a sweep whose shell alone is killed by
+# SIGKILL: its running run stops with a checkpoint, no other starts, and
+# the sweep started again resumes it. Skipped (77) without GNU parallel.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -90,6 +92,43 @@ while read -r name _; do
 done <"$out/runs.txt"
 [ "$(grep -c ',' "$out/hstop.csv")" -eq 5 ] || fail "hstop.csv: $(cat "$out/hstop.csv")"
 grep -q failed "$out/hstop.csv" && fail "hstop.csv: $(cat "$out/hstop.csv")"
+
+# The sweep alone killed outright (SIGKILL of its shell, as `kill -9` of the
+# sweep's pid does; GNU parallel and its job live on): the running run is
+# stopped with a checkpoint within seconds (scripts/run-once watches the
+# sweep) and no other run starts; the sweep started again resumes it.
+out=$tmp/killed
+: >"$log"
+setsid sh -c "exec env GRANMPM='$tmp/granmpm' '$srcdir/scripts/sweep-hstop' --out '$out' \
+  --input '$srcdir/inputs/ngf-chute-quick.conf' --angles 27 --ratios '2 2.5' \
+  --t-end 0.5 --t-min 0.01 --jobs 1 >'$tmp/killed.out' 2>&1" &
+group=$!
+first=""
+while [ -z "$first" ] || [ ! -s "$out/runs/$first/diagnostics.csv" ]; do
+  kill -0 "$group" 2>/dev/null || break
+  first=$(sed -n '1s/^run //p' "$log")
+  sleep 0.01
+done
+[ -n "$first" ] || fail "killed sweep: it ended before its first run began"
+kill -KILL "$group"
+waited=0
+while [ "$("$GRANMPM" info "$out/runs/$first" --status 2>/dev/null)" = running ] && [ $waited -lt 300 ]; do
+  sleep 0.1
+  waited=$((waited + 1))
+done
+[ "$("$GRANMPM" info "$out/runs/$first" --status)" = stopped ] ||
+  fail "killed sweep: its run is '$("$GRANMPM" info "$out/runs/$first" --status)' after $waited tenths of a second, not stopped"
+[ -f "$out/runs/$first/checkpoint.h5" ] || fail "killed sweep: its run left no checkpoint"
+sleep 1.5                     # GNU parallel, orphaned, tries the next job
+kill -KILL -"$group" 2>/dev/null
+group=""
+[ "$(wc -l <"$log")" -eq 1 ] || fail "killed sweep: runs started after the kill: $(cat "$log")"
+GRANMPM=$tmp/granmpm "$srcdir/scripts/sweep-hstop" --out "$out" \
+  --input "$srcdir/inputs/ngf-chute-quick.conf" --angles 27 --ratios "2 2.5" \
+  --t-end 0.5 --t-min 0.01 --jobs 1 >"$tmp/sweep.out" 2>&1 ||
+  { fail "killed sweep: started again: exit $?"; cat "$tmp/sweep.out"; }
+grep -qx "resume $first" "$log" || fail "killed sweep: $first was not resumed"
+finished "$first" || fail "killed sweep: $first did not finish"
 
 echo "log:"; cat "$log"
 [ "$fails" -eq 0 ]
