@@ -23,6 +23,8 @@
 #    anything) two frames after a checkpoint (frames every 5 ms): resumed
 #    from the checkpoint on two threads, the frames written after it are
 #    replaced and the result is bitwise the same.
+#    A copy of the stopped example with one byte of its checkpoint changed
+#    is refused by resume and shown unusable by info, naming the checksum.
 #    While the run writes, a second run (--force too) and a resume of its
 #    directory are refused, naming its pid and host; killed, it leaves no
 #    lock behind (the resume above).
@@ -107,6 +109,16 @@ stop_and_resume() {
   st=$?
   [ "$st" -eq 2 ] && [ "$(cat "$tmp/err")" = "granmpm: output directory '$d' holds a run (run.h5): replace it with --force, or continue it with: granmpm resume $d" ] ||
     fail "$label: an occupied directory: exit $st, '$(cat "$tmp/err")'"
+  if [ "$label" = example ]; then   # a damaged copy is refused, and info says why
+    cp -r "$d" "$d.bad"
+    printf 'X' | dd of="$d.bad/checkpoint.h5" bs=1 seek=4000 conv=notrunc 2>/dev/null
+    "$GRANMPM" resume "$d.bad" --quiet 2>"$tmp/err"
+    st=$?
+    [ "$st" -eq 2 ] && [ "$(cat "$tmp/err")" = "granmpm: nothing to resume in '$d.bad': '$d.bad/checkpoint.h5': its bytes do not match its checksum (a damaged checkpoint)" ] ||
+      fail "$label: a damaged checkpoint: exit $st, '$(cat "$tmp/err")'"
+    "$GRANMPM" info "$d.bad" | grep -qx "checkpoint: unusable: '$d.bad/checkpoint.h5': its bytes do not match its checksum (a damaged checkpoint)" ||
+      fail "$label: info of a damaged checkpoint: $("$GRANMPM" info "$d.bad" | grep '^checkpoint')"
+  fi
   "$GRANMPM" resume "$d" --t-end 0 --quiet 2>"$tmp/err"
   st=$?
   tc=$(sed -n "s/^granmpm: resume: --t-end 0 is not after the checkpoint's t = \([^ ]*\) s .*/\1/p" "$tmp/err")

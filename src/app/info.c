@@ -8,9 +8,19 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "app/args.h"
 #include "io/io.h"
+
+/* 1 when DIR/checkpoint.h5 exists (readable or not). */
+static int checkpoint_there(const char *dir)
+{
+  char path[MPM_PATH_MAX + 32];
+  struct stat sb;
+  snprintf(path, sizeof path, "%s/checkpoint.h5", dir);
+  return stat(path, &sb) == 0;
+}
 
 static const char usage_line[] = "info: usage: granmpm info RUNDIR [--status]";
 
@@ -51,6 +61,8 @@ static void print_info(const char *dir, const mpm_io_provenance *p, FILE *f)
     fprintf(f, "frames:     0\n");
   if (has_ck)
     fprintf(f, "checkpoint: t = %.6g s, step %ld (%s/checkpoint.h5)\n", t, step, dir);
+  else if (checkpoint_there(dir))
+    fprintf(f, "checkpoint: unusable: %s\n", err.msg);
   else
     fprintf(f, "checkpoint: none\n");
   fprintf(f, "input:\n");

@@ -13,6 +13,7 @@
  *   /bodies/state, /bodies/pushed  with bodies: per body, in the input's order,
  *                    c[3], theta, v[4], f[3], tq[3] (14 values) and the count
  *                    of points put back on it (mpm_body_state)
+ *
  * The file starts with a user block of USERBLOCK bytes, which HDF5 skips:
  * two lines of text, "granmpm checkpoint 2" and "checksum H of bytes 512
  * to N" (H a 64-bit checksum in hex of every byte after the block, N the
@@ -123,7 +124,6 @@ static uint64_t sum_bytes(uint64_t h, const void *p, size_t len)
   return h;
 }
 
-enum { BODY_VALUES = 14 };
 #define SUM_SEED 0xcbf29ce484222325u
 
 /* The user block of a file of len bytes whose bytes after the block have
@@ -140,6 +140,7 @@ static void userblock(char *block, uint64_t sum, size_t len)
 static void *read_values(hid_t g, const char *name, hid_t type, size_t size, size_t n);
 
 /* The bodies' state: BODY_VALUES doubles and a count per body. */
+enum { BODY_VALUES = 14 };
 
 static void body_values(mpm_body_state *b, double *v, int put)
 {
@@ -555,7 +556,7 @@ static int check_values(const mpm_run_state *st, const char *path, mpm_err *err)
   return MPM_OK;
 }
 
-static int read_checkpoint(hid_t file, mpm_io_checkpoint *ck, const char *path,
+static int read_checkpoint(hid_t file, mpm_io_checkpoint *ck, const char *path, int summed,
                            const mpm_io_h5_quiet *q, mpm_err *err)
 {
   char *format = mpm_io_h5_attr_text(file, "format");
@@ -565,6 +566,8 @@ static int read_checkpoint(hid_t file, mpm_io_checkpoint *ck, const char *path,
   if (!version)
     return mpm_err_set(err, MPM_EIO, "'%s' is not a granmpm checkpoint (format '%s' expected)",
                        path, FORMAT);
+  if (version == 2 && !summed)
+    return damaged(err, path, "format 2 without the block of its checksum");
   char *by = mpm_io_h5_attr_text(file, "written_by");
   snprintf(ck->written_by, sizeof ck->written_by, "%s", by ? by : "unknown");
   free(by);
@@ -593,11 +596,12 @@ typedef struct reading {
   long *step;
 } reading;
 
-static int read_open(hid_t file, const reading *r, const char *path, const mpm_io_h5_quiet *q,
+static int read_open(hid_t file, const reading *r, const char *path, int summed,
+                     const mpm_io_h5_quiet *q,
                      mpm_err *err)
 {
   if (r->ck)
-    return read_checkpoint(file, r->ck, path, q, err);
+    return read_checkpoint(file, r->ck, path, summed, q, err);
   if (mpm_io_h5_attr_read(file, "t", H5T_NATIVE_DOUBLE, r->t) != 0 ||
       mpm_io_h5_attr_read(file, "step", H5T_NATIVE_LONG, r->step) != 0)
     return mpm_io_h5_fail(err, q, "cannot read", path);
@@ -605,10 +609,11 @@ static int read_open(hid_t file, const reading *r, const char *path, const mpm_i
 }
 
 /* The file at path against the checksum of its user block, read in blocks
- * before HDF5 sees it; a file of format 1 (HDF5's signature at its start,
- * no user block) passes. */
-static int verify_file(const char *path, mpm_err *err)
+ * before HDF5 sees it (*summed = 1); a file of format 1 (HDF5's signature
+ * at its start, no user block) passes with *summed = 0. */
+static int verify_file(const char *path, int *summed, mpm_err *err)
 {
+  *summed = 0;
   static const char hdf5_signature[8] = "\211HDF\r\n\032\n";
   char block[USERBLOCK + 1], line[sizeof FORMAT + 1];
   FILE *f = fopen(path, "rb");
@@ -649,6 +654,7 @@ static int verify_file(const char *path, mpm_err *err)
   } else if (rc == MPM_OK && h != (uint64_t)sum) {
     rc = damaged(err, path, "its bytes do not match its checksum");
   }
+  *summed = rc == MPM_OK;
   return rc;
 }
 
@@ -664,7 +670,8 @@ static int read_dir(const char *dir, const reading *r, mpm_err *err)
     free(path);
     return rc;
   }
-  if (verify_file(path, err) != MPM_OK) {
+  int summed = 0;
+  if (verify_file(path, &summed, err) != MPM_OK) {
     free(path);
     return MPM_EIO;
   }
@@ -672,7 +679,7 @@ static int read_dir(const char *dir, const reading *r, mpm_err *err)
   mpm_io_h5_quiet_begin(&q);
   hid_t file = mpm_io_h5_open_read(path);
   int rc = file < 0 ? mpm_io_h5_fail(err, &q, "cannot open", path)
-                    : read_open(file, r, path, &q, err);
+                    : read_open(file, r, path, summed, &q, err);
   mpm_io_h5_close(file);
   mpm_io_h5_quiet_end(&q);
   free(path);
