@@ -416,7 +416,7 @@ static int read_points(hid_t file, mpm_run_state *st, const char *path, const mp
     hid_t d = H5Dopen2(g, stored[k].name, H5P_DEFAULT);
     const hid_t mtype = stored[k].isint ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE;
     if (d >= 0 && !mpm_io_h5_type_ok(d, mtype))
-      rc = mpm_err_set(err, MPM_EIO, "'%s': field '%s': its stored type is damaged (a damaged "
+      rc = mpm_err_set(err, MPM_EIO, "'%s': field '%s': its stored type or layout is damaged (a damaged "
                        "checkpoint)", path, stored[k].name);
     else if (d < 0 || (n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                                         field_array(st->pts, &stored[k])) < 0))

@@ -257,7 +257,7 @@ static int open_column(extract_ctx *c, column *col, mpm_err *err)
   col->isint = type >= 0 && H5Tget_class(type) == H5T_INTEGER;
   mpm_io_h5_close(type);
   if (!mpm_io_h5_type_ok(col->dset, col->isint ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE))
-    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s': its stored type is damaged "
+    return mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s': its stored type or layout is damaged "
                        "(a damaged run)", c->frame, c->path, col->name);
   if (col == c->col)
     c->npoints = dims[0]; /* the first column sets the row count */

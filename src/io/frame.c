@@ -158,7 +158,7 @@ int mpm_io_run_mesh(const mpm_io_run *r, mpm_mesh *m, char *shape, size_t len,
 
 /* One 1-D dataset of n values into dst (double or int); -1 if missing. */
 /* Field name of frame group g (n values) into dst: 0, or FIELD_MISSING,
- * FIELD_LENGTH (not n values), FIELD_TYPE (a damaged stored type) or
+ * FIELD_LENGTH (not n values), FIELD_TYPE (a damaged stored type or chunk index) or
  * FIELD_UNREADABLE (HDF5 failed: a damaged chunk fails its checksum). */
 enum { FIELD_MISSING = -1, FIELD_LENGTH = -2, FIELD_TYPE = -3, FIELD_UNREADABLE = -4 };
 
@@ -227,7 +227,7 @@ int mpm_io_run_frame(const mpm_io_run *r, int frame, mpm_points *pts, double *t,
     if (got == FIELD_MISSING && mpm_io_frame_field_optional(field[k].name))
       memset(field[k].dst, 0, (size_t)n * field[k].size);   /* written by an older version */
     else if (got == FIELD_TYPE)
-      rc = mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s': its stored type is damaged "
+      rc = mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s': its stored type or layout is damaged "
                        "(a damaged run)", frame, r->path, field[k].name);
     else if (got == FIELD_LENGTH)
       rc = mpm_err_set(err, MPM_EIO, "frame %d of '%s': field '%s' does not hold npoints = %llu "

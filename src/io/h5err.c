@@ -275,11 +275,38 @@ herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mty
   return rc;
 }
 
+/* 1 if every chunk of dataset d (elements of size bytes) lies in its file
+ * and holds at most a chunk's values and a checksum: the chunk index is not
+ * checksummed, and a damaged chunk size has HDF5 allocate it. */
+static int chunks_ok(hid_t d, size_t size)
+{
+  hid_t dcpl = H5Dget_create_plist(d), f = H5Iget_file_id(d), space = H5Dget_space(d);
+  hsize_t chunk[2] = {0, 0}, n = 0, bytes = 0;
+  int ok = dcpl >= 0 && f >= 0 && space >= 0 && H5Fget_filesize(f, &bytes) >= 0;
+  if (ok && H5Pget_layout(dcpl) == H5D_CHUNKED) {
+    const int rank = H5Pget_chunk(dcpl, 2, chunk);
+    const hsize_t most = (rank >= 1 ? chunk[0] : 0) * (rank == 2 ? chunk[1] : 1) * size + 4;
+    ok = rank >= 1 && rank <= 2 && H5Dget_num_chunks(d, space, &n) >= 0;
+    for (hsize_t k = 0; ok && k < n; k++) {
+      haddr_t addr = HADDR_UNDEF;
+      hsize_t at = 0;
+      ok = H5Dget_chunk_info(d, space, k, NULL, NULL, &addr, &at) >= 0 && at <= most &&
+           addr != HADDR_UNDEF && addr <= bytes && at <= bytes - addr;
+    }
+  }
+  mpm_io_h5_close(space);
+  mpm_io_h5_close(f);
+  mpm_io_h5_close(dcpl);
+  return ok;
+}
+
 int mpm_io_h5_type_ok(hid_t d, hid_t mtype)
 {
-  hid_t t = d < 0 ? H5I_INVALID_HID : H5Iget_type(d) == H5I_ATTR ? H5Aget_type(d) : H5Dget_type(d);
+  const int attr = d >= 0 && H5Iget_type(d) == H5I_ATTR;
+  hid_t t = d < 0 ? H5I_INVALID_HID : attr ? H5Aget_type(d) : H5Dget_type(d);
   const size_t size = t < 0 ? 0 : H5Tget_size(t);
-  const int ok = t >= 0 && H5Tget_class(t) == H5Tget_class(mtype) && size >= 1 && size <= 8;
+  const int ok = t >= 0 && H5Tget_class(t) == H5Tget_class(mtype) && size >= 1 && size <= 8 &&
+                 (attr || chunks_ok(d, size));
   mpm_io_h5_close(t);
   return ok;
 }

@@ -89,9 +89,11 @@ herr_t mpm_io_h5_write_array(hid_t loc, const char *name, hid_t ftype, hid_t mty
 
 /* 1 if the stored type of dataset or attribute d is of the class of memory
  * type mtype (integer, float) and of 1 to 8 bytes an element, as every
- * number granmpm writes; 0 for a damaged type, which HDF5 1.10 would
- * convert past the end of the reader's buffer. Every read of numbers from a
- * granmpm file checks it first. */
+ * number granmpm writes, and a dataset's chunks lie in the file and hold
+ * at most a chunk of values and a checksum; 0 for a damaged type, which
+ * HDF5 1.10 would convert past the end of the reader's buffer, or a damaged
+ * chunk index entry, whose size HDF5 would allocate. Every read of numbers
+ * from a granmpm file checks it first. */
 int mpm_io_h5_type_ok(hid_t d, hid_t mtype);
 
 /* The length of the 1-D dataset `name` of loc, -1 if missing, not 1-D or
