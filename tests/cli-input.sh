@@ -74,7 +74,8 @@ done
 cmd=run
 for name in dt-unstable size-memory size-output dt-sub-tiny dt-sub-too-many fill-no-point \
             real-denormal real-hex real-nan real-inf real-overflow int-overflow env-unclosed \
-            unclosed-section unknown-key syntax-missing-equals polygon-no-area; do
+            unclosed-section unknown-key syntax-missing-equals polygon-no-area 3d-size-memory \
+            bom-twice nul-in-comment escape-nul-path 3d-escape-nul-axis nested-braces; do
   f=$srcdir/tests/inputs/bad/$name.conf
   msg=$(sed -n 's/^# expect: //p' "$f" | head -n 1)
   check_bad "run $(basename "$f")" "granmpm: $f:$msg" "$f" --output "$tmp/run"

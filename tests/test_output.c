@@ -1040,6 +1040,51 @@ START_TEST(t_checkpoint_flipped_bytes)
 }
 END_TEST
 
+/* mpm_io_checkpoint_seal writes the user block mpm_io_checkpoint_write
+ * wrote, and over changed bytes one that passes the checksum, so that a
+ * reader of the file (tests/fuzz/fuzz_checkpoint.c) gets past it to HDF5
+ * and the values. */
+START_TEST(t_checkpoint_seal)
+{
+  char dir[DIR_MAX], path[DIR_MAX + 32];
+  mpm_err err = {0};
+  make_tmpdir(dir);
+  double series_t[1] = {0.0}, series_m[1] = {3.5};
+  mpm_run_state st = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000, .n_sub = 1,
+                      .mass0 = 3.5, .frames = 1, .frame_next = 2, .check_next = 1, .nseries = 1,
+                      .series_t = series_t, .series_m = series_m};
+  ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "mesh {\n  nx = 4\n}\n", "test", &err),
+                   MPM_OK);
+  snprintf(path, sizeof path, "%s/checkpoint.h5", dir);
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  unsigned char *image = malloc(1 << 16), *again = malloc(1 << 16);
+  ck_assert(image && again);
+  const size_t len = fread(image, 1, 1 << 16, f);
+  fclose(f);
+  ck_assert(len > 1000 && len < 1 << 16);
+  memcpy(again, image, len);
+  memset(again, 'x', 512);
+  ck_assert_int_eq(mpm_io_checkpoint_seal(again, len), 0);
+  ck_assert_msg(memcmp(again, image, len) == 0, "the sealed block differs from the written one");
+  ck_assert_int_eq(mpm_io_checkpoint_seal(again, 511), -1);
+  again[len - 1] ^= 0x5a;                 /* a changed byte, sealed: no checksum refuses it */
+  ck_assert_int_eq(mpm_io_checkpoint_seal(again, len), 0);
+  f = fopen(path, "wb");
+  ck_assert_uint_eq(fwrite(again, 1, len, f), len);
+  fclose(f);
+  mpm_io_checkpoint ck;
+  if (mpm_io_checkpoint_read(dir, &ck, &err) != MPM_OK)
+    ck_assert_msg(!strstr(err.msg, "do not match its checksum"), "refused by the block: %s",
+                  err.msg);
+  mpm_io_checkpoint_clear(&ck);
+  free(image);
+  free(again);
+  mpm_points_free(st.pts);
+  remove_tree(dir);
+}
+END_TEST
+
 /* A damaged byte in a frame's data: extract names the frame, the field and
  * the checksum, in one line, where the point values would have been read
  * wrong before. */
@@ -1193,6 +1238,7 @@ int main(int argc, char **argv)
   tcase_add_test(tc, t_checkpoint_roundtrip);
   tcase_add_test(tc, t_checkpoint_values_checked);
   tcase_add_test(tc, t_checkpoint_flipped_bytes);
+  tcase_add_test(tc, t_checkpoint_seal);
   tcase_add_test(tc, t_frame_flipped_byte);
   tcase_add_test(tc, t_reopen_truncates);
   tcase_add_test(tc, t_damaged_run);

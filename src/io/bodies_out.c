@@ -4,6 +4,8 @@
  * body, in the input's order; the group's attributes name the bodies and
  * the columns). A resumed run cuts bodies.csv after the rows of its first
  * nframes frames and drops the later datasets (mpm_io_out_bodies_reopen). */
+#define _POSIX_C_SOURCE 200809L  /* fileno, ftruncate */
+
 #include <stdlib.h>
 #include <unistd.h>
 

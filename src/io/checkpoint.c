@@ -135,6 +135,14 @@ static void userblock(char *block, uint64_t sum, size_t len)
            (unsigned long long)sum, USERBLOCK, len);
 }
 
+int mpm_io_checkpoint_seal(void *file, size_t len)
+{
+  if (!file || len < USERBLOCK)
+    return -1;
+  userblock(file, sum_bytes(SUM_SEED, (char *)file + USERBLOCK, len - USERBLOCK), len);
+  return 0;
+}
+
 /* ---- writing --------------------------------------------------------------- */
 
 static void *read_values(hid_t g, const char *name, hid_t type, size_t size, size_t n);
@@ -278,8 +286,7 @@ static int image_of(const mpm_run_state *st, const char *input, const char *writ
   else if (H5Fget_file_image(file, (char *)*image + USERBLOCK, (size_t)n) != n)
     rc = mpm_io_h5_fail(err, &q, "cannot assemble checkpoint", name);
   else   /* the image starts at the superblock: the user block goes before it */
-    userblock(*image, sum_bytes(SUM_SEED, (char *)*image + USERBLOCK, (size_t)n),
-              USERBLOCK + (size_t)n);
+    mpm_io_checkpoint_seal(*image, USERBLOCK + (size_t)n);
   if (mpm_io_h5_close(file) < 0 && rc == MPM_OK)
     rc = mpm_io_h5_fail(err, &q, "cannot assemble checkpoint", name);
   mpm_io_h5_quiet_end(&q);
@@ -636,7 +643,7 @@ static int verify_file(const char *path, int *summed, mpm_err *err)
     rc = damaged(err, path, "its second line is not 'checksum H of bytes 512 to N'");
   uint64_t h = SUM_SEED;
   size_t total = got;
-  const size_t bufsize = (size_t)1 << 20;
+  const size_t bufsize = (size_t)1 << 16;   /* a multiple of 8 (sum_bytes) */
   char *buf = rc == MPM_OK ? malloc(bufsize) : NULL;
   if (rc == MPM_OK && !buf)
     rc = mpm_err_set(err, MPM_ENOMEM, "no memory to read '%s'", path);

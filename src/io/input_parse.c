@@ -245,6 +245,7 @@ enum scan_state { SC_CODE, SC_DQ, SC_SQ, SC_LINE, SC_BLOCK };
 typedef struct scan {
   int state, line, from, depth;
   int bad_ref;                /* line of the first "${" that starts no reference, 0: none */
+  int nul_escape;             /* line of the first escape of a NUL byte, 0: none */
   int open_line[SCAN_DEPTH];  /* line of each open '{' */
 } scan;
 
@@ -274,6 +275,24 @@ static const char *env_ref_end(const char *p)
     for (q += 2; *q && *q != '}' && *q != '\n'; q++)
       ;
   return *q == '}' ? q : NULL;
+}
+
+/* 1 if the escape at p (a backslash in double quotes) makes a NUL byte:
+ * an octal or hexadecimal escape of zero (\0, \000, \x00), which
+ * libconfuse 3.3 decodes into the value, so that the value silently ends
+ * there ("a\0b" was read as "a"). Its escapes take up to 3 octal or 2 hex
+ * digits. */
+static int nul_escape(const char *p)
+{
+  int n = 0, v = 0;
+  if (p[1] == 'x')
+    for (p += 2; n < 2 && isxdigit((unsigned char)p[n]); n++)
+      v = 16 * v + (isdigit((unsigned char)p[n]) ? p[n] - '0'
+                                                  : tolower((unsigned char)p[n]) - 'a' + 10);
+  else
+    for (p += 1; n < 3 && p[n] >= '0' && p[n] <= '7'; n++)
+      v = 8 * v + p[n] - '0';
+  return n > 0 && v == 0;
 }
 
 /* A "${" that starts no reference, at line `line`. */
@@ -321,8 +340,9 @@ static void scan_code(in_ctx *c, scan *sc, const char *s, char **pp)
  * 3.3 lexer counts the newline of a comment twice, so every later line number
  * would be off, and it rejects a comment inside a list. Outside quotes, '#',
  * '//' and slash-star start a comment anywhere. The same scan catches what
- * libconfuse 3.3 accepts silently: a section left open, and a comment left
- * open that hides the rest of the file (and open quotes, with their line). */
+ * libconfuse 3.3 accepts silently: a section left open, a comment left open
+ * that hides the rest of the file (and open quotes, with their line), and an
+ * escape that would cut a value at a NUL byte. */
 static int blank_comments(in_ctx *c, char *s)
 {
   scan sc = {.state = SC_CODE, .line = 1};
@@ -330,8 +350,11 @@ static int blank_comments(in_ctx *c, char *s)
     if (sc.state == SC_CODE) {
       scan_code(c, &sc, s, &p);
     } else if (sc.state == SC_DQ || sc.state == SC_SQ) {
-      if (*p == '\\' && p[1])
+      if (*p == '\\' && p[1]) {
+        if (sc.state == SC_DQ && !sc.nul_escape && nul_escape(p))
+          sc.nul_escape = sc.line;
         p++;  /* an escaped character */
+      }
       else if (sc.state == SC_DQ && *p == '$' && p[1] == '{' && !env_ref_end(p) && !sc.bad_ref)
         sc.bad_ref = sc.line;
       else if (*p == (sc.state == SC_DQ ? '"' : '\''))
@@ -348,8 +371,14 @@ static int blank_comments(in_ctx *c, char *s)
     sc.line += *p == '\n';  /* a skipped first character is never a newline */
   }
   where w = {.at = {sc.from, 0}, .sec = -1, .key = -1, .item = -1};
-  if (sc.bad_ref)
+  if (sc.bad_ref && (!sc.nul_escape || sc.bad_ref <= sc.nul_escape))
     return bad_env_ref(c, sc.bad_ref);
+  if (sc.nul_escape) {
+    w.at.line = sc.nul_escape;
+    return mpm_io_in_fail_at(c, &w, "an escape of a NUL byte in quoted text, which would end "
+                             "the value there (allowed: text without NUL bytes; \\0 and "
+                             "\\x00 are such escapes)");
+  }
   if (sc.state == SC_BLOCK)
     return mpm_io_in_fail_at(c, &w, "comment '/*' is not closed (allowed: /* ... */)");
   if (sc.state == SC_DQ || sc.state == SC_SQ)

@@ -35,7 +35,8 @@ static int parse_long(const char *s, long *v)
 }
 
 /* 0: ok (possibly non-finite), 1: not a number, 2: a hexadecimal number
- * (strtod reads them, but an input is for people: decimal only). */
+ * (strtod reads them, but an input is for people: decimal only). A NaN
+ * with a payload, "nan(0x7ff)", is a NaN, not a hexadecimal number. */
 static int parse_double(const char *s, double *v)
 {
   char *end;
@@ -44,7 +45,8 @@ static int parse_double(const char *s, double *v)
   *v = strtod(s, &end);
   if (*end != '\0')
     return 1;
-  return strpbrk(s, "xX") ? 2 : 0;
+  const char *digits = s + (*s == '+' || *s == '-');
+  return digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X') ? 2 : 0;
 }
 
 static int same_word(const char *a, const char *b)

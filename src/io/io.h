@@ -151,6 +151,13 @@ void mpm_io_checkpoint_clear(mpm_io_checkpoint *ck);   /* frees what read alloca
 /* The time and step of DIR/checkpoint.h5, without reading its points. */
 int mpm_io_checkpoint_when(const char *dir, double *t, long *step, mpm_err *err);
 
+/* Write the user block of a checkpoint (its first 512 bytes: the format and
+ * the checksum of every later byte) over the start of the len bytes at
+ * file, as mpm_io_checkpoint_write does, whatever the later bytes hold: for
+ * tests that make a file whose checksum passes, so that its HDF5 and its
+ * values are what is checked. -1 when len is shorter than the block. */
+int mpm_io_checkpoint_seal(void *file, size_t len);
+
 /* Remove DIR/checkpoint.h5 (a finished run needs none); none there is fine. */
 int mpm_io_checkpoint_remove(const char *dir, mpm_err *err);
 

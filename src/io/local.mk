@@ -38,6 +38,10 @@ tests_test_input_LDADD = libmpm_material.la libmpm_shape.la libmpm_bc.la libmpm_
 EXTRA_DIST += tests/cli-input.sh tests/cli-extract.sh tests/cli-faults.sh tests/cli-cylinders.sh \
 	tests/inputs
 
+# The fuzz targets of the input reader and of resume (tests/fuzz/fuzz_*.c) and
+# their seed corpora: built with clang and run by scripts/fuzz, not by make.
+EXTRA_DIST += tests/fuzz
+
 # test_input_body: the body sections, built as test_input.
 check_PROGRAMS += tests/test_input_body
 TESTS += tests/test_input_body
