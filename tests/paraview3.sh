@@ -10,7 +10,10 @@ builddir=${GRANMPM_BUILDDIR:-$(cd "$(dirname "$0")/.." && pwd)}
 if [ -n "${DISPLAY:-}" ]; then
   run=
 elif command -v xvfb-run >/dev/null 2>&1; then
+  # one X server at a time: two xvfb-run -a started together can pick the
+  # same display, and one then loses it (tests run side by side)
   run="xvfb-run -a"
+  command -v flock >/dev/null 2>&1 && run="flock ${TMPDIR:-/tmp}/granmpm-xvfb.lock $run"
 else
   echo "SKIP: no display and no xvfb-run"; exit 77
 fi
