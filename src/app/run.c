@@ -141,19 +141,6 @@ static char *join_args(int argc, char **argv)
   return s;
 }
 
-/* The resolved input as text, for the output attributes and checkpoints. */
-static char *input_text(const mpm_config *cfg)
-{
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = open_memstream(&buf, &len);
-  if (!f)
-    return NULL;
-  mpm_io_input_write(f, cfg);
-  fclose(f);
-  return buf;
-}
-
 static int threads(void)
 {
 #ifdef _OPENMP
@@ -265,7 +252,7 @@ static int open_and_execute(int st, mpm_app_plan *p, run_ctx *ctx, int argc, cha
                             long reopen)
 {
   char *cmdline = st == 0 ? join_args(argc, argv) : NULL;
-  char *text = st == 0 ? input_text(&p->cfg) : NULL;  /* resolved, for run.h5 and checkpoints */
+  char *text = st == 0 ? mpm_io_input_text(&p->cfg) : NULL;  /* resolved, for run.h5 and checkpoints */
   mpm_err err = {0};
   if (st == 0 && (!cmdline || !text)) {
     fprintf(stderr, "granmpm: out of memory\n");

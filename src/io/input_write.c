@@ -2,8 +2,11 @@
  * input-file syntax, as stored with a run; reading it back gives the same
  * mpm_config. Numbers are written as in messages (the shortest text that reads
  * back exactly), names and paths quoted. */
+#define _POSIX_C_SOURCE 200809L   /* open_memstream */
+
 #include <ctype.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "io/input_internal.h"
@@ -130,4 +133,19 @@ int mpm_io_input_write(FILE *f, const mpm_config *cfg)
         write_item(f, cfg, t, i);
   }
   return ferror(f) ? MPM_EIO : MPM_OK;
+}
+
+char *mpm_io_input_text(const mpm_config *cfg)
+{
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  if (!f)
+    return NULL;
+  const int rc = mpm_io_input_write(f, cfg);
+  if (fclose(f) != 0 || rc != MPM_OK) {
+    free(buf);
+    return NULL;
+  }
+  return buf;
 }

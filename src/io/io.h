@@ -55,6 +55,9 @@ int mpm_io_input_fail(mpm_io_input *in, const mpm_config *cfg, const char *key, 
 /* Write cfg in input-file syntax; reading it back gives the same cfg. */
 int mpm_io_input_write(FILE *f, const mpm_config *cfg);
 
+/* The same as a new string (free it); NULL when out of memory. */
+char *mpm_io_input_text(const mpm_config *cfg);
+
 /* Run output: run.h5, run.xdmf and diagnostics.csv in one directory. */
 typedef struct mpm_io_output mpm_io_output;
 

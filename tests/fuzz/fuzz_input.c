@@ -66,19 +66,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
   return 0;
 }
 
-/* The resolved input of cfg as text (free it), NULL when out of memory. */
-static char *resolved(const mpm_config *cfg)
-{
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = open_memstream(&buf, &len);
-  if (!f)
-    return NULL;
-  mpm_io_input_write(f, cfg);
-  fclose(f);
-  return buf;
-}
-
 /* The text after the first line (which names the source). */
 static const char *body(const char *text)
 {
@@ -89,7 +76,7 @@ static const char *body(const char *text)
 /* The resolved input reads back to the same resolved input. */
 static void round_trip(const mpm_config *cfg)
 {
-  char *text = resolved(cfg), *again = NULL;
+  char *text = mpm_io_input_text(cfg), *again = NULL;
   if (!text)
     return;
   mpm_config *back = malloc(sizeof *back);
@@ -99,7 +86,7 @@ static void round_trip(const mpm_config *cfg)
     fprintf(stderr, "fuzz_input: the resolved input does not load: %s\n%s", err.msg, text);
     abort();
   }
-  if (back && (again = resolved(back)) && strcmp(body(text), body(again)) != 0) {
+  if (back && (again = mpm_io_input_text(back)) && strcmp(body(text), body(again)) != 0) {
     fprintf(stderr, "fuzz_input: the resolved input changes when read back:\n%s\n---\n%s", text,
             again);
     abort();
