@@ -67,10 +67,15 @@ for r in r2 r3; do
 done
 SH
 $run sh "$tmp/draw.sh"
-if [ -n "$run" ] && grep -qs "bad X server connection" "$tmp/r2.err" "$tmp/r3.err"; then
+for again in 1 2; do
+  [ -n "$run" ] && grep -qs "bad X server connection" "$tmp/r2.err" "$tmp/r3.err" || break
   echo "paraview-example: the X server went away; once more"
   sleep 2
   $run sh "$tmp/draw.sh"
+done
+if [ -n "$run" ] && grep -qs "bad X server connection" "$tmp/r2.err" "$tmp/r3.err"; then
+  echo "SKIP: pvpython found no usable X server three times (the display, not the script)"
+  exit 77
 fi
 
 for r in r2 r3; do

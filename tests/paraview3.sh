@@ -51,8 +51,16 @@ for name, make, key in (("XDMF", XDMFReader, "FileNames"),
         bad += not ok
 sys.exit(1 if bad else 0)
 PY
-$run pvpython "$tmp/check.py" "$tmp/run3/run.xdmf" >"$tmp/out" 2>"$tmp/err"
-st=$?
+for try in 1 2 3; do
+  $run pvpython "$tmp/check.py" "$tmp/run3/run.xdmf" >"$tmp/out" 2>"$tmp/err"
+  st=$?
+  [ -n "$run" ] && grep -qs "bad X server connection" "$tmp/err" || break
+  sleep 2
+done
+if [ -n "$run" ] && grep -qs "bad X server connection" "$tmp/err"; then
+  echo "SKIP: pvpython found no usable X server three times (the display, not the reader)"
+  exit 77
+fi
 grep -v '^$' "$tmp/out"
 if [ $st -ne 0 ]; then
   echo "FAIL: pvpython exit status $st"
