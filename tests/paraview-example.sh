@@ -10,26 +10,13 @@ set -u
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
 export OMP_NUM_THREADS=1
 command -v pvpython >/dev/null 2>&1 || { echo "SKIP: pvpython not installed"; exit 77; }
-if [ -n "${DISPLAY:-}" ]; then
-  run=
-elif command -v xvfb-run >/dev/null 2>&1; then
-  # one X server at a time: two xvfb-run -a started together can pick the
-  # same display, and one then loses it (tests run side by side)
-  run="xvfb-run -a"
-  command -v flock >/dev/null 2>&1 && run="flock ${TMPDIR:-/tmp}/granmpm-xvfb.lock $run"
-else
-  echo "SKIP: no display and no xvfb-run"; exit 77
-fi
+. "$srcdir/tests/display.sh"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/paraview-example.XXXXXX") || exit 99
 trap 'rm -rf "$tmp"' EXIT INT TERM
 fails=0
 fail() { echo "FAIL $1"; fails=$((fails + 1)); }
 
-"$GRANMPM" run "$srcdir/inputs/example.conf" --quiet --output "$tmp/r2" \
-  --set time.t_end=0.04 || { echo "FAIL: plane run"; exit 1; }
-"$GRANMPM" run "$srcdir/inputs/silo3d.conf" --quiet --output "$tmp/r3" --set time.t_end=0.2 \
-  --set mesh.nx=4 --set mesh.ny=6 --set mesh.nz=4 --set mesh.dx=0.04 --set mesh.dy=0.04 \
-  --set mesh.dz=0.04 || { echo "FAIL: 3D run"; exit 1; }
+. "$srcdir/tests/small-runs.sh"
 
 # The picture: its size, its colours, and the share of pixels not white
 # between the title and the colour bar, where only points are drawn.

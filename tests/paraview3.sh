@@ -7,16 +7,8 @@
 set -u
 command -v pvpython >/dev/null 2>&1 || { echo "SKIP: pvpython not installed"; exit 77; }
 builddir=${GRANMPM_BUILDDIR:-$(cd "$(dirname "$0")/.." && pwd)}
-if [ -n "${DISPLAY:-}" ]; then
-  run=
-elif command -v xvfb-run >/dev/null 2>&1; then
-  # one X server at a time: two xvfb-run -a started together can pick the
-  # same display, and one then loses it (tests run side by side)
-  run="xvfb-run -a"
-  command -v flock >/dev/null 2>&1 && run="flock ${TMPDIR:-/tmp}/granmpm-xvfb.lock $run"
-else
-  echo "SKIP: no display and no xvfb-run"; exit 77
-fi
+srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
+. "$srcdir/tests/display.sh"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/paraview3.XXXXXX") || exit 99
 trap 'rm -rf "$tmp"' EXIT INT TERM
 "$builddir/tests/test_output3" --write3 "$tmp/run3" || { echo "FAIL: writing the 3D run"; exit 1; }

@@ -26,11 +26,7 @@ trap 'rm -rf "$tmp"' EXIT INT TERM
 fails=0
 fail() { echo "FAIL $1"; fails=$((fails + 1)); }
 
-"$GRANMPM" run "$srcdir/inputs/example.conf" --quiet --output "$tmp/r2" \
-  --set time.t_end=0.04 || { echo "FAIL: plane run"; exit 1; }
-"$GRANMPM" run "$srcdir/inputs/silo3d.conf" --quiet --output "$tmp/r3" --set time.t_end=0.2 \
-  --set mesh.nx=4 --set mesh.ny=6 --set mesh.nz=4 --set mesh.dx=0.04 --set mesh.dy=0.04 \
-  --set mesh.dz=0.04 || { echo "FAIL: 3D run"; exit 1; }
+. "$srcdir/tests/small-runs.sh"
 
 # LABEL RUN FRAME EXTRACT-ARGS -- PLOT-ARGS: the plot of RUN and its summary
 check() {

@@ -22,7 +22,8 @@ EXTRA_DIST += tests/cli-calls.sh
 # small runs: their pictures and the values they print; skipped without
 # python3 with h5py and matplotlib, or without pvpython.
 TESTS += tests/python-example.sh tests/paraview-example.sh
-EXTRA_DIST += tests/python-example.sh tests/paraview-example.sh examples
+EXTRA_DIST += tests/python-example.sh tests/paraview-example.sh examples tests/display.sh \
+	tests/small-runs.sh
 
 # check's size estimate against the peak resident memory and the bytes
 # written of a plane run and a 3D run (tests/maxrss runs a command and
