@@ -929,6 +929,28 @@ static int extract_main(const char *dir, const char *frame)
   return rc;
 }
 
+/* A small valid state of n frames (frame_points(1), ids below next_id) with
+ * the series in series_t and series_m (n values each). */
+static mpm_run_state small_state(double *series_t, double *series_m, size_t n)
+{
+  mpm_run_state st = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000, .n_sub = 1,
+                      .mass0 = 3.5, .frames = (long)n, .frame_next = (long)n + 1,
+                      .check_next = 1, .nseries = n, .series_t = series_t,
+                      .series_m = series_m};
+  st.pts->next_id = 2147483647;
+  return st;
+}
+
+/* The bytes of file path into buf (at most cap); their count. */
+static size_t file_bytes(const char *path, unsigned char *buf, size_t cap)
+{
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  const size_t len = fread(buf, 1, cap, f);
+  fclose(f);
+  return len;
+}
+
 /* A checkpoint is checked when read: a value out of range written with a
  * right checksum is named (point, id, field, value, allowed range). */
 START_TEST(t_checkpoint_values_checked)
@@ -937,11 +959,7 @@ START_TEST(t_checkpoint_values_checked)
   mpm_err err = {0};
   make_tmpdir(dir);
   double series_t[2] = {0.0, 0.1}, series_m[2] = {3.5, 3.25};
-  const mpm_run_state good = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000,
-                              .n_sub = 1, .mass0 = 3.5, .frames = 2, .frame_next = 3,
-                              .check_next = 1, .nseries = 2, .series_t = series_t,
-                              .series_m = series_m};
-  good.pts->next_id = 2147483647;
+  const mpm_run_state good = small_state(series_t, series_m, 2);
   mpm_points *pts = mpm_points_alloc(0);
   ck_assert_ptr_nonnull(pts);
   const char *want[] = {
@@ -996,19 +1014,15 @@ START_TEST(t_checkpoint_flipped_bytes)
   mpm_err err = {0};
   make_tmpdir(dir);
   double series_t[2] = {0.0, 0.1}, series_m[2] = {3.5, 3.25};
-  mpm_run_state st = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000, .n_sub = 1,
-                      .mass0 = 3.5, .frames = 2, .frame_next = 3, .check_next = 1, .nseries = 2,
-                      .series_t = series_t, .series_m = series_m};
-  st.pts->next_id = 2147483647;
+  mpm_run_state st = small_state(series_t, series_m, 2);
   ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "mesh {\n  nx = 4\n}\n", "test", &err),
                    MPM_OK);
   snprintf(path, sizeof path, "%s/checkpoint.h5", dir);
-  FILE *f = fopen(path, "rb");
-  ck_assert_ptr_nonnull(f);
-  static unsigned char image[1 << 16];
-  const size_t len = fread(image, 1, sizeof image, f);
-  fclose(f);
-  ck_assert(len > 1000 && len < sizeof image);
+  unsigned char *image = malloc(1 << 16);
+  ck_assert_ptr_nonnull(image);
+  const size_t len = file_bytes(path, image, 1 << 16);
+  ck_assert(len > 1000 && len < 1 << 16);
+  FILE *f;
   int failed = 0, same = 0, checksum = 0;
   for (size_t off = 0; off < len; off += 7) {
     image[off] ^= 0x5a;
@@ -1035,6 +1049,7 @@ START_TEST(t_checkpoint_flipped_bytes)
   }
   ck_assert_msg(failed > 0 && checksum > 0, "%d damaged, %d by a checksum, %d unused", failed,
                 checksum, same);
+  free(image);
   mpm_points_free(st.pts);
   remove_tree(dir);
 }
@@ -1050,19 +1065,15 @@ START_TEST(t_checkpoint_seal)
   mpm_err err = {0};
   make_tmpdir(dir);
   double series_t[1] = {0.0}, series_m[1] = {3.5};
-  mpm_run_state st = {.pts = frame_points(1), .t = 0.1, .dt = 1e-5, .step = 10000, .n_sub = 1,
-                      .mass0 = 3.5, .frames = 1, .frame_next = 2, .check_next = 1, .nseries = 1,
-                      .series_t = series_t, .series_m = series_m};
+  mpm_run_state st = small_state(series_t, series_m, 1);
   ck_assert_int_eq(mpm_io_checkpoint_write(dir, &st, "mesh {\n  nx = 4\n}\n", "test", &err),
                    MPM_OK);
   snprintf(path, sizeof path, "%s/checkpoint.h5", dir);
-  FILE *f = fopen(path, "rb");
-  ck_assert_ptr_nonnull(f);
   unsigned char *image = malloc(1 << 16), *again = malloc(1 << 16);
   ck_assert(image && again);
-  const size_t len = fread(image, 1, 1 << 16, f);
-  fclose(f);
+  const size_t len = file_bytes(path, image, 1 << 16);
   ck_assert(len > 1000 && len < 1 << 16);
+  FILE *f;
   memcpy(again, image, len);
   memset(again, 'x', 512);
   ck_assert_int_eq(mpm_io_checkpoint_seal(again, len), 0);

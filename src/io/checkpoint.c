@@ -478,12 +478,11 @@ static int check_point(const mpm_points *P, size_t p, const char *path, mpm_err 
   for (size_t k = 0; k < NSTORED; k++) {
     if (!stored_in(&stored[k], P->dim, P->defgrad) || stored[k].isint)
       continue;
-    const double v = ((const double *)field_array(P, &stored[k]))[p];
-    const int positive = v > 0.0 || (P->mass != field_array(P, &stored[k]) &&
-                                     P->vol != field_array(P, &stored[k]));
-    if (!isfinite(v) || !positive) {
+    const double *a = field_array(P, &stored[k]), v = a[p];
+    const int positive = a == P->mass || a == P->vol;   /* the others: finite */
+    if (!isfinite(v) || (positive && !(v > 0.0))) {
       snprintf(what, sizeof what, "point %zu (id %d): field '%s' = %g (allowed: %s)", p, P->id[p],
-               stored[k].name, v, positive ? "finite" : "finite and > 0");
+               stored[k].name, v, positive ? "finite and > 0" : "finite");
       return damaged(err, path, what);
     }
   }
