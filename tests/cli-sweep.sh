@@ -101,7 +101,7 @@ out=$tmp/killed
 : >"$log"
 setsid sh -c "exec env GRANMPM='$tmp/granmpm' '$srcdir/scripts/sweep-hstop' --out '$out' \
   --input '$srcdir/inputs/ngf-chute-quick.conf' --angles 27 --ratios '2 2.5' \
-  --t-end 0.5 --t-min 0.01 --jobs 1 >'$tmp/killed.out' 2>&1" &
+  --t-end 0.2 --t-min 0.01 --jobs 1 >'$tmp/killed.out' 2>&1" &
 group=$!
 first=""
 while [ -z "$first" ] || [ ! -s "$out/runs/$first/diagnostics.csv" ]; do
@@ -125,7 +125,7 @@ group=""
 [ "$(wc -l <"$log")" -eq 1 ] || fail "killed sweep: runs started after the kill: $(cat "$log")"
 GRANMPM=$tmp/granmpm "$srcdir/scripts/sweep-hstop" --out "$out" \
   --input "$srcdir/inputs/ngf-chute-quick.conf" --angles 27 --ratios "2 2.5" \
-  --t-end 0.5 --t-min 0.01 --jobs 1 >"$tmp/sweep.out" 2>&1 ||
+  --t-end 0.2 --t-min 0.01 --jobs 1 >"$tmp/sweep.out" 2>&1 ||
   { fail "killed sweep: started again: exit $?"; cat "$tmp/sweep.out"; }
 grep -qx "resume $first" "$log" || fail "killed sweep: $first was not resumed"
 finished "$first" || fail "killed sweep: $first did not finish"
