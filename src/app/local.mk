@@ -33,6 +33,12 @@ tests_maxrss_SOURCES = tests/maxrss.c
 TESTS += tests/cli-size.sh
 EXTRA_DIST += tests/cli-size.sh
 
+# scripts/bench --callgrind gives no figure from a failed measurement (a
+# program that fails or does nothing under valgrind, or a build valgrind
+# cannot decode), and a plausible one on its tiny case.
+TESTS += tests/bench-callgrind.sh
+EXTRA_DIST += tests/bench-callgrind.sh
+
 # The manual page (docs/granmpm.1.in) names every command and option of the
 # usage (--help).
 TESTS += tests/man-help.sh
