@@ -81,6 +81,27 @@ static inline int in_open(const mpm_nonlocal_grid *g, const int c[3], size_t e, 
   return !g->open_mask || g->open_mask[e];
 }
 
+/* The index of the unit of unit c (index e) moved to cc along axis a. */
+static inline size_t unit_at(const mpm_nonlocal_grid *g, const int c[3], size_t e, int a, int cc)
+{
+  return cc > c[a] ? e + (size_t)(cc - c[a]) * g->stride[a]
+                   : e - (size_t)(c[a] - cc) * g->stride[a];
+}
+
+int mpm_nonlocal_grid_face_unit(const mpm_nonlocal_grid *g, const int c[3], size_t e, int face,
+                                size_t *nb)
+{
+  const int a = face >> 1;
+  int cc = c[a] + ((face & 1) ? 1 : -1);
+  if (cc < 0 || cc >= g->n[a]) {
+    if (g->ghost[face] != MPM_GHOST_PERIODIC)
+      return 0;
+    cc = cc < 0 ? g->n[a] - 1 : 0;                     /* periodic wrap */
+  }
+  *nb = unit_at(g, c, e, a, cc);
+  return 1;
+}
+
 /* The side rule (grid.h, mpm_nonlocal_grid_side) for dim axes. */
 static inline int side(const mpm_nonlocal_grid *g, int dim, const double *sm, const int c[3],
                        size_t e, int face, size_t *nb)
@@ -96,8 +117,7 @@ static inline int side(const mpm_nonlocal_grid *g, int dim, const double *sm, co
       return 1;                                        /* g_ghost = g_e: d_n g = 0 */
     cc = cc < 0 ? g->n[a] - 1 : 0;                     /* periodic wrap */
   }
-  const size_t f = cc > c[a] ? e + (size_t)(cc - c[a]) * g->stride[a]
-                             : e - (size_t)(c[a] - cc) * g->stride[a];
+  const size_t f = unit_at(g, c, e, a, cc);
   if (!(sm[f] > 0.0))
     return 1;                                          /* empty neighbour: Neumann */
   *nb = f;

@@ -86,6 +86,12 @@ static inline size_t mpm_nonlocal_grid_index(const mpm_nonlocal_grid *g, const i
   return (size_t)c[0] + g->stride[1] * (size_t)c[1] + g->stride[2] * (size_t)c[2];
 }
 
+/* The unit across face `face` of unit c (index e), filled or not, its
+ * index (periodic faces wrapped) to *nb: 1, or 0 across a face of the grid
+ * that is not periodic. */
+int mpm_nonlocal_grid_face_unit(const mpm_nonlocal_grid *g, const int c[3], size_t e, int face,
+                                size_t *nb);
+
 /* Across face `face` of unit c (index e): a filled neighbour (sm > 0),
  * whose index (periodic faces wrapped) goes to *nb and 0 is returned, or a
  * ghost g_ghost = k g_e, k = +1 (Neumann: empty neighbour, Neumann face,

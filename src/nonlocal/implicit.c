@@ -12,7 +12,17 @@
  *   neighbour -c w_f
  * (Neumann ghosts cancel, Dirichlet ghosts add 2 c w_f; a periodic axis of
  * two units gives one neighbour twice, -2 c w_f, summed by the corner). Then
- *   lap_e = (g*_e - g_e) / c   (= L_h g*_e). */
+ *   lap_e = (g*_e - g_e) / c   (= L_h g*_e).
+ *
+ * The system's rows are the covered units: every unit that has been filled
+ * at some solve (the cover only grows). A covered unit that is empty now is
+ * the identity row 1 g* = 0, and every pair of face-adjacent covered units
+ * keeps its entry (zero when either is empty), so the pattern, and with it
+ * the AMD ordering and the symbolic analysis, changes only when material
+ * reaches a unit for the first time; a filled set that moves inside the
+ * cover costs only a numeric factorisation. The filled rows are those of
+ * the filled set alone (an empty row is decoupled: its zero entries add
+ * nothing), so g* is the same up to the round-off of the ordering. */
 #include "nonlocal/implicit.h"
 
 #include <math.h>
@@ -22,8 +32,10 @@ struct mpm_nonlocal_implicit {
   mpm_linalg_spd *spd;
   int dim, n[3];         /* the grid's dimensions and units along each axis */
   size_t nu;             /* units n_0 n_1 n_2 */
-  int *row;              /* [nu] row of each unit in the system, -1 when empty */
-  int nf;                /* rows (filled units) */
+  int *row;              /* [nu] row of each unit in the system, -1 when not covered */
+  unsigned char *filled; /* [nu] the filled set of the factor */
+  int nr;                /* rows (covered units) */
+  int nf;                /* filled units */
   double c;              /* c of the factor */
   int factored;          /* the factor holds the current rows, c and ghost rules */
   unsigned stamp;        /* ghost_stamp of the workspace when factored */
@@ -39,6 +51,7 @@ void mpm_nonlocal_implicit_free(mpm_nonlocal_implicit *im)
     return;
   mpm_linalg_spd_free(im->spd);
   free(im->row);
+  free(im->filled);
   free(im->ti);
   free(im->tj);
   free(im->tv);
@@ -62,13 +75,14 @@ mpm_nonlocal_implicit *mpm_nonlocal_implicit_alloc_grid(const mpm_nonlocal_grid 
   im->nu = g->nu;
   const size_t nt = (size_t)(1 + 2 * g->dim) * im->nu;  /* diagonal + up to 2 dim neighbours */
   im->row = malloc(im->nu * sizeof *im->row);
+  im->filled = calloc(im->nu, 1);
   im->ti = malloc(nt * sizeof *im->ti);
   im->tj = malloc(nt * sizeof *im->tj);
   im->tv = malloc(nt * sizeof *im->tv);
   im->b = malloc(im->nu * sizeof *im->b);
   im->x = malloc(im->nu * sizeof *im->x);
   im->gs = calloc(im->nu, sizeof *im->gs);
-  if (!im->row || !im->ti || !im->tj || !im->tv || !im->b || !im->x || !im->gs) {
+  if (!im->row || !im->filled || !im->ti || !im->tj || !im->tv || !im->b || !im->x || !im->gs) {
     mpm_nonlocal_implicit_free(im);
     mpm_err_set(err, MPM_ENOMEM, "nonlocal: no memory for the implicit diffusion on %zu units",
                 g->nu);
@@ -99,26 +113,40 @@ mpm_linalg_stats mpm_nonlocal_implicit_stats(const mpm_nonlocal_implicit *im)
   return mpm_linalg_spd_stats(im->spd);
 }
 
-/* 1 if the filled units (sm > 0) are the rows of the factor. */
+/* 1 if the filled units (sm > 0) are the filled set of the factor. */
 static int same_set(const mpm_nonlocal_implicit *im, const double *sm)
 {
   for (size_t e = 0; e < im->nu; e++)
-    if ((sm[e] > 0.0) != (im->row[e] >= 0))
+    if ((sm[e] > 0.0) != im->filled[e])
       return 0;
   return 1;
 }
 
-/* Rows for the filled units, in unit order; their number. */
-static int number_rows(mpm_nonlocal_implicit *im, const double *sm)
+/* The filled set from sm, and rows for it: the cover grows by the filled
+ * units it lacks and is numbered again in unit order. Returns 1 when the
+ * cover grew (a new pattern). */
+static int take_set(mpm_nonlocal_implicit *im, const double *sm)
 {
-  int r = 0;
-  for (size_t e = 0; e < im->nu; e++)
-    im->row[e] = sm[e] > 0.0 ? r++ : -1;
-  return r;
+  int grew = 0;
+  im->nf = 0;
+  for (size_t e = 0; e < im->nu; e++) {
+    im->filled[e] = sm[e] > 0.0;
+    im->nf += im->filled[e];
+    grew |= im->filled[e] && im->row[e] < 0;
+  }
+  if (grew) {
+    int r = 0;
+    for (size_t e = 0; e < im->nu; e++)
+      im->row[e] = im->row[e] >= 0 || im->filled[e] ? r++ : -1;
+    im->nr = r;
+  }
+  return grew;
 }
 
-/* Triplets of the lower triangle of I - c L_h (the rows of
- * mpm_nonlocal_grid_row, units in index order); their number. */
+/* Triplets of the lower triangle of the covered rows, units in index order:
+ * a filled unit's row of I - c L_h (mpm_nonlocal_grid_row), an empty
+ * covered unit's identity row, and a zero for every face-adjacent covered
+ * pair the filled rows leave out (the fixed pattern). Their number. */
 static size_t assemble(mpm_nonlocal_implicit *im, const mpm_nonlocal_grid *g, const double *sm,
                        double c)
 {
@@ -134,13 +162,26 @@ static size_t assemble(mpm_nonlocal_implicit *im, const mpm_nonlocal_grid *g, co
         size_t nb[MPM_NONLOCAL_FACES];
         double val[MPM_NONLOCAL_FACES];
         int cnt = 0;
-        const double diag = mpm_nonlocal_grid_row(g, sm, u, e, c, nb, val, &cnt);
+        double diag = 1.0;
+        if (im->filled[e])
+          diag = mpm_nonlocal_grid_row(g, sm, u, e, c, nb, val, &cnt);
         for (int q = 0; q < cnt; q++) {
           const int rn = im->row[nb[q]];
           if (rn < r) {                                /* each pair once, from its lower row */
             im->ti[k] = r;
             im->tj[k] = rn;
             im->tv[k++] = val[q];
+          }
+        }
+        for (int f = 0; f < 2 * g->dim; f++) {         /* the pattern's zeros */
+          size_t q = 0;
+          if (mpm_nonlocal_grid_side(g, sm, u, e, f, &q) == 0 && im->filled[e])
+            continue;                                  /* a filled pair: its value above */
+          if (mpm_nonlocal_grid_face_unit(g, u, e, f, &q) && q != e && im->row[q] >= 0 &&
+              im->row[q] < r) {
+            im->ti[k] = r;
+            im->tj[k] = im->row[q];
+            im->tv[k++] = 0.0;
           }
         }
         im->ti[k] = r;
@@ -150,7 +191,8 @@ static size_t assemble(mpm_nonlocal_implicit *im, const mpm_nonlocal_grid *g, co
   return k;
 }
 
-/* Analysis (new set), factorisation (new set or c) as needed. */
+/* Analysis (a new pattern: the cover grew, or a periodic rule changed),
+ * factorisation (a new filled set, c or ghost rules) as needed. */
 static int prepare(mpm_nonlocal_implicit *im, const mpm_nonlocal_grid *g, const double *sm,
                    double c, mpm_err *err)
 {
@@ -159,10 +201,10 @@ static int prepare(mpm_nonlocal_implicit *im, const mpm_nonlocal_grid *g, const 
     return MPM_OK;
   im->factored = 0;
   if (new_set)
-    im->nf = number_rows(im, sm);
+    take_set(im, sm);
   size_t nt = assemble(im, g, sm, c);
-  int rc = mpm_linalg_spd_set(im->spd, im->nf, nt, im->ti, im->tj, im->tv, err);
-  if (rc == MPM_OK && new_set)
+  int rc = mpm_linalg_spd_set(im->spd, im->nr, nt, im->ti, im->tj, im->tv, err);
+  if (rc == MPM_OK && mpm_linalg_spd_pattern_changed(im->spd))
     rc = mpm_linalg_spd_analyse(im->spd, err);
   if (rc == MPM_OK)
     rc = mpm_linalg_spd_factor(im->spd, err);
@@ -204,16 +246,16 @@ int mpm_nonlocal_implicit_grid(mpm_nonlocal_implicit *im, const mpm_nonlocal_gri
   if (rc == MPM_OK) {
     for (size_t e = 0; e < im->nu; e++)
       if (im->row[e] >= 0)
-        im->b[im->row[e]] = ge[e];                     /* b = g_e */
+        im->b[im->row[e]] = im->filled[e] ? ge[e] : 0.0;  /* b = g_e; 0 on empty rows */
     rc = mpm_linalg_spd_solve(im->spd, im->b, im->x, err);
   }
   if (rc != MPM_OK)
     return mpm_err_prefix(err, rc, "nonlocal: implicit diffusion on %d filled units, c = %.6g m^2",
                           im->nf, c);
   for (size_t e = 0; e < im->nu; e++) {
-    const int r = im->row[e];
-    im->gs[e] = r >= 0 ? im->x[r] : 0.0;               /* g*_e */
-    lap[e] = r >= 0 ? (im->gs[e] - ge[e]) / c : 0.0;   /* (g* - g_e)/c = L_h g* */
+    const int in = im->filled[e];
+    im->gs[e] = in ? im->x[im->row[e]] : 0.0;          /* g*_e */
+    lap[e] = in ? (im->gs[e] - ge[e]) / c : 0.0;       /* (g* - g_e)/c = L_h g* */
   }
   return MPM_OK;
 }

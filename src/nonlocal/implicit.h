@@ -9,10 +9,12 @@
  * the points lap_e = (g*_e - g_e) / c, which equals L_h g*_e: the points and
  * the material update (g* = g_n + c lap) are unchanged, only lap_e is taken
  * at the new level. The matrix is symmetric positive definite (see
- * docs/model.md); it is factored with CHOLMOD through src/linalg and kept:
- * the symbolic analysis is redone only when the set of filled units
- * changes, the numeric factorisation only when that set or c changes,
- * otherwise only the solve runs. c = 0 gives the explicit lap_e.
+ * docs/model.md); it is factored with CHOLMOD through src/linalg and kept.
+ * Its rows are the units filled at any solve so far (empty ones as identity
+ * rows, implicit.c), so the symbolic analysis is redone only when material
+ * reaches a unit for the first time, the numeric factorisation when the
+ * filled set, c or the ghost rules change; otherwise only the solve runs.
+ * c = 0 gives the explicit lap_e.
  *
  * Usage per (sub)step, after mpm_nonlocal_average (instead of
  * mpm_nonlocal_laplacian):
