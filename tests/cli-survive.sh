@@ -16,8 +16,8 @@
 #    before, one after.
 #  - A layer with a free wheel turning on it and a plate pushed through it
 #    along a velocity table (tests/inputs/bodies.conf), stopped by SIGTERM:
-#    bodies.csv too is bitwise that of the uninterrupted run, and
-#    `extract --bodies` reads the same rows back from run.h5.
+#    bodies.csv and bodies.xdmf too are bitwise those of the uninterrupted
+#    run, and `extract --bodies` reads the same rows back from run.h5.
 #  - The NGF chute with the implicit diffusion and checkpoints every 12.5 ms
 #    of simulated time, on one thread, killed by SIGKILL (no chance to write
 #    anything) two frames after a checkpoint (frames every 5 ms): resumed
@@ -59,8 +59,12 @@ wait_rows() {
 same_run() {
   cmp -s "$1/diagnostics.csv" "$2/diagnostics.csv" || fail "$3: diagnostics.csv differs"
   cmp -s "$1/run.xdmf" "$2/run.xdmf" || fail "$3: run.xdmf differs"
+  if [ -e "$1/bodies.xdmf" ] || [ -e "$2/bodies.xdmf" ]; then
+    cmp -s "$1/bodies.xdmf" "$2/bodies.xdmf" || fail "$3: bodies.xdmf differs"
+  fi
   if [ -e "$1/bodies.csv" ] || [ -e "$2/bodies.csv" ]; then
     cmp -s "$1/bodies.csv" "$2/bodies.csv" || fail "$3: bodies.csv differs"
+    [ -e "$2/bodies.xdmf" ] || fail "$3: a run with bodies wrote no bodies.xdmf"
     "$GRANMPM" extract "$2" --bodies | cmp -s - "$2/bodies.csv" ||
       fail "$3: extract --bodies (run.h5) differs from bodies.csv"
   fi

@@ -149,6 +149,60 @@ START_TEST(finite_cylinder_in_3d)
 }
 END_TEST
 
+/* The outline's vertices lie on the surface (phi = 0 to round-off) for a
+ * turned disc, box and polygon in the plane and a turned box prism of finite
+ * length in 3D (its end rings on the rims of the caps), in order around the
+ * profile (consecutive vertices a side apart for the box), with the ring
+ * and cap counts of each case; a 3D body through the mesh ends on the
+ * mesh's faces, with open ends. */
+START_TEST(outline_on_the_surface)
+{
+  mpm_mesh m;
+  memset(&m, 0, sizeof m);
+  m.dim = 3;
+  m.o[2] = -1.0;
+  m.len[2] = 5.0;
+  double xyz[2 * 3 * MPM_BODY_OUTLINE_MAX];
+  for (int dim = 2; dim <= 3; dim++)
+    for (int shape = MPM_BODY_DISC; shape <= MPM_BODY_POLYGON; shape++) {
+      mpm_body_config c = base(shape);
+      c.radius = 0.3;
+      c.hx = 0.4;
+      c.hy = 0.1;
+      c.nvert = 3;
+      c.px[0] = -0.2; c.py[0] = 0.0;
+      c.px[1] = 0.3;  c.py[1] = -0.1;
+      c.px[2] = 0.1;  c.py[2] = 0.25;
+      c.angle = 30.0;
+      c.length = dim == 3 && shape != MPM_BODY_DISC ? 0.8 : 0.0;
+      mpm_body b;
+      mpm_body_init(&b, &c, dim);
+      int nr = 0, caps = -1;
+      const int nv = mpm_body_outline(&b, &m, xyz, &nr, &caps);
+      const int want = shape == MPM_BODY_DISC ? MPM_BODY_OUTLINE_DISC : shape == MPM_BODY_BOX ? 4 : 3;
+      ck_assert_int_eq(nv, want);
+      ck_assert_int_eq(nr, dim == 3 ? 2 : 1);
+      ck_assert_int_eq(caps, c.length > 0.0);
+      for (int k = 0; k < nr * nv; k++) {
+        const double *x = xyz + 3 * k;
+        NEAR(mpm_body_phi(&b, x, NULL), 0.0, 1e-14);
+        if (dim == 2)
+          ck_assert(x[2] == 0.0);
+      }
+      if (shape == MPM_BODY_BOX)                /* sides 2 hx, 2 hy, 2 hx, 2 hy */
+        for (int i = 0; i < 4; i++) {
+          const double *p = xyz + 3 * i, *q = xyz + 3 * ((i + 1) % 4);
+          NEAR(hypot(q[0] - p[0], q[1] - p[1]), i % 2 ? 0.2 : 0.8, 1e-14);
+        }
+      if (dim == 3) {                           /* the ends along z */
+        const double lo = c.length > 0.0 ? 3.0 - 0.4 : -1.0, hi = c.length > 0.0 ? 3.4 : 4.0;
+        NEAR(xyz[2], lo, 1e-15);
+        NEAR(xyz[3 * nv + 2], hi, 1e-15);
+      }
+    }
+}
+END_TEST
+
 START_TEST(contact_rule)
 {
   mpm_body_config c = base(MPM_BODY_DISC);
@@ -303,6 +357,7 @@ int main(void)
   tcase_add_test(tc, disc_distance_and_normal);
   tcase_add_test(tc, turned_box_and_polygon);
   tcase_add_test(tc, finite_cylinder_in_3d);
+  tcase_add_test(tc, outline_on_the_surface);
   tcase_add_test(tc, contact_rule);
   tcase_add_test(tc, tables_and_rotation);
   tcase_add_test(tc, free_motion);

@@ -501,6 +501,88 @@ static void check_attr_string(hid_t obj, const char *name, const char *want)
   free(s);
 }
 
+/* n ints of dataset `name` of run.h5 in dir into v (at most cap). */
+static size_t read_h5_ints(const char *dir, const char *name, int *v, size_t cap)
+{
+  char path[DIR_MAX + 32];
+  snprintf(path, sizeof path, "%s/run.h5", dir);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+  ck_assert_msg(d >= 0, "no %s", name);
+  hid_t sp = H5Dget_space(d);
+  const hssize_t n = H5Sget_simple_extent_npoints(sp);
+  ck_assert(n > 0 && (size_t)n <= cap);
+  ck_assert(H5Dread(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0);
+  H5Sclose(sp);
+  H5Dclose(d);
+  H5Fclose(f);
+  return (size_t)n;
+}
+
+/* Bodies' outlines in bodies.xdmf: frame 0 with a plane square and
+ * triangle (one ring each), frame 1 without outlines. run.xdmf is as
+ * without bodies; bodies.xdmf has one grid, frame 0's, whose Mixed topology
+ * is the two closed polylines (XDMF code 2, vertex count, the ring and its
+ * first vertex again), with XYZ vertices as given and the cell field
+ * `body`. A new run in the directory removes bodies.xdmf and bodies.csv
+ * until it writes its own. */
+START_TEST(t_xdmf_bodies)
+{
+  char dir[DIR_MAX];
+  mpm_err err = {0};
+  make_tmpdir(dir);
+  mpm_io_output *out = open_run(dir, "[mesh]\nnx = 4\n");
+  const double sq[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, tri[] = {2, 0, 0, 3, 0, 0, 2, 1, 0};
+  const mpm_io_outline ol[2] = {{.nv = 4, .nr = 1, .caps = 0, .xyz = sq},
+                                {.nv = 3, .nr = 1, .caps = 0, .xyz = tri}};
+  const char *names[2] = {"sq", "tri"};
+  mpm_body_state b[2];
+  memset(b, 0, sizeof b);
+  ck_assert_msg(mpm_io_output_bodies(out, frame_time(0), 2, names, b, ol, &err) == MPM_OK, "%s",
+                err.msg);
+  write_frame(out, 0);
+  ck_assert_msg(mpm_io_output_bodies(out, frame_time(1), 2, names, b, NULL, &err) == MPM_OK, "%s",
+                err.msg);
+  write_frame(out, 1);
+  ck_assert_msg(mpm_io_output_close(out, &err) == MPM_OK, "%s", err.msg);
+  char *x = read_file(dir, "run.xdmf");
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"frame_"), 2);
+  ck_assert(strstr(x, "bodies") == NULL);
+  free(x);
+  x = read_file(dir, "bodies.xdmf");
+  ck_assert_int_eq(count_substr(x, "CollectionType=\"Temporal\""), 1);
+  ck_assert_int_eq(count_substr(x, "<Grid Name=\"bodies_"), 1);
+  ck_assert(strstr(x, "<Grid Name=\"bodies_000000\" GridType=\"Uniform\">") != NULL);
+  ck_assert(strstr(x, "<Topology TopologyType=\"Mixed\" NumberOfElements=\"2\">") != NULL);
+  ck_assert(strstr(x, "Dimensions=\"13\" NumberType=\"Int\" Precision=\"4\" "
+                      "Format=\"HDF\">run.h5:/xdmf/bodies_cells_000000<") != NULL);
+  ck_assert(strstr(x, "Dimensions=\"7 3\" NumberType=\"Float\" Precision=\"8\" "
+                      "Format=\"HDF\">run.h5:/xdmf/bodies_xyz_000000<") != NULL);
+  ck_assert(strstr(x, "<Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Cell\">")
+            != NULL);
+  ck_assert(strstr(x, "bodies_cells_000001") == NULL);
+  ck_assert_str_eq(x + strlen(x) - strlen("</Xdmf>\n"), "</Xdmf>\n");
+  free(x);
+  int v[32];
+  const int cells[] = {2, 5, 0, 1, 2, 3, 0, 2, 4, 4, 5, 6, 4};
+  ck_assert_uint_eq(read_h5_ints(dir, "xdmf/bodies_cells_000000", v, 32), 13);
+  ck_assert(memcmp(v, cells, sizeof cells) == 0);
+  ck_assert_uint_eq(read_h5_ints(dir, "xdmf/bodies_id_000000", v, 32), 2);
+  ck_assert(v[0] == 0 && v[1] == 1);
+  /* a new run without bodies in the same directory */
+  char path[DIR_MAX + 32];
+  out = open_run(dir, "[mesh]\nnx = 4\n");
+  write_frame(out, 0);
+  ck_assert_msg(mpm_io_output_close(out, &err) == MPM_OK, "%s", err.msg);
+  const char *gone[] = {"bodies.xdmf", "bodies.csv"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, gone[k]);
+    ck_assert_msg(access(path, F_OK) != 0, "%s left from the earlier run", gone[k]);
+  }
+  remove_tree(dir);
+}
+END_TEST
+
 /* /xdmf/xy_NNNNNN reads as the frame's (x, y) pairs. */
 static void check_xy_view(hid_t file, int f)
 {
@@ -1239,6 +1321,7 @@ int main(int argc, char **argv)
   tcase_add_test(tc, t_extract_frame_range);
   tcase_add_test(tc, t_extract_missing_run);
   tcase_add_test(tc, t_xdmf);
+  tcase_add_test(tc, t_xdmf_bodies);
   tcase_add_test(tc, t_diagnostics_csv);
   tcase_add_test(tc, t_h5_layout);
   tcase_add_test(tc, t_live_extract);

@@ -6,6 +6,8 @@
 Opens RUNDIR/run.xdmf (docs/output.md), goes to its last time, shows the
 points coloured by the point array p with a colour bar and the time, and
 saves a PNG: a plane run seen along z, a 3D run from an oblique angle.
+A run with rigid bodies shows them too, from RUNDIR/bodies.xdmf: their
+outlines in the plane, their surfaces half transparent in 3D.
 Prints one line: the time, the number of points and their pressure range.
 """
 import os
@@ -39,6 +41,13 @@ bar.ComponentTitle = ""
 bar.TitleColor = bar.LabelColor = [0, 0, 0]
 points.SetScalarBarVisibility(view, True)
 
+if os.path.exists(run + "/bodies.xdmf"):
+    bodies = Show(Xdmf3ReaderS(FileName=[run + "/bodies.xdmf"]), view)
+    bodies.SetRepresentationType("Surface")
+    ColorBy(bodies, None)
+    bodies.AmbientColor = bodies.DiffuseColor = [0.15, 0.15, 0.15]
+    bodies.LineWidth = 3
+
 label = Text(Text="%s: t = %.4g s" % (os.path.basename(os.path.abspath(run)), t))
 shown = Show(label, view)
 shown.Color = [0, 0, 0]
@@ -55,12 +64,16 @@ if z1 > z0:      # 3D: from the front, right and above, the whole cloud in view
     view.CameraPosition = [cx + 0.6, cy + 0.5, cz + 1.0]
     view.ResetCamera()
     points.PointSize = 6
+    if os.path.exists(run + "/bodies.xdmf"):
+        bodies.Opacity = 0.4          # the material behind a body stays in view
 else:            # plane: along z, the points on 75 % of the width, left of the colour bar
     scale = max(0.6 * (y1 - y0), (x1 - x0) / 0.75 / 2 * 700 / 1200)
     cx += 0.06 * 2 * scale * 1200 / 700
     view.CameraFocalPoint = [cx, cy, 0]
     view.CameraPosition = [cx, cy, 1]
     view.CameraParallelScale = scale
+    if os.path.exists(run + "/bodies.xdmf"):
+        bodies.Position = [0, 0, 1e-3 * scale]   # drawn over the points at a wall
 Render(view)
 SaveScreenshot(png, view, ImageResolution=[1200, 700])
 

@@ -25,6 +25,11 @@ TESTS += tests/python-example.sh tests/paraview-example.sh
 EXTRA_DIST += tests/python-example.sh tests/paraview-example.sh examples tests/display.sh \
 	tests/small-runs.sh
 
+# The bodies' outlines of run.xdmf as ParaView's three XDMF readers see
+# them, plane and 3D (skipped without pvpython).
+TESTS += tests/paraview-bodies.sh
+EXTRA_DIST += tests/paraview-bodies.sh
+
 # check's size estimate against the peak resident memory and the bytes
 # written of a plane run and a 3D run (tests/maxrss runs a command and
 # reports its peak).

@@ -79,10 +79,16 @@ static int on_frame(void *vctx, const mpm_sim *s, mpm_err *err)
   if (s->nbody > 0) {
     mpm_body_state b[MPM_MAX_BODIES];
     const char *names[MPM_MAX_BODIES];
+    mpm_io_outline ol[MPM_MAX_BODIES];
+    double xyz_all[MPM_MAX_BODIES][2 * 3 * MPM_BODY_OUTLINE_MAX];  /* 24 kB */
     mpm_sim_bodies_state(s, b);
-    for (int k = 0; k < s->nbody; k++)
+    for (int k = 0; k < s->nbody; k++) {
       names[k] = s->cfg.body[k].name;
-    const int rc = mpm_io_output_bodies(c->out, s->t, s->nbody, names, b, err);
+      double *xyz = xyz_all[k];
+      ol[k].xyz = xyz;
+      ol[k].nv = mpm_body_outline(&s->body[k], &s->mesh, xyz, &ol[k].nr, &ol[k].caps);
+    }
+    const int rc = mpm_io_output_bodies(c->out, s->t, s->nbody, names, b, ol, err);
     if (rc != MPM_OK)
       return rc;
   }

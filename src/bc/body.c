@@ -288,3 +288,48 @@ int mpm_body_in_mesh(const mpm_body *b, const mpm_mesh *m)
       return 0;
   return 1;
 }
+
+/* ---- outline ----------------------------------------------------------- */
+
+int mpm_body_outline(const mpm_body *b, const mpm_mesh *m, double *xyz, int *nr, int *caps)
+{
+  const mpm_body_config *cfg = b->cfg;
+  double u[MPM_BODY_OUTLINE_MAX], w[MPM_BODY_OUTLINE_MAX];
+  int nv = 0;
+  switch (cfg->shape) {
+  case MPM_BODY_DISC:
+    for (; nv < MPM_BODY_OUTLINE_DISC; nv++) {
+      const double a = (2.0 * 3.14159265358979323846 / MPM_BODY_OUTLINE_DISC) * nv;
+      u[nv] = cfg->radius * cos(a);
+      w[nv] = cfg->radius * sin(a);
+    }
+    break;
+  case MPM_BODY_BOX:
+    for (; nv < 4; nv++) {                   /* (-,-), (+,-), (+,+), (-,+) */
+      u[nv] = (nv == 1 || nv == 2) ? cfg->hx : -cfg->hx;
+      w[nv] = nv >= 2 ? cfg->hy : -cfg->hy;
+    }
+    break;
+  default:
+    for (; nv < cfg->nvert; nv++) {
+      u[nv] = cfg->px[nv];
+      w[nv] = cfg->py[nv];
+    }
+  }
+  double s[2] = {0.0, 0.0};                  /* the ends along the axis */
+  *nr = b->dim == 3 ? 2 : 1;
+  *caps = b->dim == 3 && cfg->length > 0.0;
+  if (b->dim == 3) {
+    const int a = b->e[2];
+    s[0] = *caps ? b->s.c[a] - 0.5 * cfg->length : m->o[a];
+    s[1] = *caps ? b->s.c[a] + 0.5 * cfg->length : m->o[a] + m->len[a];
+  }
+  for (int r = 0; r < *nr; r++)
+    for (int i = 0; i < nv; i++) {
+      double *x = xyz + 3 * (r * nv + i);
+      x[b->e[0]] = b->s.c[b->e[0]] + b->ct * u[i] - b->sn * w[i];  /* R(theta) (u, w) */
+      x[b->e[1]] = b->s.c[b->e[1]] + b->sn * u[i] + b->ct * w[i];
+      x[b->e[2]] = s[r];
+    }
+  return nv;
+}

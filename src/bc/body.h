@@ -112,6 +112,20 @@ double mpm_body_axial_torque(const mpm_body *b);
  * wider; the whole mesh for a body whose material is inside. */
 void mpm_body_node_box(const mpm_body *b, const mpm_mesh *m, int lo[3], int hi[3]);
 
+/* The body's outline, for pictures (run.xdmf): the profile turned and
+ * placed at the centre, as nr rings of nv vertices each, vertex i of ring r
+ * at xyz[3 (r nv + i)] (z = 0 in the plane): a disc as an
+ * MPM_BODY_OUTLINE_DISC-gon, a box's four corners, a polygon's vertices, in
+ * order around the profile. The plane has one ring; 3D two, the profile at
+ * both ends of the prism along its axis (+-length/2 about the centre, or the
+ * mesh's faces for a body through the mesh). Returns nv; *nr the rings and
+ * *caps 1 when the prism's ends are faces of the body (a finite length),
+ * 0 when they are open. xyz holds 2 * 3 * MPM_BODY_OUTLINE_MAX values. */
+#define MPM_BODY_OUTLINE_DISC 64
+#define MPM_BODY_OUTLINE_MAX (MPM_MAX_POLY > MPM_BODY_OUTLINE_DISC ? MPM_MAX_POLY \
+                                                                : MPM_BODY_OUTLINE_DISC)
+int mpm_body_outline(const mpm_body *b, const mpm_mesh *m, double *xyz, int *nr, int *caps);
+
 /* 1 if the centre is inside the mesh (on a periodic axis: always). */
 int mpm_body_in_mesh(const mpm_body *b, const mpm_mesh *m);
 

@@ -2,8 +2,10 @@
  * mpm_io_output_bodies): per frame one row per body in DIR/bodies.csv and a
  * dataset /bodies/NNNNNN of run.h5 (one line of BODY_COLUMNS values per
  * body, in the input's order; the group's attributes name the bodies and
- * the columns). A resumed run cuts bodies.csv after the rows of its first
- * nframes frames and drops the later datasets (mpm_io_out_bodies_reopen). */
+ * the columns), and with outlines their shapes for run.xdmf in /xdmf. A
+ * resumed run cuts bodies.csv after the rows of its first nframes frames and
+ * drops the later datasets (mpm_io_out_bodies_reopen; the outlines go with
+ * the frames' other /xdmf datasets). */
 #define _POSIX_C_SOURCE 200809L  /* fileno, ftruncate */
 
 #include <stdlib.h>
@@ -46,11 +48,126 @@ static hid_t bodies_group(mpm_io_output *out, int n, const char *const *names)
   return g;
 }
 
+/* XDMF's cell codes in a Mixed topology: a polyline and a polygon are
+ * followed by their number of vertices, a quadrilateral is not. */
+enum { XDMF_POLYLINE = 2, XDMF_POLYGON = 3, XDMF_QUAD = 5 };
+
+/* The outlines ol[n] of the frame being written to /xdmf: their vertices
+ * (nv x 3), cells (a Mixed topology: a closed polyline per plane profile;
+ * nv side quadrilaterals per prism and its two ends as polygons when
+ * closed) and each cell's body; the counts to out->outline_*. */
+static herr_t write_outlines(mpm_io_output *out, int n, const mpm_io_outline *ol)
+{
+  size_t nv = 0, ncell = 0, len = 0;
+  for (int k = 0; k < n; k++) {
+    const size_t v = (size_t)ol[k].nv;
+    nv += v * (size_t)ol[k].nr;
+    if (ol[k].nr == 1) {
+      ncell += 1;
+      len += v + 3;
+    } else {
+      ncell += v + 2 * (size_t)ol[k].caps;
+      len += 5 * v + 2 * (size_t)ol[k].caps * (v + 2);
+    }
+  }
+  double *xyz = malloc((nv ? nv : 1) * 3 * sizeof *xyz);
+  int *cell = malloc((len ? len : 1) * sizeof *cell), *id = malloc((ncell ? ncell : 1) * sizeof *id);
+  herr_t rc = xyz && cell && id ? 0 : -1;
+  size_t pv = 0, pc = 0, pi = 0;
+  for (int k = 0; k < n && rc >= 0; k++) {
+    const int v = ol[k].nv, base = (int)pv;
+    memcpy(xyz + 3 * pv, ol[k].xyz, (size_t)(3 * v * ol[k].nr) * sizeof *xyz);
+    pv += (size_t)(v * ol[k].nr);
+    if (ol[k].nr == 1) {
+      cell[pc++] = XDMF_POLYLINE;
+      cell[pc++] = v + 1;
+      for (int i = 0; i <= v; i++)
+        cell[pc++] = base + i % v;             /* closed: back to the first */
+      id[pi++] = k;
+      continue;
+    }
+    for (int i = 0; i < v; i++) {              /* the sides between the two rings */
+      const int j = (i + 1) % v;
+      cell[pc++] = XDMF_QUAD;
+      cell[pc++] = base + i;
+      cell[pc++] = base + j;
+      cell[pc++] = base + v + j;
+      cell[pc++] = base + v + i;
+      id[pi++] = k;
+    }
+    for (int r = 0; r < 2 * ol[k].caps; r++) {  /* the closed ends */
+      cell[pc++] = XDMF_POLYGON;
+      cell[pc++] = v;
+      for (int i = 0; i < v; i++)
+        cell[pc++] = base + r * v + i;
+      id[pi++] = k;
+    }
+  }
+  char name[40];
+  const hsize_t dims[2] = {(hsize_t)nv, 3};
+  snprintf(name, sizeof name, "bodies_xyz_%06d", out->nframes);
+  hid_t d = rc >= 0 ? mpm_io_h5_create_checked(out->xdmf_group, name, H5T_IEEE_F64LE, 2, dims)
+                    : H5I_INVALID_HID;
+  if (d < 0 || H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, xyz) < 0)
+    rc = -1;
+  mpm_io_h5_close(d);
+  snprintf(name, sizeof name, "bodies_cells_%06d", out->nframes);
+  if (rc >= 0)
+    rc = mpm_io_h5_write_array(out->xdmf_group, name, H5T_STD_I32LE, H5T_NATIVE_INT, len, cell,
+                               NULL, "the bodies' outlines: XDMF Mixed topology");
+  snprintf(name, sizeof name, "bodies_id_%06d", out->nframes);
+  if (rc >= 0)
+    rc = mpm_io_h5_write_array(out->xdmf_group, name, H5T_STD_I32LE, H5T_NATIVE_INT, ncell, id,
+                               NULL, "the body of each outline cell (input order from 0)");
+  free(xyz);
+  free(cell);
+  free(id);
+  if (rc >= 0) {
+    out->outline_frame = out->nframes;
+    out->outline_nv = nv;
+    out->outline_ncell = ncell;
+    out->outline_len = len;
+  }
+  return rc;
+}
+
+int mpm_io_out_outline_counts(mpm_io_output *out, long frame)
+{
+  char name[40];
+  snprintf(name, sizeof name, "bodies_cells_%06ld", frame);
+  if (H5Lexists(out->xdmf_group, name, H5P_DEFAULT) <= 0)
+    return 0;
+  const char *what[3] = {"bodies_xyz_%06ld", "bodies_cells_%06ld", "bodies_id_%06ld"};
+  hsize_t len[3] = {0, 0, 0};
+  for (int k = 0; k < 3; k++) {
+    snprintf(name, sizeof name, what[k], frame);
+    hid_t d = H5Dopen2(out->xdmf_group, name, H5P_DEFAULT);
+    hid_t sp = d >= 0 ? H5Dget_space(d) : H5I_INVALID_HID;
+    hsize_t dims[2] = {0, 0};
+    const int nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+    if (nd == (k == 0 ? 2 : 1) && H5Sget_simple_extent_dims(sp, dims, NULL) == nd &&
+        (k > 0 || dims[1] == 3))
+      len[k] = dims[0];
+    mpm_io_h5_close(sp);
+    mpm_io_h5_close(d);
+    if (len[k] == 0)
+      return -1;
+  }
+  out->outline_frame = (int)frame;
+  out->outline_nv = (size_t)len[0];
+  out->outline_len = (size_t)len[1];
+  out->outline_ncell = (size_t)len[2];
+  return 1;
+}
+
 int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const *names,
-                         const mpm_body_state *b, mpm_err *err)
+                         const mpm_body_state *b, const mpm_io_outline *ol, mpm_err *err)
 {
   if (!out || n < 0 || n > MPM_MAX_BODIES || (n > 0 && (!names || !b)))
     return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_bodies: invalid arguments");
+  for (int k = 0; ol && k < n; k++)
+    if (ol[k].nv < 1 || (ol[k].nr != 1 && ol[k].nr != 2) || !ol[k].xyz)
+      return mpm_err_set(err, MPM_EINVAL, "mpm_io_output_bodies: invalid outline of body %d", k);
   if (n == 0)
     return MPM_OK;
   if (!out->bcsv) {                          /* the first frame of a new run */
@@ -78,7 +195,8 @@ int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const 
   hid_t d = g >= 0 ? mpm_io_h5_create_checked(g, name, H5T_IEEE_F64LE, 2, dims)
                    : H5I_INVALID_HID;
   int rc = d >= 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0 &&
-                   mpm_io_h5_attr_double(d, "time", t) >= 0
+                   mpm_io_h5_attr_double(d, "time", t) >= 0 &&
+                   (!ol || write_outlines(out, n, ol) >= 0)
                ? MPM_OK
                : mpm_io_h5_fail(err, &q, "cannot write the bodies of a frame to", out->h5_path);
   mpm_io_h5_close(d);

@@ -113,15 +113,28 @@ int mpm_io_output_occupied(const char *dir, const char **what);
  * dimension is the run's (MPM_EINVAL otherwise). */
 int mpm_io_output_frame(mpm_io_output *out, const mpm_points *pts, const mpm_diag *d, mpm_err *err);
 
+/* A body's outline for run.xdmf (bc/body.h, mpm_body_outline): nr rings
+ * (1: the plane's profile; 2: the ends of a 3D prism) of nv vertices, vertex
+ * i of ring r at xyz[3 (r nv + i)]; caps 1 when the rings bound closed end
+ * faces. */
+typedef struct mpm_io_outline {
+  int nv, nr, caps;
+  const double *xyz;
+} mpm_io_outline;
+
 /* The n rigid bodies of the frame about to be written (call before
  * mpm_io_output_frame; nothing for n = 0): a row per body in bodies.csv
  * (frame, t, body, x, y, z, angle, vx, vy, vz, omega, fx, fy, fz, tx, ty,
  * tz, pushed; created with its header on the first call) and the dataset
  * /bodies/NNNNNN of run.h5 (n x 15 values, the columns after `body`;
  * /bodies names the bodies and columns in attributes). names[k] is body k's
- * title. */
+ * title. With outlines ol[n] (may be NULL) the frame's grid in run.xdmf
+ * gets a second part, "bodies": each body's profile as a closed polyline in
+ * the plane, its prism's sides (and closed ends) as faces in 3D, with the
+ * cell field `body` (k); their data go to /xdmf/bodies_xyz_NNNNNN,
+ * bodies_cells_NNNNNN and bodies_id_NNNNNN. */
 int mpm_io_output_bodies(mpm_io_output *out, double t, int n, const char *const *names,
-                         const mpm_body_state *b, mpm_err *err);
+                         const mpm_body_state *b, const mpm_io_outline *ol, mpm_err *err);
 
 /* The bodies of a run (run.h5's /bodies) as bodies.csv has them: every
  * frame (MPM_IO_ALL_FRAMES), the last (-1) or one; MPM_EINPUT for a run

@@ -175,7 +175,10 @@ static void output_free(mpm_io_output *out)
     fclose(out->xdmf);
   if (out->bcsv)
     fclose(out->bcsv);
+  if (out->bxdmf)
+    fclose(out->bxdmf);
   free(out->bcsv_path);
+  free(out->bxdmf_path);
   free(out->h5_path);
   free(out->csv_path);
   free(out->xdmf_path);
@@ -190,6 +193,7 @@ static mpm_io_output *output_alloc(const char *dir)
     return NULL;
   out->file = out->frames = out->xdmf_group = H5I_INVALID_HID;
   out->vertex_frame = -1;
+  out->outline_frame = -1;
   out->dim = 2;
   out->fields = output_fields;
   out->nfields = NFIELDS;
@@ -198,8 +202,9 @@ static mpm_io_output *output_alloc(const char *dir)
   out->xdmf_path = mpm_io_path_join(dir, "run.xdmf");
   out->reserve_path = mpm_io_path_join(dir, ".granmpm-reserve");
   out->bcsv_path = mpm_io_path_join(dir, "bodies.csv");
+  out->bxdmf_path = mpm_io_path_join(dir, "bodies.xdmf");
   if (!out->h5_path || !out->csv_path || !out->xdmf_path || !out->reserve_path ||
-      !out->bcsv_path) {
+      !out->bcsv_path || !out->bxdmf_path) {
     output_free(out);
     return NULL;
   }
@@ -364,6 +369,8 @@ static int output_open(mpm_io_output **pout, const char *dir, const mpm_io_origi
   if (!out)
     return mpm_err_set(err, MPM_ENOMEM, "out of memory opening output in '%s'", dir);
   rc = mpm_io_out_open_text(&out->csv, out->csv_path, mpm_diag_csv_header(dim), err);
+  if (rc == MPM_OK && unlink(out->bcsv_path) != 0 && errno != ENOENT)  /* an earlier run's */
+    rc = mpm_err_set(err, MPM_EIO, "cannot remove '%s': %s", out->bcsv_path, strerror(errno));
   if (rc == MPM_OK)
     rc = mpm_io_out_xdmf_open(out, err);
   if (rc == MPM_OK) {
@@ -485,8 +492,9 @@ static herr_t drop_frames(mpm_io_output *out, long first)
       return 0;
     if (H5Ldelete(out->frames, name, H5P_DEFAULT) < 0)
       return -1;
-    const char *views[] = {"xy_%06ld", "xyz_%06ld", "vertex_%06ld"};
-    for (int v = 0; v < 3; v++) {
+    const char *views[] = {"xy_%06ld", "xyz_%06ld", "vertex_%06ld", "bodies_xyz_%06ld",
+                           "bodies_cells_%06ld", "bodies_id_%06ld"};
+    for (int v = 0; v < (int)(sizeof views / sizeof views[0]); v++) {
       snprintf(name, sizeof name, views[v], k);
       if (H5Lexists(out->xdmf_group, name, H5P_DEFAULT) > 0 &&
           H5Ldelete(out->xdmf_group, name, H5P_DEFAULT) < 0)
@@ -755,6 +763,7 @@ int mpm_io_output_close(mpm_io_output *out, mpm_err *err)
   rc = close_text(&out->csv, out->csv_path, rc, err);
   rc = close_text(&out->xdmf, out->xdmf_path, rc, err);
   rc = close_text(&out->bcsv, out->bcsv_path, rc, err);
+  rc = close_text(&out->bxdmf, out->bxdmf_path, rc, err);
   output_free(out);
   return rc;
 }

@@ -42,10 +42,16 @@ struct mpm_io_output {
   char *bcsv_path;  /* bodies.csv ... */
   FILE *bcsv;       /* ... open once a frame had bodies (bodies_out.c) */
   long xdmf_tail_pos; /* offset of the closing tags in run.xdmf */
+  char *bxdmf_path;   /* bodies.xdmf ... */
+  FILE *bxdmf;        /* ... open once a frame had body outlines (xdmf.c) */
+  long bxdmf_tail_pos; /* offset of its closing tags */
   int nframes;
   int dim;           /* of the run's point stores: 2, or 3 (a mesh of boxes) */
   size_t vertex_n;   /* length of the newest /xdmf/vertex_NNNNNN */
   int vertex_frame;  /* its frame number, -1 before the first */
+  int outline_frame; /* the frame whose body outlines are in /xdmf, -1: none */
+  size_t outline_nv, outline_ncell, outline_len;  /* their vertices, cells, and the
+                                                     length of the cell list */
   const field_spec *fields;  /* MPM_POINT_FIELDS in order: the frames' datasets */
   size_t nfields;
   double *work;      /* per-point scratch for derived fields */
@@ -63,6 +69,11 @@ static inline int mpm_io_out_open_text(FILE **f, const char *path, const char *t
     return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
   return MPM_OK;
 }
+
+/* The body outlines of frame `frame` in /xdmf (their counts to
+ * out->outline_*), from the lengths of its datasets; 0 when the frame has
+ * none, -1 on a damaged dataset. */
+int mpm_io_out_outline_counts(mpm_io_output *out, long frame);
 
 /* A resumed run's bodies after its first nframes frames: later /bodies
  * datasets dropped, bodies.csv (if any) cut and open for appending. */

@@ -2,9 +2,11 @@
  * per frame over the datasets of run.h5, and the parts of run.h5 that only
  * it reads: /xdmf/vertex_NNNNNN, the connectivity 0 .. n-1 (shared by
  * consecutive frames of n points), and /xdmf/xy_NNNNNN (xyz_NNNNNN in 3D),
- * the n x 2 (n x 3) virtual view of a frame's positions. run.xdmf is kept
- * complete after each frame: the frame's grid goes in before the closing
- * tags, which are written again. */
+ * the n x 2 (n x 3) virtual view of a frame's positions; and bodies.xdmf,
+ * the same collection of the rigid bodies' outlines, for runs with bodies
+ * (bodies_out.c writes their datasets). Each file is kept complete after
+ * each frame: the frame's grid goes in before the closing tags, which are
+ * written again. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -12,30 +14,48 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "io/h5err.h"
 #include "io/io.h"
 #include "io/output_internal.h"
 
+/* The head of a temporal collection named `name`, and the tail of every
+ * file. */
 static const char xdmf_head[] =
     "<?xml version=\"1.0\" ?>\n"
     "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
     "  <Domain>\n"
-    "    <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
 static const char xdmf_tail[] = "    </Grid>\n  </Domain>\n</Xdmf>\n";
 
-/* run.xdmf starts as an empty temporal collection; frames are inserted
- * before the closing tags, which are rewritten after each frame. */
-int mpm_io_out_xdmf_open(mpm_io_output *out, mpm_err *err)
+/* path as an empty temporal collection of grids `name`: *f open, *tail the
+ * offset of the closing tags. */
+static int open_collection(FILE **f, long *tail, const char *path, const char *name, mpm_err *err)
 {
-  int rc = mpm_io_out_open_text(&out->xdmf, out->xdmf_path, xdmf_head, err);
+  char head[sizeof xdmf_head + 32];
+  snprintf(head, sizeof head, xdmf_head, name);
+  int rc = mpm_io_out_open_text(f, path, head, err);
   if (rc != MPM_OK)
     return rc;
-  out->xdmf_tail_pos = ftell(out->xdmf);
-  if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, out->xdmf) < 0 || fflush(out->xdmf) != 0)
-    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
-                       strerror(errno));
+  *tail = ftell(*f);
+  if (*tail < 0 || fputs(xdmf_tail, *f) < 0 || fflush(*f) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
   return MPM_OK;
+}
+
+/* run.xdmf starts as an empty temporal collection; frames are inserted
+ * before the closing tags, which are rewritten after each frame. A
+ * bodies.xdmf of an earlier run in the directory goes: the first frame with
+ * outlines makes a new one. */
+int mpm_io_out_xdmf_open(mpm_io_output *out, mpm_err *err)
+{
+  if (out->bxdmf && fclose(out->bxdmf) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot close '%s': %s", out->bxdmf_path, strerror(errno));
+  out->bxdmf = NULL;
+  if (unlink(out->bxdmf_path) != 0 && errno != ENOENT)
+    return mpm_err_set(err, MPM_EIO, "cannot remove '%s': %s", out->bxdmf_path, strerror(errno));
+  return open_collection(&out->xdmf, &out->xdmf_tail_pos, out->xdmf_path, "points", err);
 }
 
 /* run.xdmf written again for frames 0 .. nframes-1 of run.h5. */
@@ -61,6 +81,8 @@ int mpm_io_out_xdmf_rebuild(mpm_io_output *out, long nframes, const mpm_io_h5_qu
       out->vertex_n = (size_t)n;
     }
     out->nframes = (int)k;
+    if (rc == MPM_OK && mpm_io_out_outline_counts(out, k) < 0)
+      rc = mpm_io_h5_fail(err, q, "cannot read the body outlines of", out->h5_path);
     if (rc == MPM_OK)
       rc = mpm_io_out_xdmf_frame(out, t, (size_t)n, dim, err);
   }
@@ -171,21 +193,60 @@ static void xdmf_grid(FILE *f, const mpm_io_output *out, double t, size_t n, int
   fprintf(f, "      </Grid>\n");
 }
 
-/* Insert the frame's grid before the closing tags. A frame without points
- * gets no grid: readers reject empty datasets. */
-int mpm_io_out_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err)
+/* The frame's body outlines (bodies_out.c): a Mixed topology of closed
+ * polylines (plane) or faces (3D), XYZ vertices, and the body of each cell;
+ * ParaView's three XDMF readers open it (tests/paraview-bodies.sh). */
+static void bodies_grid(FILE *f, const mpm_io_output *out, double t)
 {
-  FILE *f = out->xdmf;
-  if (n == 0)
-    return MPM_OK;
-  if (fseek(f, out->xdmf_tail_pos, SEEK_SET) != 0)
-    return mpm_err_set(err, MPM_EIO, "cannot seek in '%s': %s", out->xdmf_path,
-                       strerror(errno));
-  xdmf_grid(f, out, t, n, dim);
-  out->xdmf_tail_pos = ftell(f);
-  if (out->xdmf_tail_pos < 0 || fputs(xdmf_tail, f) < 0 || fflush(f) != 0 || ferror(f))
-    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", out->xdmf_path,
-                       strerror(errno));
+  char path[64];
+  fprintf(f, "      <Grid Name=\"bodies_%06d\" GridType=\"Uniform\">\n", out->nframes);
+  fprintf(f, "        <Time Value=\"%.17g\"/>\n", t);
+  fprintf(f, "        <Topology TopologyType=\"Mixed\" NumberOfElements=\"%zu\">\n",
+          out->outline_ncell);
+  snprintf(path, sizeof path, "/xdmf/bodies_cells_%06d", out->nframes);
+  xdmf_item(f, path, out->outline_len, 1, "          ");
+  fprintf(f, "        </Topology>\n        <Geometry GeometryType=\"XYZ\">\n");
+  fprintf(f,
+          "          <DataItem Dimensions=\"%zu 3\" NumberType=\"Float\" Precision=\"8\" "
+          "Format=\"HDF\">run.h5:/xdmf/bodies_xyz_%06d</DataItem>\n",
+          out->outline_nv, out->nframes);
+  fprintf(f, "        </Geometry>\n");
+  fprintf(f, "        <Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Cell\">\n");
+  snprintf(path, sizeof path, "/xdmf/bodies_id_%06d", out->nframes);
+  xdmf_item(f, path, out->outline_ncell, 1, "          ");
+  fprintf(f, "        </Attribute>\n      </Grid>\n");
+}
+
+/* Insert a grid into the collection of file f (path) before its closing
+ * tags at *tail: points (n, dim) or, with bodies set, the outlines. */
+static int insert(FILE *f, long *tail, const char *path, const mpm_io_output *out, double t,
+                  size_t n, int dim, int bodies, mpm_err *err)
+{
+  if (fseek(f, *tail, SEEK_SET) != 0)
+    return mpm_err_set(err, MPM_EIO, "cannot seek in '%s': %s", path, strerror(errno));
+  if (bodies)
+    bodies_grid(f, out, t);
+  else
+    xdmf_grid(f, out, t, n, dim);
+  *tail = ftell(f);
+  if (*tail < 0 || fputs(xdmf_tail, f) < 0 || fflush(f) != 0 || ferror(f))
+    return mpm_err_set(err, MPM_EIO, "cannot write '%s': %s", path, strerror(errno));
   return MPM_OK;
 }
 
+/* Insert the frame's grid into run.xdmf (none for a frame without points:
+ * readers reject empty datasets) and, when the frame has body outlines,
+ * theirs into bodies.xdmf (made at the first). */
+int mpm_io_out_xdmf_frame(mpm_io_output *out, double t, size_t n, int dim, mpm_err *err)
+{
+  int rc = MPM_OK;
+  if (n > 0)
+    rc = insert(out->xdmf, &out->xdmf_tail_pos, out->xdmf_path, out, t, n, dim, 0, err);
+  if (rc != MPM_OK || out->outline_frame != out->nframes)
+    return rc;
+  if (!out->bxdmf)
+    rc = open_collection(&out->bxdmf, &out->bxdmf_tail_pos, out->bxdmf_path, "bodies", err);
+  if (rc == MPM_OK)
+    rc = insert(out->bxdmf, &out->bxdmf_tail_pos, out->bxdmf_path, out, t, 0, 3, 1, err);
+  return rc;
+}
