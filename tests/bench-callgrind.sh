@@ -3,9 +3,9 @@
 # measurement that worked. A program that fails under valgrind, or one that
 # exits 0 without doing the run, must stop the bench with exit status 1, a
 # message and no figure; the real program on the tiny case gives a count in
-# a plausible range for its 512 points, or, on a CPU with AVX-512 where this
-# build uses it (valgrind 3.19 cannot decode it), exit status 1 and a message
-# that says so.
+# a plausible range for its 512 points and a serial share in percent, or,
+# on a CPU with AVX-512 where this build uses it (valgrind 3.19 cannot
+# decode it), exit status 1 and a message that says so.
 set -u
 : "${GRANMPM:?set GRANMPM to the granmpm program (make check does)}"
 srcdir=${GRANMPM_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -49,14 +49,18 @@ if [ "$rc" -eq 0 ]; then
   # the tiny case's cost per particle-step: a few hundred instructions (the
   # 20000-point silo takes about 380 with this scheme; the tiny case's
   # per-step overheads, spread over only 512 points, add to it)
-  set -- $(echo "$out" | awk '$1 == "tiny" { print $2, $3 }')
-  if [ $# -ne 2 ]; then
+  set -- $(echo "$out" | awk '$1 == "tiny" { print $2, $3, $4 }')
+  if [ $# -ne 3 ]; then
     fail "exit status 0 without a figure: $out"
   else
     [ "$1" -eq 512 ] || fail "tiny case: $1 points (expected 512)"
     awk -v f="$2" 'BEGIN { exit !(f >= 100 && f <= 5000) }' ||
       fail "tiny case: $2 instructions per particle-step (expected 100 to 5000)"
-    echo "tiny case: $2 instructions per particle-step"
+    # the serial share: a percentage; most of a step is in the parallel
+    # regions (the point and node loops), so well below half
+    awk -v f="$3" 'BEGIN { exit !(f >= 0 && f <= 50) }' ||
+      fail "tiny case: serial share $3 % (expected 0 to 50)"
+    echo "tiny case: $2 instructions per particle-step, $3 % serial"
   fi
 elif [ "$rc" -eq 1 ] && echo "$err" | grep -q 'cannot decode AVX-512' && grep -qw avx512f /proc/cpuinfo; then
   echo "this build uses AVX-512, which valgrind cannot decode: refused as it should be"
