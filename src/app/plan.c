@@ -297,8 +297,11 @@ int mpm_app_plan_load(mpm_app_plan *p, const char *file, const char *text,
 int mpm_app_plan_build(mpm_app_plan *p)
 {
   mpm_err err = {0};
-  if (mpm_sim_create(&p->sim, &p->cfg, &err) == MPM_OK)
+  if (mpm_sim_create(&p->sim, &p->cfg, &err) == MPM_OK) {
+    if (p->sim->pts->n != p->size.points)   /* bodies carved the fills */
+      mpm_sim_estimate_points(&p->cfg, p->sim->pts->n, &p->size);
     return 0;
+  }
   /* an input the simulation refuses at a key ("key 'K': ..."): where K was set */
   char key[4 * MPM_NAME_MAX];
   int off = 0;

@@ -177,11 +177,21 @@ void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz)
   mpm_mesh m;
   if (mpm_mesh_from_config(&m, cfg, NULL) != MPM_OK)
     return;
-  const int dim3 = m.dim == 3;
+  size_t points = 0;
   for (int f = 0; f < cfg->nfill; f++) {
     sz->fill_points[f] = mpm_scenario_count(&cfg->fill[f], &m);
-    sz->points += sz->fill_points[f];
+    points += sz->fill_points[f];
   }
+  mpm_sim_estimate_points(cfg, points, sz);
+}
+
+void mpm_sim_estimate_points(const mpm_config *cfg, size_t points, mpm_sim_size *sz)
+{
+  mpm_mesh m;
+  if (mpm_mesh_from_config(&m, cfg, NULL) != MPM_OK)
+    return;
+  const int dim3 = m.dim == 3;
+  sz->points = points;
   sz->nodes = (long)(cfg->mesh.nx + 1) * (cfg->mesh.ny + 1) * (dim3 ? cfg->mesh.nz + 1 : 1);
   sz->dt_stable = mpm_sim_stable_dt(cfg);
   int n_sub;

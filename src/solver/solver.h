@@ -146,7 +146,8 @@ double mpm_sim_substeps(const mpm_config *cfg, double dt);
 /* The size of a run, from its input alone (plan.c). Counts that may be
  * astronomical for a bad input are doubles. */
 typedef struct mpm_sim_size {
-  size_t points;                     /* material points of all fills (exact) */
+  size_t points;                     /* material points of all fills (exact; before
+                                        bodies carve them, until the run is built) */
   size_t fill_points[MPM_MAX_FILLS]; /* ... of each fill */
   long nodes;                        /* mesh nodes */
   double dt;                         /* the time step [s] */
@@ -162,6 +163,10 @@ typedef struct mpm_sim_size {
 } mpm_sim_size;
 
 void mpm_sim_estimate(const mpm_config *cfg, mpm_sim_size *sz);
+
+/* The same for a run of `points` points (the count of a built run, whose
+ * bodies may have carved its fills); fill_points are left as they are. */
+void mpm_sim_estimate_points(const mpm_config *cfg, size_t points, mpm_sim_size *sz);
 
 /* The rigid bodies of the input (bodies.c): set up after the fill (a body
  * may not overlap a point of it unless it carves them out, and must hold a
