@@ -45,18 +45,33 @@ static void compact_values(double *a, const unsigned char *keep, size_t n)
       a[q++] = a[p];
 }
 
+/* The box a point stays in, lo[d] <= x_d <= hi[d] on every axis: the mesh
+ * (no bound along a periodic axis), above the removal level. A point inside
+ * it stays (fate 0); only one outside it needs fate(). */
+static void staying_box(const mpm_sim *s, double lo[3], double hi[3])
+{
+  const mpm_mesh *m = &s->mesh;
+  for (int d = 0; d < 3; d++) {
+    lo[d] = d >= m->dim || m->periodic[d] ? -INFINITY : m->o[d];
+    hi[d] = d >= m->dim || m->periodic[d] ? INFINITY : m->o[d] + m->len[d];
+  }
+  lo[1] = s->cfg.remove.below > lo[1] ? s->cfg.remove.below : lo[1];
+}
+
+static inline int in_box(const mpm_points *P, int D, const double lo[3], const double hi[3],
+                         size_t p)
+{
+  return P->x[p] >= lo[0] && P->x[p] <= hi[0] && P->y[p] >= lo[1] && P->y[p] <= hi[1] &&
+         (D == 2 || (P->z[p] >= lo[2] && P->z[p] <= hi[2]));
+}
+
 /* mpm_sim_may_leave over D axes (a constant where it is inlined): one pass
  * that vectorises. */
 static inline int may_leave_dim(const mpm_sim *s, int D, size_t a, size_t b)
 {
-  const mpm_mesh *m = &s->mesh;
   const mpm_points *P = s->pts;
   double lo[3], hi[3];
-  for (int d = 0; d < D; d++) {
-    lo[d] = m->periodic[d] ? -INFINITY : m->o[d];
-    hi[d] = m->periodic[d] ? INFINITY : m->o[d] + m->len[d];
-  }
-  lo[1] = s->cfg.remove.below > lo[1] ? s->cfg.remove.below : lo[1];
+  staying_box(s, lo, hi);
   const double *const x = P->x, *const y = P->y, *const z = P->z;
   int any = 0;
   if (D == 3)
@@ -79,8 +94,13 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
   mpm_points *P = s->pts;
   if (!(s->scan & MPM_SIM_SCAN_LEAVE) || !mpm_sim_may_leave(s, 0, P->n))
     return MPM_OK;
+  double lo[3], hi[3];
+  staying_box(s, lo, hi);
+  const int D = s->dim;
   size_t first = P->n;
   for (size_t p = 0; p < P->n; p++) {
+    if (in_box(P, D, lo, hi, p))
+      continue;                                  /* stays: most points */
     const int f = fate(s, p);
     if (f < 0 && mpm_sim_check_state(s, t, err) != MPM_OK)
       return err ? err->code : MPM_ENONFINITE;   /* a blow-up, not a point gone astray */
@@ -101,7 +121,7 @@ int mpm_sim_remove_points(mpm_sim *s, double t, mpm_err *err)
   if (!keep)
     return mpm_err_set(err, MPM_ENOMEM, "point removal: out of memory");
   for (size_t p = 0; p < P->n; p++) {
-    keep[p] = p < first || fate(s, p) == 0;
+    keep[p] = p < first || in_box(P, D, lo, hi, p) || fate(s, p) == 0;
     if (!keep[p]) {
       s->mass_removed += P->mass[p];
       s->nremoved++;
