@@ -162,13 +162,18 @@ static int reserve_units(mpm_sim *s, mpm_err *err)
 static void find_units(mpm_sim *s)
 {
   const mpm_points *P = s->pts;
-  const mpm_mesh m = s->mesh;             /* a copy: its fields stay in registers */
-  const int three = m.dim == 3;
-  for (size_t p = 0; p < P->n; p++) {
-    const double x[3] = {P->x[p], P->y[p], three ? P->z[p] : 0.0};
-    int c[3];
-    double l[3];
-    s->uof[p] = mpm_mesh_locate(&m, x, c, l) ? -1 : (int)mpm_mesh_unit_index(&m, c);
+  const size_t n = P->n;
+#pragma omp parallel if (n >= 4096)          /* each point its own */
+  {
+    const mpm_mesh m = s->mesh;              /* each thread's copy: its fields stay in registers */
+    const int three = m.dim == 3;
+#pragma omp for schedule(static)
+    for (size_t p = 0; p < n; p++) {
+      const double x[3] = {P->x[p], P->y[p], three ? P->z[p] : 0.0};
+      int c[3];
+      double l[3];
+      s->uof[p] = mpm_mesh_locate(&m, x, c, l) ? -1 : (int)mpm_mesh_unit_index(&m, c);
+    }
   }
 }
 
@@ -216,6 +221,7 @@ static inline void unit_means(mpm_sim *s, int what)
     us[2 * u] += P->vol[p];
     us[2 * u + 1] += P->vol[p] * mean_value(s, p, what);
   }
+#pragma omp parallel for schedule(static) if (nu >= 4096)
   for (size_t e = 0; e < nu; e++)
     if (us[2 * e] > 0.0)
       us[2 * e + 1] /= us[2 * e];
@@ -266,6 +272,28 @@ EL_INLINE int neighbour_holds(const mpm_sim *s, const unit_grid *g, int dim, con
   return s->usum[2 * e] > 0.0;
 }
 
+/* Row r (along axis 0) of the units: filled or not (filled_units_dim). */
+EL_INLINE void filled_row(mpm_sim *s, const unit_grid *g, int dim, long r, double vol)
+{
+  const size_t w = mpm_sim_in_el_width_of(dim);
+  const int kz = dim == 3 ? 1 : 0;
+  const int k = (int)(r / g->n[1]), j = (int)(r % g->n[1]);
+  double *el = s->uel;
+  size_t e = (size_t)r * (size_t)g->n[0];
+  for (int i = 0; i < g->n[0]; i++, e++) {
+    int filled = el[w * e] > 0.0 && s->usum[2 * e] > 0.0;
+    for (int c = k - kz; filled && c <= k + kz; c++)
+      for (int b = j - 1; filled && b <= j + 1; b++)
+        for (int a = i - 1; filled && a <= i + 1; a++)
+          filled = neighbour_holds(s, g, dim, (const int[3]){a, b, c});
+    el[w * e] = filled ? s->usum[2 * e] / vol : 0.0;
+  }
+}
+
+/* The parallel loops below call their per-item functions with the
+ * dimension as a literal in each branch: the loop body is outlined before
+ * it is inlined, so the constant of the caller would not reach it. */
+
 EL_INLINE void filled_units_dim(mpm_sim *s, int dim)
 {
   const mpm_points *P = s->pts;
@@ -275,24 +303,25 @@ EL_INLINE void filled_units_dim(mpm_sim *s, int dim)
   double vol = 1.0;
   for (int d = 0; d < dim; d++)
     vol *= g.h[d];
-  const int nz = dim == 3 ? g.n[2] : 1, kz = dim == 3 ? 1 : 0;
+  const int nz = dim == 3 ? g.n[2] : 1;
   const size_t nu = unit_count(s);
   for (size_t e = 0; e < nu; e++)
     el[w * e] = 1.0;
   for (size_t p = 0; p < P->n; p++)          /* a unit with a loose point is not filled */
     if (s->uof[p] >= 0 && P->state[p] != MPM_STATE_DENSE)
       el[w * (size_t)s->uof[p]] = 0.0;
-  size_t e = 0;
-  for (int k = 0; k < nz; k++)
-    for (int j = 0; j < g.n[1]; j++)
-      for (int i = 0; i < g.n[0]; i++, e++) {
-        int filled = el[w * e] > 0.0 && s->usum[2 * e] > 0.0;
-        for (int c = k - kz; filled && c <= k + kz; c++)
-          for (int b = j - 1; filled && b <= j + 1; b++)
-            for (int a = i - 1; filled && a <= i + 1; a++)
-              filled = neighbour_holds(s, &g, dim, (const int[3]){a, b, c});
-        el[w * e] = filled ? s->usum[2 * e] / vol : 0.0;
-      }
+  const long rows = (long)nz * g.n[1];
+#pragma omp parallel if (nu >= 4096)          /* each unit its own */
+  {
+    const unit_grid gt = g;                   /* each thread's copy */
+#pragma omp for schedule(static)
+    for (long r = 0; r < rows; r++) {
+      if (dim == 3)
+        filled_row(s, &gt, 3, r, vol);
+      else
+        filled_row(s, &gt, 2, r, vol);
+    }
+  }
 }
 
 static void filled_units(mpm_sim *s)
@@ -457,6 +486,7 @@ EL_INLINE void element_slopes_dim(mpm_sim *s, int dim)
     for (int d = 0; d < dim; d++)
       el[w * (size_t)u + 1 + (size_t)d] += P->vol[p] * x[d];
   }
+#pragma omp parallel for schedule(static) if (nu >= 4096)   /* reads usum only */
   for (size_t e = 0; e < nu; e++) {
     const double v = s->usum[2 * e];
     if (!(v > 0.0))
@@ -501,6 +531,7 @@ static void element_centre_values(mpm_sim *s)
   const int dim = s->dim;
   const unit_grid g = unit_grid_of(s);
   const size_t w = mpm_sim_in_el_width(s), nu = unit_count(s);
+#pragma omp parallel for schedule(static) if (nu >= 4096)
   for (size_t e = 0; e < nu; e++) {
     const double *f = s->uel + w * e;
     if (!(f[0] > 0.0))
@@ -549,9 +580,29 @@ EL_INLINE void element_rates_dim(mpm_sim *s, int dim)
   const unit_grid g = unit_grid_of(s);
   const size_t w = mpm_sim_in_el_width_of(dim), nu = unit_count(s);
   double *el = s->uel;
-  for (size_t e = 0; e < nu; e++)
-    if (el[w * e] > 0.0)
-      el[w * e + 1] = el[w * e] * element_divergence(s, &g, dim, e);
+#pragma omp parallel if (nu >= 4096)
+  {
+    const unit_grid gt = g;
+#pragma omp for schedule(static)
+    for (size_t e = 0; e < nu; e++)
+      if (el[w * e] > 0.0)
+        el[w * e + 1] = el[w * e] * (dim == 3 ? element_divergence(s, &gt, 3, e)
+                                              : element_divergence(s, &gt, 2, e));
+  }
+}
+
+/* Point p's tr L and volume from its unit's divergence. */
+EL_INLINE void dilate_point(mpm_sim *s, int D, size_t p, size_t w, double dt)
+{
+  const double *el = s->uel;
+  const int u = s->uof[p];
+  const double tr = trace_L(s, p);
+  double div = u < 0 ? tr : s->usum[2 * u + 1];            /* the unit's divergence */
+  if (el && u >= 0 && el[w * (size_t)u] > 0.0)
+    div = el[w * (size_t)u + 1];
+  for (int i = 0; i < D; i++)                                /* L_ii += (div - tr)/D */
+    s->L[(D + 1) * i][p] += D == 3 ? (div - tr) / 3.0 : 0.5 * (div - tr);
+  s->pts->vol[p] *= mpm_sim_volume_ratio(dt * div);          /* V *= exp(dt tr L) */
 }
 
 void mpm_sim_in_unit_dilatation(mpm_sim *s)
@@ -566,39 +617,34 @@ void mpm_sim_in_unit_dilatation(mpm_sim *s)
     element_rates_dim(s, 2);
   const double dt = s->dt;
   const int D = s->dim;
+#pragma omp parallel for schedule(static) if (P->n >= 4096)   /* each point its own */
   for (size_t p = 0; p < P->n; p++) {
-    const int u = s->uof[p];
-    const double tr = trace_L(s, p);
-    double div = u < 0 ? tr : s->usum[2 * u + 1];          /* the unit's divergence */
-    if (el && u >= 0 && el[w * (size_t)u] > 0.0)
-      div = el[w * (size_t)u + 1];
-    for (int i = 0; i < D; i++)                              /* L_ii += (div - tr)/D */
-      s->L[(D + 1) * i][p] += D == 3 ? (div - tr) / 3.0 : 0.5 * (div - tr);
-    P->vol[p] *= mpm_sim_volume_ratio(dt * div);             /* V *= exp(dt tr L) */
+    if (D == 3)
+      dilate_point(s, 3, p, w, dt);
+    else
+      dilate_point(s, 2, p, w, dt);
   }
 }
 
 /* The projection's change of point p's mean stress to its unit's value. */
-EL_INLINE void project_dim(mpm_sim *s, int dim)
+EL_INLINE void project_point(mpm_sim *s, int dim, size_t p)
 {
   mpm_points *P = s->pts;
   const double *el = s->uel;
   const size_t w = mpm_sim_in_el_width_of(dim);
-  for (size_t p = 0; p < P->n; p++) {
-    const int u = s->uof[p];
-    if (u < 0 || P->state[p] != MPM_STATE_DENSE)
-      continue;
-    double d = s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
-    if (el) {
-      double x[3];
-      point_at(P, p, dim, x);
-      d += slope_offset(el + w * (size_t)u, dim, x);
-    }
-    P->sxx[p] += d;
-    P->syy[p] += d;
-    if (dim == 3)
-      P->szz[p] += d;
+  const int u = s->uof[p];
+  if (u < 0 || P->state[p] != MPM_STATE_DENSE)
+    return;
+  double d = s->usum[2 * u + 1] - mpm_sim_in_mean_stress(s, p);
+  if (el) {
+    double x[3];
+    point_at(P, p, dim, x);
+    d += slope_offset(el + w * (size_t)u, dim, x);
   }
+  P->sxx[p] += d;
+  P->syy[p] += d;
+  if (dim == 3)
+    P->szz[p] += d;
 }
 
 void mpm_sim_in_unit_project(mpm_sim *s)
@@ -608,8 +654,13 @@ void mpm_sim_in_unit_project(mpm_sim *s)
   unit_means(s, MEAN_SM_DENSE);
   if (s->uel)
     element_slopes(s);
-  if (s->dim == 3)
-    project_dim(s, 3);
-  else
-    project_dim(s, 2);
+  const size_t n = s->pts->n;
+  const int dim = s->dim;
+#pragma omp parallel for schedule(static) if (n >= 4096)   /* each point its own */
+  for (size_t p = 0; p < n; p++) {
+    if (dim == 3)
+      project_point(s, 3, p);
+    else
+      project_point(s, 2, p);
+  }
 }
