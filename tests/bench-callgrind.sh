@@ -27,21 +27,19 @@ bench() {
   err=$(cat "$tmp/err")
 }
 
-# a program that fails
-printf '#!/bin/sh\necho "fake: failing on purpose" >&2\nexit 3\n' >"$tmp/failing"
-chmod +x "$tmp/failing"
-bench "$tmp/failing"
-[ "$rc" -eq 1 ] || fail "a failing program: exit status $rc (expected 1)"
-echo "$err" | grep -q 'under valgrind failed (exit status 3' || fail "a failing program: no message: $err"
-echo "$out" | grep -q '^tiny ' && fail "a failing program: a figure printed: $out"
-
-# a program that exits 0 and runs nothing
-printf '#!/bin/sh\nexit 0\n' >"$tmp/idle"
-chmod +x "$tmp/idle"
-bench "$tmp/idle"
-[ "$rc" -eq 1 ] || fail "a program that does nothing: exit status $rc (expected 1)"
-echo "$err" | grep -q 'no figure' || fail "a program that does nothing: no message: $err"
-echo "$out" | grep -q '^tiny ' && fail "a program that does nothing: a figure printed: $out"
+# refused LABEL SCRIPT MESSAGE: a program with body SCRIPT makes the bench
+# exit 1 with MESSAGE (a grep pattern) on stderr and no figure
+refused() {
+  printf '#!/bin/sh\n%s\n' "$2" >"$tmp/fake"
+  chmod +x "$tmp/fake"
+  bench "$tmp/fake"
+  [ "$rc" -eq 1 ] || fail "$1: exit status $rc (expected 1)"
+  echo "$err" | grep -q "$3" || fail "$1: no message: $err"
+  echo "$out" | grep -q '^tiny ' && fail "$1: a figure printed: $out"
+}
+refused "a failing program" 'echo "fake: failing on purpose" >&2; exit 3' \
+  'under valgrind failed (exit status 3'
+refused "a program that does nothing" 'exit 0' 'no figure'
 
 # the program itself
 bench "$GRANMPM"
