@@ -123,9 +123,9 @@ static int same_set(const mpm_nonlocal_implicit *im, const double *sm)
 }
 
 /* The filled set from sm, and rows for it: the cover grows by the filled
- * units it lacks and is numbered again in unit order. Returns 1 when the
- * cover grew (a new pattern). */
-static int take_set(mpm_nonlocal_implicit *im, const double *sm)
+ * units it lacks and is numbered again in unit order (a new pattern, which
+ * mpm_linalg_spd_set then finds). */
+static void take_set(mpm_nonlocal_implicit *im, const double *sm)
 {
   int grew = 0;
   im->nf = 0;
@@ -140,7 +140,6 @@ static int take_set(mpm_nonlocal_implicit *im, const double *sm)
       im->row[e] = im->row[e] >= 0 || im->filled[e] ? r++ : -1;
     im->nr = r;
   }
-  return grew;
 }
 
 /* Triplets of the lower triangle of the covered rows, units in index order:
